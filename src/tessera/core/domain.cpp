@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/core/domain.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "tessera/core/error.h"
+
+namespace tessera {
+
+Domain Domain::box(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                   const std::vector<std::string>& coordinate_names) {
+  TESSERA_CHECK(lower.size() == upper.size(), "box bounds have sizes " << lower.size() << " and "
+                                                                      << upper.size());
+  const int n = static_cast<int>(lower.size());
+  Domain domain(n);
+  for (int i = 0; i < n; ++i) {
+    const std::string name =
+        i < static_cast<int>(coordinate_names.size()) ? coordinate_names[i] : "x" + std::to_string(i);
+    TESSERA_CHECK(!std::isnan(lower(i)) && !std::isnan(upper(i)),
+                  "box bound of coordinate " << name << " is NaN");
+    TESSERA_CHECK(lower(i) <= upper(i), "box is empty: lower bound " << lower(i)
+                                                                     << " of coordinate " << name
+                                                                     << " exceeds upper bound "
+                                                                     << upper(i));
+    Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
+    Eigen::VectorXd point = Eigen::VectorXd::Zero(n);
+    if (std::isfinite(lower(i))) {
+      normal(i) = 1.0;
+      point(i) = lower(i);
+      std::ostringstream label;
+      label << name << " >= " << lower(i);
+      domain.add_half_space(normal, point, label.str());
+    }
+    if (std::isfinite(upper(i))) {
+      normal(i) = -1.0;
+      point(i) = upper(i);
+      std::ostringstream label;
+      label << name << " <= " << upper(i);
+      domain.add_half_space(normal, point, label.str());
+    }
+  }
+  return domain;
+}
+
+void Domain::add_half_space(const Eigen::VectorXd& normal, const Eigen::VectorXd& point,
+                            std::string label) {
+  if (dimension_ == 0) {
+    dimension_ = static_cast<int>(normal.size());
+  }
+  TESSERA_CHECK(normal.size() == dimension_ && point.size() == dimension_,
+                "half-space has normal of size " << normal.size() << " and point of size "
+                                                 << point.size() << ", expected " << dimension_);
+  TESSERA_CHECK(normal.allFinite() && point.allFinite(), "half-space '" << label
+                                                                        << "' has a non-finite "
+                                                                           "normal or point");
+  const double length = normal.norm();
+  TESSERA_CHECK(length > 0.0, "half-space '" << label << "' has a zero normal vector");
+  half_spaces_.push_back({normal / length, point, std::move(label)});
+}
+
+double Domain::signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  const HalfSpace& h = half_spaces_[k];
+  return h.normal.dot(x - h.point);
+}
+
+BoundaryDistance Domain::boundary_distance(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  BoundaryDistance result;
+  result.signed_distance = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
+    const double d = signed_distance(k, x);
+    if (d < result.signed_distance) {
+      result.signed_distance = d;
+      result.nearest_half_space = k;
+    }
+  }
+  return result;
+}
+
+bool Domain::contains(const Eigen::Ref<const Eigen::VectorXd>& x, double tolerance) const {
+  for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
+    if (signed_distance(k, x) < -tolerance) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void Domain::intersect_with(const Domain& other) {
+  if (other.half_spaces_.empty()) {
+    return;
+  }
+  if (dimension_ == 0) {
+    dimension_ = other.dimension_;
+  }
+  TESSERA_CHECK(other.dimension_ == dimension_, "cannot intersect domains of dimension "
+                                                    << dimension_ << " and " << other.dimension_);
+  half_spaces_.insert(half_spaces_.end(), other.half_spaces_.begin(), other.half_spaces_.end());
+}
+
+std::string Domain::describe() const {
+  if (half_spaces_.empty()) {
+    return "unbounded";
+  }
+  std::ostringstream out;
+  for (std::size_t k = 0; k < half_spaces_.size(); ++k) {
+    out << (k ? ", " : "") << (half_spaces_[k].label.empty() ? "half-space" : half_spaces_[k].label);
+  }
+  return out.str();
+}
+
+}  // namespace tessera

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// Polyhedral domain S = ∩ {x : b_k·(x − p_k) ≥ 0} (Brodzik & Rheinboldt, eq. 2.2).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+/// One closed half-space {x : normal·(x − point) ≥ 0}; `normal` is stored with unit length.
+struct HalfSpace {
+  Eigen::VectorXd normal;  ///< n-vector, unit length (normalised on construction by Domain)
+  Eigen::VectorXd point;   ///< n-vector, a point on the bounding hyperplane
+  std::string label;       ///< for messages, e.g. "x >= -1.5"
+};
+
+/// The nearest bounding hyperplane of a point (the paper's Chkbnd).
+struct BoundaryDistance {
+  double signed_distance = 0.0;  ///< min_k b_k·(x − p_k); > 0 strictly inside, ≤ 0 outside/on
+  int nearest_half_space = -1;   ///< index k of the minimiser, −1 if the domain is unbounded
+};
+
+/// An intersection of half-spaces in R^n. The empty list is the whole space.
+class Domain {
+ public:
+  Domain() = default;
+  explicit Domain(int ambient_dimension) : dimension_(ambient_dimension) {}
+
+  /// The axis-aligned box [lower, upper] as 2n half-spaces; a bound of ±infinity is skipped.
+  /// \throw InvalidArgument if lower(i) > upper(i) for some i (the message names i).
+  static Domain box(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                    const std::vector<std::string>& coordinate_names = {});
+
+  /// Adds {x : normal·(x − point) ≥ 0}. \throw InvalidArgument for a zero normal or wrong size.
+  void add_half_space(const Eigen::VectorXd& normal, const Eigen::VectorXd& point,
+                      std::string label = {});
+
+  int ambient_dimension() const { return dimension_; }
+  bool is_unbounded() const { return half_spaces_.empty(); }
+  const std::vector<HalfSpace>& half_spaces() const { return half_spaces_; }
+
+  /// Chkbnd: distance to the nearest bounding hyperplane, signed (> 0 inside).
+  BoundaryDistance boundary_distance(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  /// Signed distance b_k·(x − p_k) to one bounding hyperplane.
+  double signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  /// x ∈ S (closed), with a tolerance on the signed distances.
+  bool contains(const Eigen::Ref<const Eigen::VectorXd>& x, double tolerance = 0.0) const;
+
+  /// Intersection of two domains. \pre same ambient dimension.
+  void intersect_with(const Domain& other);
+
+  /// A one-line description, e.g. "box [-1.5,1.5]^3" or "2 half-spaces".
+  std::string describe() const;
+
+ private:
+  int dimension_ = 0;
+  std::vector<HalfSpace> half_spaces_;
+};
+
+}  // namespace tessera

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// The problem interface: a smooth map F: R^n -> R^(n-2) and its Jacobian, dense or sparse.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+/// An implicitly defined two-dimensional manifold M = {x in R^n : F(x) = 0}.
+///
+/// Implement `ambient_dimension`, `evaluate` and one of `jacobian` / `sparse_jacobian`.
+/// Problems with large n (discretised PDEs) override `has_sparse_jacobian` to return true and
+/// implement `sparse_jacobian`; the solvers then never form a dense (n-2)×n matrix.
+///
+/// Evaluations may be called from one thread at a time per problem object; implementations
+/// should be free of side effects apart from caching.
+class ImplicitProblem {
+ public:
+  virtual ~ImplicitProblem() = default;
+
+  /// n, the dimension of the ambient space. The manifold has dimension 2, so F has n-2 components.
+  virtual int ambient_dimension() const = 0;
+  int equation_count() const { return ambient_dimension() - 2; }
+
+  /// F(x). \pre x.size() == n, F.size() == n-2. Non-finite values are allowed and are treated
+  /// by the solvers as "x is outside the domain of F".
+  virtual void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                        Eigen::Ref<Eigen::VectorXd> F) const = 0;
+
+  /// J = DF(x), dense (n-2)×n. The default converts `sparse_jacobian`.
+  virtual void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                        Eigen::Ref<Eigen::MatrixXd> J) const;
+
+  /// True if `sparse_jacobian` is the natural (efficient) form of the Jacobian.
+  virtual bool has_sparse_jacobian() const { return false; }
+
+  /// J = DF(x), sparse (n-2)×n, compressed column storage. The default converts `jacobian`.
+  virtual void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                               Eigen::SparseMatrix<double>& J) const;
+
+  /// Short identifier, e.g. "sphere". Used in reports and file headers.
+  virtual std::string name() const { return "problem"; }
+
+  /// Names of the n coordinates; the default is x0 … x{n-1} (x, y, z when n = 3).
+  virtual std::vector<std::string> coordinate_names() const;
+};
+
+/// Default coordinate names for dimension n: x, y, z for n = 3, otherwise x0 … x{n-1}.
+std::vector<std::string> default_coordinate_names(int n);
+
+}  // namespace tessera

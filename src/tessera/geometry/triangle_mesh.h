@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+// A triangle mesh whose vertices are points of R^n.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace tessera {
+
+/// Three vertex indices; their order defines the orientation of the triangle.
+using Triangle = std::array<int, 3>;
+
+/// Vertices in R^n (stored as the columns of an n×N matrix) and oriented triangles.
+///
+/// This is a plain container: topology (edges, adjacency, boundary loops) is computed by
+/// MeshTopology, checks by validate(), measures by measure_quality().
+class TriangleMesh {
+ public:
+  TriangleMesh() = default;
+  explicit TriangleMesh(int ambient_dimension) : dimension_(ambient_dimension) {}
+  /// \param points n×N matrix, one vertex per column. \param triangles indices into the columns.
+  TriangleMesh(const Eigen::Ref<const Eigen::MatrixXd>& points, std::vector<Triangle> triangles);
+
+  int ambient_dimension() const { return dimension_; }
+  int vertex_count() const { return dimension_ == 0 ? 0 : static_cast<int>(coordinates_.size()) / dimension_; }
+  int triangle_count() const { return static_cast<int>(triangles_.size()); }
+
+  /// n×N view of all vertices (column j is vertex j).
+  Eigen::Map<const Eigen::MatrixXd> points() const {
+    return {coordinates_.data(), dimension_, vertex_count()};
+  }
+  Eigen::Map<const Eigen::VectorXd> point(int vertex) const {
+    return {coordinates_.data() + static_cast<std::ptrdiff_t>(vertex) * dimension_, dimension_};
+  }
+  Eigen::Map<Eigen::VectorXd> mutable_point(int vertex) {
+    return {coordinates_.data() + static_cast<std::ptrdiff_t>(vertex) * dimension_, dimension_};
+  }
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+  const Triangle& triangle(int t) const { return triangles_[t]; }
+
+  /// Appends a vertex and returns its index. \pre x.size() == ambient_dimension().
+  int add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x);
+  /// Appends a triangle and returns its index. Indices are not checked here; see validate().
+  int add_triangle(int a, int b, int c);
+  /// Replaces all triangles.
+  void set_triangles(std::vector<Triangle> triangles) { triangles_ = std::move(triangles); }
+  void reserve(int vertices, int triangles);
+
+ private:
+  int dimension_ = 0;
+  std::vector<double> coordinates_;  // column-major n×N
+  std::vector<Triangle> triangles_;
+};
+
+}  // namespace tessera

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+#include "support/test_support.h"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace tessera::testing {
+
+CommandResult run_cli(const std::string& arguments) {
+  const std::string command = std::string(TESSERA_CLI) + " " + arguments + " 2>&1 </dev/null";
+  CommandResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    throw std::runtime_error("cannot run " + command);
+  }
+  std::array<char, 4096> buffer{};
+  std::size_t count = 0;
+  while ((count = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+    result.output.append(buffer.data(), count);
+  }
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string temporary_directory(const std::string& name) {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("tessera_test_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(path);
+  std::filesystem::create_directories(path);
+  return path.string();
+}
+
+double observed_order(const std::vector<double>& h, const std::vector<double>& error) {
+  if (h.size() != error.size() || h.size() < 2) {
+    throw std::invalid_argument("observed_order needs at least two (h, error) pairs");
+  }
+  double mean_x = 0;
+  double mean_y = 0;
+  const double count = static_cast<double>(h.size());
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    mean_x += std::log(h[i]) / count;
+    mean_y += std::log(error[i]) / count;
+  }
+  double sxy = 0;
+  double sxx = 0;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const double dx = std::log(h[i]) - mean_x;
+    sxy += dx * (std::log(error[i]) - mean_y);
+    sxx += dx * dx;
+  }
+  return sxy / sxx;
+}
+
+std::string source_path(const std::string& relative) {
+  return std::string(TESSERA_SOURCE_DIR) + "/" + relative;
+}
+
+}  // namespace tessera::testing
