@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/core/corrector.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace tessera {
+
+const char* to_string(CorrectorTermination termination) {
+  switch (termination) {
+    case CorrectorTermination::Converged:
+      return "Converged";
+    case CorrectorTermination::MaxIterations:
+      return "MaxIterations";
+    case CorrectorTermination::Diverged:
+      return "Diverged";
+    case CorrectorTermination::TooFar:
+      return "TooFar";
+    case CorrectorTermination::NonFiniteResidual:
+      return "NonFiniteResidual";
+    case CorrectorTermination::SingularJacobian:
+      return "SingularJacobian";
+  }
+  return "Unknown";
+}
+
+std::string CorrectorSummary::brief_report() const {
+  std::ostringstream out;
+  out.precision(2);
+  out << to_string(termination) << " after " << iterations << " its, |F| " << residual_norm
+      << ", theta " << contraction;
+  return out.str();
+}
+
+namespace {
+
+// One shared iteration for both correctors: `refactor` says whether J is re-evaluated.
+CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::VectorXd> x,
+                         const CorrectorOptions& options, Linearization& linearization,
+                         bool refactor) {
+  const int n = problem.ambient_dimension();
+  CorrectorSummary summary;
+  const Eigen::VectorXd start = x;
+  Eigen::VectorXd F(n - 2);
+  Eigen::VectorXd dx(n);
+  double previous_correction = 0.0;
+  for (int k = 0; k < options.max_iterations; ++k) {
+    problem.evaluate(x, F);
+    summary.residual_norm = F.norm();
+    if (!std::isfinite(summary.residual_norm)) {
+      summary.termination = CorrectorTermination::NonFiniteResidual;
+      return summary;
+    }
+    if (refactor) {
+      const Eigen::MatrixXd reference =
+          linearization.is_factored() ? linearization.tangent_basis() : Eigen::MatrixXd();
+      if (!linearization.factor(problem, x, reference.size() ? &reference : nullptr)) {
+        summary.termination = CorrectorTermination::SingularJacobian;
+        return summary;
+      }
+    }
+    linearization.solve_minimum_norm(-F, dx);
+    x += dx;
+    summary.iterations = k + 1;
+    summary.correction_norm = dx.norm();
+    summary.displacement = (x - start).norm();
+    if (k > 0 && previous_correction > 0) {
+      const double theta = summary.correction_norm / previous_correction;
+      summary.contraction = std::max(summary.contraction, theta);
+      if (theta > options.max_contraction &&
+          summary.correction_norm > options.tolerance * (1.0 + x.norm())) {
+        summary.termination = CorrectorTermination::Diverged;
+        return summary;
+      }
+    }
+    previous_correction = summary.correction_norm;
+    if (summary.displacement > options.max_displacement) {
+      summary.termination = CorrectorTermination::TooFar;
+      return summary;
+    }
+    if (summary.correction_norm <= options.tolerance * (1.0 + x.norm())) {
+      problem.evaluate(x, F);
+      summary.residual_norm = F.norm();
+      if (!std::isfinite(summary.residual_norm)) {
+        summary.termination = CorrectorTermination::NonFiniteResidual;
+        return summary;
+      }
+      if (summary.residual_norm <= options.residual_tolerance) {
+        summary.termination = CorrectorTermination::Converged;
+        return summary;
+      }
+    }
+  }
+  summary.termination = CorrectorTermination::MaxIterations;
+  return summary;
+}
+
+}  // namespace
+
+CorrectorSummary project_gauss_newton(const ImplicitProblem& problem, Eigen::Ref<Eigen::VectorXd> x,
+                                      const CorrectorOptions& options, Linearization& workspace) {
+  return iterate(problem, x, options, workspace, /*refactor=*/true);
+}
+
+CorrectorSummary project_chord(const ImplicitProblem& problem, const Linearization& frozen,
+                               Eigen::Ref<Eigen::VectorXd> x, const CorrectorOptions& options) {
+  // `iterate` never refactors here, so the const_cast never mutates the factorisation.
+  return iterate(problem, x, options, const_cast<Linearization&>(frozen), /*refactor=*/false);
+}
+
+}  // namespace tessera

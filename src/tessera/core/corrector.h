@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+// Gauss–Newton correctors that project a point onto M = {F = 0}, with Deuflhard's contraction
+// monitor. Numerical outcomes are values (CorrectorSummary), never exceptions.
+#pragma once
+
+#include <Eigen/Core>
+#include <limits>
+#include <string>
+
+#include "tessera/core/implicit_problem.h"
+#include "tessera/core/linearization.h"
+
+namespace tessera {
+
+struct CorrectorOptions {
+  /// Converged when the last correction ‖dx‖ ≤ tolerance·(1 + ‖x‖) and ‖F(x)‖ ≤
+  /// residual_tolerance. 1e-10 is far below any mesh scale yet well above rounding.
+  double tolerance = 1e-10;
+  double residual_tolerance = 1e-9;
+  int max_iterations = 25;
+  /// Deuflhard's contraction θ_k = ‖dx_{k+1}‖/‖dx_k‖ above this means the iteration is not in
+  /// its region of convergence (θ ≥ 1 diverges; 1/2 is the usual safety margin for chords).
+  double max_contraction = 0.5;
+  /// A projection that moves the point farther than this is rejected (e.g. a corrector that
+  /// would jump across the narrow opening of a trough onto another sheet).
+  double max_displacement = std::numeric_limits<double>::infinity();
+};
+
+enum class CorrectorTermination {
+  Converged,
+  MaxIterations,      ///< no convergence within max_iterations
+  Diverged,           ///< contraction θ > max_contraction
+  TooFar,             ///< ‖x − x₀‖ > max_displacement
+  NonFiniteResidual,  ///< F(x) returned NaN or infinity
+  SingularJacobian,   ///< DF(x) lost rank (full Gauss–Newton only)
+};
+
+const char* to_string(CorrectorTermination termination);
+
+struct CorrectorSummary {
+  CorrectorTermination termination = CorrectorTermination::MaxIterations;
+  int iterations = 0;
+  double residual_norm = std::numeric_limits<double>::quiet_NaN();  ///< ‖F(x)‖ at the end
+  double correction_norm = 0.0;  ///< ‖dx‖ of the last step
+  double contraction = 0.0;      ///< largest θ_k observed (0 if fewer than two steps)
+  double displacement = 0.0;     ///< ‖x_end − x_start‖
+  bool is_success() const { return termination == CorrectorTermination::Converged; }
+  /// e.g. "Converged after 3 its, |F| 2e-15, theta 0.01".
+  std::string brief_report() const;
+};
+
+/// Full Gauss–Newton with the minimum-norm correction dx = −J⁺F(x), J re-evaluated at each
+/// iterate: converges to a point of M near x, moving (to first order) normal to M.
+/// Used for the start point and to measure distances to M.
+/// \param x n-vector, overwritten with the final iterate (even on failure; check the summary).
+/// \param workspace reused between calls to avoid allocations; holds J at the last iterate.
+CorrectorSummary project_gauss_newton(const ImplicitProblem& problem, Eigen::Ref<Eigen::VectorXd> x,
+                                      const CorrectorOptions& options, Linearization& workspace);
+
+/// Chord Gauss–Newton with the factorisation frozen at x_c (Brodzik–Rheinboldt's Proj):
+/// x_{k+1} = x_k − J_c⁺ F(x_k). Every correction lies in range J_cᵀ, so the iteration solves
+/// eq. (2.5): F(x) = 0 with U_cᵀ(x − x_pred) = 0, i.e. it projects x orthogonally to T_{x_c}M.
+/// One factorisation serves all points projected from x_c.
+CorrectorSummary project_chord(const ImplicitProblem& problem, const Linearization& frozen,
+                               Eigen::Ref<Eigen::VectorXd> x, const CorrectorOptions& options);
+
+}  // namespace tessera

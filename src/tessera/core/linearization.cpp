@@ -1,0 +1,248 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/core/linearization.h"
+
+#include <Eigen/LU>
+#include <Eigen/QR>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <random>
+
+#include "tessera/core/error.h"
+
+namespace tessera {
+
+// Relative threshold below which |R_ii| counts as zero: J is then treated as rank deficient.
+// 1e-10 leaves ample room above rounding (1e-16) for Jacobians of moderate condition.
+constexpr double kRankThreshold = 1e-10;
+
+class LinearizationBackend {
+ public:
+  virtual ~LinearizationBackend() = default;
+  virtual std::unique_ptr<LinearizationBackend> clone() const = 0;
+  /// Factors; fills the (unnormalised, unoriented) tangent basis. Returns false if singular.
+  virtual bool factor(const ImplicitProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& x,
+                      const Eigen::MatrixXd* reference, Eigen::MatrixXd& tangent,
+                      double& reciprocal_condition) = 0;
+  virtual void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd& tangent,
+                     Eigen::Ref<Eigen::VectorXd> dx) const = 0;
+};
+
+namespace {
+
+class DenseBackend final : public LinearizationBackend {
+ public:
+  std::unique_ptr<LinearizationBackend> clone() const override {
+    return std::make_unique<DenseBackend>(*this);
+  }
+
+  bool factor(const ImplicitProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& x,
+              const Eigen::MatrixXd*, Eigen::MatrixXd& tangent,
+              double& reciprocal_condition) override {
+    const int n = problem.ambient_dimension();
+    const int m = n - 2;
+    jacobian_.resize(m, n);
+    problem.jacobian(x, jacobian_);
+    if (!jacobian_.allFinite()) {
+      return false;
+    }
+    qr_.compute(jacobian_.transpose());
+    const auto& R = qr_.matrixR();
+    double largest = 0.0;
+    double smallest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < m; ++i) {
+      largest = std::max(largest, std::abs(R(i, i)));
+      smallest = std::min(smallest, std::abs(R(i, i)));
+    }
+    reciprocal_condition = m == 0 ? 1.0 : (largest > 0 ? smallest / largest : 0.0);
+    if (m > 0 && reciprocal_condition < kRankThreshold) {
+      return false;
+    }
+    // Q2: the last two columns of Q span the orthogonal complement of range Jᵀ, i.e. ker J.
+    Eigen::MatrixXd selector = Eigen::MatrixXd::Zero(n, 2);
+    selector(m, 0) = 1.0;
+    selector(m + 1, 1) = 1.0;
+    tangent = qr_.householderQ() * selector;
+    return true;
+  }
+
+  void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd&,
+             Eigen::Ref<Eigen::VectorXd> dx) const override {
+    // Jᵀ P = Q R  ⇒  J = P Rᵀ Qᵀ; the minimum-norm solution of J dx = r is Q1 R⁻ᵀ Pᵀ r.
+    const int m = static_cast<int>(rhs.size());
+    const int n = static_cast<int>(dx.size());
+    Eigen::VectorXd z = qr_.colsPermutation().transpose() * rhs;
+    qr_.matrixR().topLeftCorner(m, m).transpose().triangularView<Eigen::Lower>().solveInPlace(z);
+    Eigen::VectorXd padded = Eigen::VectorXd::Zero(n);
+    padded.head(m) = z;
+    dx = qr_.householderQ() * padded;
+  }
+
+ private:
+  Eigen::MatrixXd jacobian_;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
+};
+
+class SparseBackend final : public LinearizationBackend {
+ public:
+  std::unique_ptr<LinearizationBackend> clone() const override {
+    // SparseLU is not copyable; a copy refactors lazily from the stored bordered matrix.
+    auto copy = std::make_unique<SparseBackend>();
+    copy->bordered_ = bordered_;
+    copy->reference_ = reference_;
+    if (bordered_.rows() > 0) {
+      copy->lu_.compute(copy->bordered_);
+    }
+    return copy;
+  }
+
+  bool factor(const ImplicitProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& x,
+              const Eigen::MatrixXd* reference, Eigen::MatrixXd& tangent,
+              double& reciprocal_condition) override {
+    const int n = problem.ambient_dimension();
+    if (reference != nullptr) {
+      reference_ = *reference;
+    } else if (reference_.rows() != n) {
+      // A fixed pseudo-random pair is transversal to ker J with probability one, and the
+      // fixed seed keeps runs deterministic.
+      std::mt19937_64 generator(20261121);
+      std::normal_distribution<double> normal;
+      reference_.resize(n, 2);
+      for (int j = 0; j < 2; ++j) {
+        for (int i = 0; i < n; ++i) {
+          reference_(i, j) = normal(generator);
+        }
+      }
+      reference_.col(0).normalize();
+      reference_.col(1) -= reference_.col(0).dot(reference_.col(1)) * reference_.col(0);
+      reference_.col(1).normalize();
+    }
+    problem.sparse_jacobian(x, jacobian_);
+    // Border J with the two reference rows: A = [J; Tᵣᵀ], square n×n.
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(jacobian_.nonZeros() + 2 * static_cast<std::size_t>(n));
+    for (int k = 0; k < jacobian_.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(jacobian_, k); it; ++it) {
+        if (!std::isfinite(it.value())) {
+          return false;
+        }
+        entries.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+      }
+    }
+    for (int j = 0; j < 2; ++j) {
+      for (int i = 0; i < n; ++i) {
+        if (reference_(i, j) != 0.0) {
+          entries.emplace_back(n - 2 + j, i, reference_(i, j));
+        }
+      }
+    }
+    bordered_.resize(n, n);
+    bordered_.setFromTriplets(entries.begin(), entries.end());
+    bordered_.makeCompressed();
+    lu_.compute(bordered_);
+    if (lu_.info() != Eigen::Success) {
+      return false;
+    }
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+    rhs(n - 2, 0) = 1.0;
+    rhs(n - 1, 1) = 1.0;
+    tangent = lu_.solve(rhs);
+    if (!tangent.allFinite()) {
+      return false;
+    }
+    // Orthonormalise (modified Gram–Schmidt, twice for stability).
+    for (int pass = 0; pass < 2; ++pass) {
+      tangent.col(0).normalize();
+      tangent.col(1) -= tangent.col(0).dot(tangent.col(1)) * tangent.col(0);
+      tangent.col(1).normalize();
+    }
+    // Cheap conditioning proxy: residual of J·T relative to ‖J‖ (exact kernels give ~1e-16).
+    const double jacobian_norm = jacobian_.norm();
+    const double kernel_residual = (jacobian_ * tangent).norm();
+    reciprocal_condition =
+        jacobian_norm > 0 ? std::max(1e-300, 1.0 - kernel_residual / jacobian_norm) : 0.0;
+    return jacobian_norm > 0 && kernel_residual <= 1e-8 * jacobian_norm;
+  }
+
+  void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd& tangent,
+             Eigen::Ref<Eigen::VectorXd> dx) const override {
+    const int n = static_cast<int>(dx.size());
+    Eigen::VectorXd extended = Eigen::VectorXd::Zero(n);
+    extended.head(n - 2) = rhs;
+    Eigen::VectorXd solution = lu_.solve(extended);
+    // Remove the ker-J component: what remains is the minimum-norm solution.
+    solution -= tangent * (tangent.transpose() * solution);
+    dx = solution;
+  }
+
+ private:
+  Eigen::SparseMatrix<double> jacobian_;
+  Eigen::SparseMatrix<double> bordered_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+  Eigen::MatrixXd reference_;
+};
+
+}  // namespace
+
+Linearization::Linearization() = default;
+Linearization::~Linearization() = default;
+Linearization::Linearization(Linearization&&) noexcept = default;
+Linearization& Linearization::operator=(Linearization&&) noexcept = default;
+Linearization::Linearization(const Linearization& other)
+    : backend_(other.backend_ ? other.backend_->clone() : nullptr),
+      point_(other.point_),
+      tangent_(other.tangent_),
+      reciprocal_condition_(other.reciprocal_condition_),
+      factored_(other.factored_) {}
+Linearization& Linearization::operator=(const Linearization& other) {
+  if (this != &other) {
+    Linearization copy(other);
+    *this = std::move(copy);
+  }
+  return *this;
+}
+
+bool Linearization::factor(const ImplicitProblem& problem,
+                           const Eigen::Ref<const Eigen::VectorXd>& x,
+                           const Eigen::MatrixXd* reference_tangent) {
+  const int n = problem.ambient_dimension();
+  TESSERA_CHECK(x.size() == n, "point has " << x.size() << " coordinates, problem '"
+                                            << problem.name() << "' has n = " << n);
+  TESSERA_CHECK(reference_tangent == nullptr ||
+                    (reference_tangent->rows() == n && reference_tangent->cols() == 2),
+                "reference tangent basis must be " << n << "×2");
+  factored_ = false;
+  if (!x.allFinite()) {
+    return false;
+  }
+  if (!backend_) {
+    if (problem.has_sparse_jacobian()) {
+      backend_ = std::make_unique<SparseBackend>();
+    } else {
+      backend_ = std::make_unique<DenseBackend>();
+    }
+  }
+  point_ = x;
+  if (!backend_->factor(problem, x, reference_tangent, tangent_, reciprocal_condition_)) {
+    return false;
+  }
+  if (reference_tangent != nullptr) {
+    align_tangent_basis(tangent_, *reference_tangent);
+  }
+  factored_ = true;
+  return true;
+}
+
+void Linearization::solve_minimum_norm(const Eigen::Ref<const Eigen::VectorXd>& rhs,
+                                       Eigen::Ref<Eigen::VectorXd> dx) const {
+  TESSERA_ASSERT(factored_);
+  backend_->solve(rhs, tangent_, dx);
+}
+
+void align_tangent_basis(Eigen::MatrixXd& T, const Eigen::MatrixXd& reference) {
+  const Eigen::Matrix2d overlap = T.transpose() * reference;
+  if (overlap.determinant() < 0) {
+    T.col(1) *= -1.0;
+  }
+}
+
+}  // namespace tessera

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// Factorisation of the Jacobian J = DF(x) at one point: minimum-norm solves of J·dx = r and an
+// orthonormal basis of the tangent space ker J. Dense (QR of Jᵀ, Brodzik–Rheinboldt eq. 2.6)
+// or sparse (LU of the bordered matrix [J; Tᵀ]) depending on the problem.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "tessera/core/implicit_problem.h"
+
+namespace tessera {
+
+class LinearizationBackend;
+
+/// The linearisation of F at a point x.
+///
+/// Dense problems: column-pivoted Householder QR of Jᵀ = (Q1, Q2)(R; 0); Q2 spans ker J and
+/// dx = Q1 R⁻ᵀ r is the minimum-norm solution of J dx = r.
+/// Sparse problems (n up to 10⁶): sparse LU of the bordered n×n matrix A = [J; Tᵣᵀ], where Tᵣ
+/// is a reference tangent basis (the neighbour's, or a fixed pseudo-random one at the start).
+/// Then ker J = span A⁻¹[0; I₂] and the minimum-norm solution is the A⁻¹[r; 0] solution with
+/// its ker-J component removed. Both give the same answers to rounding.
+class Linearization {
+ public:
+  Linearization();
+  ~Linearization();
+  Linearization(Linearization&&) noexcept;
+  Linearization& operator=(Linearization&&) noexcept;
+  Linearization(const Linearization& other);
+  Linearization& operator=(const Linearization& other);
+
+  /// Evaluates J at x and factors it. `reference_tangent` (n×2, may be null) orients the tangent
+  /// basis: the returned basis T satisfies det(Tᵀ Tᵣ) > 0 and, for sparse problems, borders J.
+  /// \return false if J is numerically rank deficient (rank < n−2) or not finite; the
+  ///         factorisation is then unusable.
+  bool factor(const ImplicitProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& x,
+              const Eigen::MatrixXd* reference_tangent = nullptr);
+
+  bool is_factored() const { return factored_; }
+  /// The point x the factorisation belongs to (n-vector).
+  const Eigen::VectorXd& point() const { return point_; }
+  /// T: n×2, orthonormal columns spanning ker J.
+  const Eigen::MatrixXd& tangent_basis() const { return tangent_; }
+  /// dx with J dx = rhs and dx ⟂ ker J (the minimum-norm solution). \pre is_factored().
+  void solve_minimum_norm(const Eigen::Ref<const Eigen::VectorXd>& rhs,
+                          Eigen::Ref<Eigen::VectorXd> dx) const;
+  /// Estimate of the reciprocal condition number of J (smallest/largest |R_ii|), in (0, 1].
+  double reciprocal_condition() const { return reciprocal_condition_; }
+
+ private:
+  std::unique_ptr<LinearizationBackend> backend_;
+  Eigen::VectorXd point_;
+  Eigen::MatrixXd tangent_;
+  double reciprocal_condition_ = 0.0;
+  bool factored_ = false;
+};
+
+/// Flips the second column of T if needed so that det(Tᵀ·reference) > 0: keeps frames of
+/// neighbouring points consistently oriented.
+void align_tangent_basis(Eigen::MatrixXd& T, const Eigen::MatrixXd& reference);
+
+}  // namespace tessera

@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/core/corrector.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+
+#include "tessera/core/counted_problem.h"
+#include "tessera/core/linearization.h"
+
+namespace {
+
+// F(x) = (|x|² − 1, x3 − x0·x1 ... ): a 2-manifold in R^4 with a dense or sparse Jacobian.
+class TwoEquations final : public tessera::ImplicitProblem {
+ public:
+  explicit TwoEquations(bool sparse) : sparse_(sparse) {}
+  int ambient_dimension() const override { return 4; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override {
+    F(0) = x.squaredNorm() - 1.0;
+    F(1) = x(3) - x(0) * x(1);
+  }
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override {
+    J.row(0) = 2.0 * x.transpose();
+    J.row(1) << -x(1), -x(0), 0.0, 1.0;
+  }
+  bool has_sparse_jacobian() const override { return sparse_; }
+  void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                       Eigen::SparseMatrix<double>& J) const override {
+    Eigen::MatrixXd dense(2, 4);
+    jacobian(x, dense);
+    J = dense.sparseView();
+  }
+
+ private:
+  bool sparse_;
+};
+
+class ZeroOnNan final : public tessera::ImplicitProblem {
+ public:
+  int ambient_dimension() const override { return 3; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>&, Eigen::Ref<Eigen::VectorXd> F) const override {
+    F(0) = std::nan("");
+  }
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>&, Eigen::Ref<Eigen::MatrixXd> J) const override {
+    J << 1.0, 0.0, 0.0;
+  }
+};
+
+class FlatAtOrigin final : public tessera::ImplicitProblem {  // F = |x|², DF(0) = 0
+ public:
+  int ambient_dimension() const override { return 3; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> F) const override {
+    F(0) = x.squaredNorm();
+  }
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::MatrixXd> J) const override {
+    J = 2.0 * x.transpose();
+  }
+};
+
+Eigen::VectorXd point_on_manifold() {
+  Eigen::VectorXd x(4);
+  x << 0.5, 0.5, 0.0, 0.25;
+  x /= x.norm();  // not exactly on M; projected in the tests
+  return x;
+}
+
+}  // namespace
+
+class LinearizationBothBackends : public ::testing::TestWithParam<bool> {};
+
+TEST_P(LinearizationBothBackends, TangentBasisIsOrthonormalKernel) {
+  TwoEquations problem(GetParam());
+  tessera::Linearization linearization;
+  const Eigen::VectorXd x = point_on_manifold();
+  ASSERT_TRUE(linearization.factor(problem, x));
+  const Eigen::MatrixXd& T = linearization.tangent_basis();
+  Eigen::MatrixXd J(2, 4);
+  problem.jacobian(x, J);
+  EXPECT_LT((J * T).norm(), 1e-13);
+  EXPECT_LT((T.transpose() * T - Eigen::Matrix2d::Identity()).norm(), 1e-13);
+}
+
+TEST_P(LinearizationBothBackends, MinimumNormSolveIsOrthogonalToKernel) {
+  TwoEquations problem(GetParam());
+  tessera::Linearization linearization;
+  const Eigen::VectorXd x = point_on_manifold();
+  ASSERT_TRUE(linearization.factor(problem, x));
+  Eigen::Vector2d rhs(0.3, -0.7);
+  Eigen::VectorXd dx(4);
+  linearization.solve_minimum_norm(rhs, dx);
+  Eigen::MatrixXd J(2, 4);
+  problem.jacobian(x, J);
+  EXPECT_LT((J * dx - rhs).norm(), 1e-13);
+  EXPECT_LT((linearization.tangent_basis().transpose() * dx).norm(), 1e-13);
+  // Equals the pseudo-inverse solution Jᵀ(JJᵀ)⁻¹r.
+  const Eigen::VectorXd expected = J.transpose() * (J * J.transpose()).ldlt().solve(rhs);
+  EXPECT_LT((dx - expected).norm(), 1e-13);
+}
+
+TEST_P(LinearizationBothBackends, ReferenceOrientsTheBasis) {
+  TwoEquations problem(GetParam());
+  tessera::Linearization a;
+  tessera::Linearization b;
+  const Eigen::VectorXd x = point_on_manifold();
+  ASSERT_TRUE(a.factor(problem, x));
+  Eigen::MatrixXd flipped = a.tangent_basis();
+  flipped.col(1) *= -1.0;
+  ASSERT_TRUE(b.factor(problem, x, &flipped));
+  EXPECT_GT((b.tangent_basis().transpose() * flipped).determinant(), 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(DenseAndSparse, LinearizationBothBackends, ::testing::Values(false, true));
+
+TEST(GaussNewton, ConvergesQuadraticallyOntoM) {
+  TwoEquations problem(false);
+  tessera::Linearization workspace;
+  Eigen::VectorXd x(4);
+  x << 0.6, 0.5, 0.1, 0.2;
+  const auto summary = tessera::project_gauss_newton(problem, x, {}, workspace);
+  ASSERT_TRUE(summary.is_success()) << summary.brief_report();
+  Eigen::Vector2d F;
+  problem.evaluate(x, F);
+  EXPECT_LT(F.norm(), 1e-12);
+  EXPECT_LE(summary.iterations, 6);  // quadratic convergence from distance ~0.1
+  EXPECT_LT(summary.contraction, 0.25);  // θ ≈ ω‖dx‖/2, small from distance 0.1
+}
+
+TEST(ChordCorrector, ProjectsOrthogonallyToTheFrozenTangentPlane) {
+  TwoEquations problem(false);
+  tessera::Linearization workspace;
+  Eigen::VectorXd center = point_on_manifold();
+  ASSERT_TRUE(tessera::project_gauss_newton(problem, center, {}, workspace).is_success());
+  tessera::Linearization frozen;
+  ASSERT_TRUE(frozen.factor(problem, center));
+  const Eigen::MatrixXd U = frozen.tangent_basis();
+  const Eigen::VectorXd predicted = center + U * Eigen::Vector2d(0.1, -0.05);
+  Eigen::VectorXd x = predicted;
+  const auto summary = tessera::project_chord(problem, frozen, x, {});
+  ASSERT_TRUE(summary.is_success()) << summary.brief_report();
+  Eigen::Vector2d F;
+  problem.evaluate(x, F);
+  EXPECT_LT(F.norm(), 1e-9);
+  EXPECT_LT((U.transpose() * (x - predicted)).norm(), 1e-14);  // eq. (2.5)
+  EXPECT_GT(summary.contraction, 0.0);  // chord: linear convergence, θ measured
+}
+
+TEST(Corrector, NanResidualIsReportedNotThrown) {
+  ZeroOnNan problem;
+  tessera::Linearization workspace;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(3);
+  const auto summary = tessera::project_gauss_newton(problem, x, {}, workspace);
+  EXPECT_EQ(summary.termination, tessera::CorrectorTermination::NonFiniteResidual);
+}
+
+TEST(Corrector, RankDeficientJacobianIsReported) {
+  FlatAtOrigin problem;
+  tessera::Linearization workspace;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(3);
+  const auto summary = tessera::project_gauss_newton(problem, x, {}, workspace);
+  EXPECT_EQ(summary.termination, tessera::CorrectorTermination::SingularJacobian);
+}
+
+TEST(Corrector, DisplacementLimitStopsAJump) {
+  TwoEquations problem(false);
+  tessera::Linearization workspace;
+  Eigen::VectorXd x(4);
+  x << 2.0, 2.0, 0.0, 0.0;
+  tessera::CorrectorOptions options;
+  options.max_displacement = 0.1;
+  options.max_contraction = 1.0;
+  const auto summary = tessera::project_gauss_newton(problem, x, options, workspace);
+  EXPECT_EQ(summary.termination, tessera::CorrectorTermination::TooFar);
+}
+
+TEST(CountedProblem, CountsEvaluations) {
+  TwoEquations inner(false);
+  tessera::CountedProblem problem(inner);
+  tessera::Linearization workspace;
+  Eigen::VectorXd x(4);
+  x << 0.6, 0.5, 0.1, 0.2;
+  const auto summary = tessera::project_gauss_newton(problem, x, {}, workspace);
+  ASSERT_TRUE(summary.is_success());
+  EXPECT_EQ(problem.jacobian_evaluations(), summary.iterations);
+  EXPECT_EQ(problem.function_evaluations(), summary.iterations + 1);
+}
