@@ -1,0 +1,222 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/methods/common/clip_to_domain.h"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace tessera {
+namespace {
+
+// Minimum-norm Gauss–Newton on F(x) = 0 together with the linear constraints of the faces in
+// `faces` (b·(x − p) = 0). Dense QR: the constrained system is used only on the boundary.
+bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
+                        const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
+                        const CorrectorOptions& options) {
+  const int n = problem.ambient_dimension();
+  const int m = n - 2;
+  const int rows = m + static_cast<int>(faces.size());
+  if (rows > n) {
+    return false;
+  }
+  const Eigen::VectorXd start = x;
+  Eigen::VectorXd G(rows);
+  Eigen::MatrixXd J(rows, n);
+  Eigen::VectorXd F(m);
+  for (int k = 0; k < options.max_iterations; ++k) {
+    problem.evaluate(x, F);
+    G.head(m) = F;
+    problem.jacobian(x, J.topRows(m));
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const HalfSpace& h = domain.half_spaces()[faces[f]];
+      G(m + static_cast<int>(f)) = h.normal.dot(x - h.point);
+      J.row(m + static_cast<int>(f)) = h.normal.transpose();
+    }
+    if (!G.allFinite() || !J.allFinite()) {
+      return false;
+    }
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(J.transpose());
+    if (qr.rank() < rows) {
+      return false;
+    }
+    // Minimum-norm step: dx = −Q1 R⁻ᵀ Pᵀ G.
+    Eigen::VectorXd z = qr.colsPermutation().transpose() * (-G);
+    qr.matrixR().topLeftCorner(rows, rows).transpose().triangularView<Eigen::Lower>().solveInPlace(z);
+    Eigen::VectorXd padded = Eigen::VectorXd::Zero(n);
+    padded.head(rows) = z;
+    const Eigen::VectorXd dx = qr.householderQ() * padded;
+    x += dx;
+    if ((x - start).norm() > max_move) {
+      return false;
+    }
+    if (dx.norm() <= options.tolerance * (1.0 + x.norm())) {
+      problem.evaluate(x, F);
+      return F.norm() <= options.residual_tolerance;
+    }
+  }
+  return false;
+}
+
+double min_angle(const TriangleMesh& mesh, int a, int b, int c) {
+  const auto angle = [&](int apex, int p, int q) {
+    const Eigen::VectorXd u = mesh.point(p) - mesh.point(apex);
+    const Eigen::VectorXd w = mesh.point(q) - mesh.point(apex);
+    return std::acos(std::clamp(u.dot(w) / (u.norm() * w.norm()), -1.0, 1.0));
+  };
+  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+}
+
+std::vector<int> common_faces(const std::vector<int>& a, const std::vector<int>& b) {
+  std::vector<int> result;
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(result));
+  return result;
+}
+
+}  // namespace
+
+ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
+                           TriangleMesh& mesh, const ClipOptions& options) {
+  ClipSummary summary;
+  const int face_count = static_cast<int>(domain.half_spaces().size());
+  std::vector<std::vector<int>> on_faces(mesh.vertex_count());  // sorted face indices
+  for (int k = 0; k < face_count; ++k) {
+    const int vertex_count = mesh.vertex_count();
+    std::vector<double> d(vertex_count);
+    bool crosses = false;
+    for (int v = 0; v < vertex_count; ++v) {
+      d[v] = std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)
+                 ? 0.0
+                 : domain.signed_distance(k, mesh.point(v));
+      crosses = crosses || d[v] < 0;
+    }
+    if (!crosses) {
+      continue;
+    }
+    ++summary.half_spaces_crossed;
+    TriangleMesh work = mesh;
+    auto work_faces = on_faces;
+    // 1. Snap vertices near the face onto M ∩ face.
+    for (int v = 0; v < vertex_count; ++v) {
+      if (d[v] == 0.0 || std::abs(d[v]) >= options.snap_distance) {
+        continue;
+      }
+      std::vector<int> faces = work_faces[v];
+      faces.push_back(k);
+      std::sort(faces.begin(), faces.end());
+      Eigen::VectorXd x = work.point(v);
+      if (project_onto_faces(problem, domain, faces, x, 3 * options.snap_distance,
+                             options.corrector) &&
+          domain.contains(x, 1e-9)) {
+        work.mutable_point(v) = x;
+        work_faces[v] = faces;
+        d[v] = 0.0;
+        ++summary.snapped_vertices;
+      }
+    }
+    // 2. Cut points on the edges that still cross the face.
+    std::map<std::pair<int, int>, int> cut_vertex;
+    for (const Triangle& t : work.triangles()) {
+      for (int r = 0; r < 3; ++r) {
+        int u = t[r];
+        int w = t[(r + 1) % 3];
+        if (!((d[u] > 0 && d[w] < 0) || (d[u] < 0 && d[w] > 0))) {
+          continue;
+        }
+        const auto key = std::minmax(u, w);
+        if (cut_vertex.count(key)) {
+          continue;
+        }
+        const double s = d[u] / (d[u] - d[w]);
+        Eigen::VectorXd x = (1 - s) * work.point(u) + s * work.point(w);
+        std::vector<int> faces = common_faces(work_faces[u], work_faces[w]);
+        faces.push_back(k);
+        std::sort(faces.begin(), faces.end());
+        const double edge_length = (work.point(u) - work.point(w)).norm();
+        if (!project_onto_faces(problem, domain, faces, x, edge_length, options.corrector)) {
+          std::ostringstream message;
+          message << "cannot clip the mesh to the face '" << domain.half_spaces()[k].label
+                  << "': no point of M on the face near edge (" << u << ", " << w
+                  << "); the mesh is left unclipped there";
+          summary.message = message.str();
+          return summary;
+        }
+        cut_vertex[key] = work.add_vertex(x);
+        work_faces.push_back(faces);
+        d.push_back(0.0);
+        ++summary.cut_edges;
+      }
+    }
+    const auto cut = [&](int u, int w) { return cut_vertex.at(std::minmax(u, w)); };
+    // 3. Split the triangles and keep the parts inside.
+    std::vector<Triangle> kept;
+    const auto add_polygon = [&](std::vector<int> polygon) {
+      polygon.erase(std::unique(polygon.begin(), polygon.end()), polygon.end());
+      if (polygon.size() == 3) {
+        kept.push_back({polygon[0], polygon[1], polygon[2]});
+      } else if (polygon.size() == 4) {
+        const double diagonal_02 = std::min(min_angle(work, polygon[0], polygon[1], polygon[2]),
+                                            min_angle(work, polygon[0], polygon[2], polygon[3]));
+        const double diagonal_13 = std::min(min_angle(work, polygon[0], polygon[1], polygon[3]),
+                                            min_angle(work, polygon[1], polygon[2], polygon[3]));
+        if (diagonal_02 >= diagonal_13) {
+          kept.push_back({polygon[0], polygon[1], polygon[2]});
+          kept.push_back({polygon[0], polygon[2], polygon[3]});
+        } else {
+          kept.push_back({polygon[0], polygon[1], polygon[3]});
+          kept.push_back({polygon[1], polygon[2], polygon[3]});
+        }
+      }
+    };
+    for (const Triangle& t : work.triangles()) {
+      int outside = 0;
+      int inside = 0;
+      for (int v : t) {
+        outside += d[v] < 0 ? 1 : 0;
+        inside += d[v] > 0 ? 1 : 0;
+      }
+      if (outside == 0) {
+        if (inside > 0) {
+          kept.push_back(t);
+        }
+        continue;
+      }
+      if (inside == 0) {
+        continue;
+      }
+      // Walk the triangle's edges in order, keeping inside/on vertices and inserting cut points.
+      std::vector<int> polygon;
+      for (int r = 0; r < 3; ++r) {
+        const int u = t[r];
+        const int w = t[(r + 1) % 3];
+        if (d[u] >= 0) {
+          polygon.push_back(u);
+        }
+        if ((d[u] > 0 && d[w] < 0) || (d[u] < 0 && d[w] > 0)) {
+          polygon.push_back(cut(u, w));
+        }
+      }
+      add_polygon(polygon);
+    }
+    // 4. Compact: drop vertices no longer used.
+    std::vector<int> new_index(work.vertex_count(), -1);
+    TriangleMesh clipped(work.ambient_dimension());
+    std::vector<std::vector<int>> clipped_faces;
+    for (Triangle& t : kept) {
+      for (int& v : t) {
+        if (new_index[v] < 0) {
+          new_index[v] = clipped.add_vertex(work.point(v));
+          clipped_faces.push_back(work_faces[v]);
+        }
+        v = new_index[v];
+      }
+    }
+    clipped.set_triangles(std::move(kept));
+    mesh = std::move(clipped);
+    on_faces = std::move(clipped_faces);
+  }
+  return summary;
+}
+
+}  // namespace tessera

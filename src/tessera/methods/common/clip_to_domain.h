@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+// Clipping a mesh of M to a polyhedral domain so that its boundary lies on M ∩ ∂S.
+#pragma once
+
+#include <string>
+
+#include "tessera/core/corrector.h"
+#include "tessera/core/domain.h"
+#include "tessera/core/implicit_problem.h"
+#include "tessera/geometry/triangle_mesh.h"
+
+namespace tessera {
+
+struct ClipOptions {
+  /// Vertices closer than this to a face are moved onto M ∩ face before cutting; cut points
+  /// then stay at least this far from every kept vertex, so no needle triangles appear.
+  double snap_distance = 0.0;
+  CorrectorOptions corrector;
+};
+
+struct ClipSummary {
+  int half_spaces_crossed = 0;  ///< faces the mesh crossed and was clipped to
+  int snapped_vertices = 0;
+  int cut_edges = 0;
+  std::string message;  ///< non-empty if a face could not be clipped (mesh left unclipped there)
+};
+
+/// Clips `mesh` (vertices on M) to S = ∩ half-spaces, one face at a time ("snap, then cut"):
+///  1. vertices within snap_distance of the face are projected onto M ∩ face (Gauss–Newton on
+///     F = 0, b·(x − p) = 0, plus the faces the vertex already lies on);
+///  2. each edge that still crosses the face gets a cut point on M ∩ face, started from the
+///     linear interpolant (edges lying on an earlier face stay on it);
+///  3. triangles are split along the cut (quadrilaterals by the diagonal of larger minimum
+///     angle) and the parts outside are dropped, with the vertices no longer used.
+/// This resolves what Brodzik & Rheinboldt leave open ("adjust the exterior points onto the
+/// boundary"): the boundary of the result lies on M ∩ ∂S up to the corrector tolerance, and
+/// snapping before cutting keeps cut points away from vertices, so no needles are created.
+ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
+                           TriangleMesh& mesh, const ClipOptions& options);
+
+}  // namespace tessera

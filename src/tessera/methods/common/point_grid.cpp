@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/methods/common/point_grid.h"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "tessera/core/error.h"
+
+namespace tessera {
+
+PointGrid::PointGrid(int ambient_dimension, double cell_size) : cell_size_(cell_size) {
+  TESSERA_CHECK(cell_size > 0, "PointGrid cell size " << cell_size << " must be > 0");
+  const int n = ambient_dimension;
+  projection_ = Eigen::MatrixXd::Zero(3, n);
+  if (n <= 3) {
+    for (int i = 0; i < n; ++i) {
+      projection_(i, i) = 1.0;
+    }
+    return;
+  }
+  // A fixed pseudo-random orthonormal 3×n projection: deterministic, and it spreads points of a
+  // surface in R^n over the cells far better than dropping all but three coordinates.
+  std::mt19937_64 generator(7);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd random(n, 3);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < n; ++i) {
+      random(i, j) = normal(generator);
+    }
+  }
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(random);
+  projection_ = (qr.householderQ() * Eigen::MatrixXd::Identity(n, 3)).transpose();
+}
+
+Eigen::Vector3d PointGrid::cell_of(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  Eigen::Vector3d projected = projection_ * x;
+  return (projected / cell_size_).array().floor();
+}
+
+std::int64_t PointGrid::key(const Eigen::Vector3d& cell) const {
+  // 21 bits per axis: cells are hashed, so collisions of far cells only cost a distance check.
+  const auto wrap = [](double c) {
+    return static_cast<std::int64_t>(static_cast<std::int64_t>(c) & ((1 << 21) - 1));
+  };
+  return (wrap(cell(0)) << 42) | (wrap(cell(1)) << 21) | wrap(cell(2));
+}
+
+void PointGrid::insert(int id, const Eigen::Ref<const Eigen::VectorXd>& x) {
+  cells_[key(cell_of(x))].push_back(id);
+}
+
+void PointGrid::remove(int id, const Eigen::Ref<const Eigen::VectorXd>& x) {
+  auto it = cells_.find(key(cell_of(x)));
+  if (it == cells_.end()) {
+    return;
+  }
+  auto& ids = it->second;
+  ids.erase(std::remove(ids.begin(), ids.end(), id), ids.end());
+}
+
+std::vector<int> PointGrid::candidates(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  const Eigen::Vector3d center = cell_of(x);
+  std::vector<int> result;
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = -1; dz <= 1; ++dz) {
+        auto it = cells_.find(key(center + Eigen::Vector3d(dx, dy, dz)));
+        if (it != cells_.end()) {
+          result.insert(result.end(), it->second.begin(), it->second.end());
+        }
+      }
+    }
+  }
+  std::sort(result.begin(), result.end());
+  result.erase(std::unique(result.begin(), result.end()), result.end());
+  return result;
+}
+
+}  // namespace tessera

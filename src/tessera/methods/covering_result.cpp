@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/methods/covering_result.h"
+
+namespace tessera {
+
+const char* to_string(CoveringTermination termination) {
+  switch (termination) {
+    case CoveringTermination::Completed:
+      return "completed";
+    case CoveringTermination::VertexLimit:
+      return "vertex limit reached";
+    case CoveringTermination::FrontCollision:
+      return "front collision";
+    case CoveringTermination::ProjectionFailed:
+      return "projection failed";
+    case CoveringTermination::StartFailed:
+      return "start point failed";
+  }
+  return "unknown";
+}
+
+}  // namespace tessera

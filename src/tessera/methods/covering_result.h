@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: MIT
+// What every covering method returns: the mesh and a summary (Options in, Result out).
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "tessera/geometry/triangle_mesh.h"
+
+namespace tessera {
+
+enum class CoveringTermination {
+  Completed,         ///< the method covered M ∩ S as asked
+  VertexLimit,       ///< stopped at options.max_vertices; the mesh is valid but partial
+  FrontCollision,    ///< the front met itself in a way the method cannot close
+  ProjectionFailed,  ///< the corrector failed even at the smallest step
+  StartFailed,       ///< the start point could not be projected onto M inside the domain
+};
+
+const char* to_string(CoveringTermination termination);
+
+/// Counters and timings of one covering run. Wall time is informational (benchmarks measure).
+struct CoveringSummary {
+  std::string method;
+  CoveringTermination termination = CoveringTermination::Completed;
+  std::string message;  ///< empty when Completed; otherwise where and why it stopped
+  int vertex_count = 0;
+  int triangle_count = 0;
+  long function_evaluations = 0;
+  long jacobian_evaluations = 0;
+  double wall_seconds = 0.0;
+  double step = 0.0;          ///< the step (edge length) actually used
+  int merges = 0;             ///< open edges identified (front method)
+  int step_reductions = 0;    ///< projections that needed step halving
+  int front_connections = 0;  ///< front glued to a non-adjacent part of itself (front method)
+  int clipped_half_spaces = 0;  ///< domain faces the mesh was clipped to
+  bool is_complete() const { return termination == CoveringTermination::Completed; }
+};
+
+struct CoveringResult {
+  TriangleMesh mesh;
+  CoveringSummary summary;
+};
+
+/// Progress of a long run, reported to an optional callback (the CLI draws a status line).
+struct CoveringProgress {
+  int vertex_count = 0;
+  int triangle_count = 0;
+  int front_size = 0;
+};
+using ProgressCallback = std::function<void(const CoveringProgress&)>;
+
+}  // namespace tessera

@@ -1,0 +1,506 @@
+// SPDX-License-Identifier: MIT
+// PITMAN (Brodzik & Rheinboldt 1994, section 4). The frontal points form a FIFO queue; each is
+// given a complete neighbourhood of triangles by closing its gap, either by merging the two open
+// edges (gap < α_min) or by n_new sectors whose new vertices are projected onto M with the chord
+// corrector frozen at the frontal point (eq. 2.5). Afterwards the mesh is clipped to the domain.
+#include "tessera/methods/front/advancing_front.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "tessera/core/corrector.h"
+#include "tessera/core/counted_problem.h"
+#include "tessera/core/error.h"
+#include "tessera/core/linearization.h"
+#include "tessera/methods/common/clip_to_domain.h"
+#include "tessera/methods/front/front_state.h"
+#include "tessera/methods/start_point.h"
+
+namespace tessera {
+
+void FrontOptions::validate() const {
+  TESSERA_CHECK(std::isfinite(step) && step > 0, "FrontOptions::step = " << step << " must be > 0");
+  TESSERA_CHECK(min_gap_angle > 0 && min_gap_angle < std::numbers::pi / 2,
+                "FrontOptions::min_gap_angle = " << min_gap_angle
+                                                 << " must lie in (0, π/2) radians");
+  TESSERA_CHECK(max_valence >= 6 && max_valence <= 12,
+                "FrontOptions::max_valence = " << max_valence << " must lie in [6, 12]");
+  TESSERA_CHECK(min_step_fraction > 0 && min_step_fraction < 1,
+                "FrontOptions::min_step_fraction = " << min_step_fraction
+                                                     << " must lie in (0, 1)");
+  TESSERA_CHECK(collision_distance_fraction > 0 && collision_distance_fraction < 1,
+                "FrontOptions::collision_distance_fraction = " << collision_distance_fraction
+                                                               << " must lie in (0, 1)");
+  TESSERA_CHECK(boundary_snap_fraction >= 0 && boundary_snap_fraction < 0.5,
+                "FrontOptions::boundary_snap_fraction = " << boundary_snap_fraction
+                                                          << " must lie in [0, 0.5)");
+  TESSERA_CHECK(max_start_distance_steps > 0, "FrontOptions::max_start_distance_steps = "
+                                                  << max_start_distance_steps << " must be > 0");
+  TESSERA_CHECK(max_vertices >= 7, "FrontOptions::max_vertices = " << max_vertices
+                                                                   << " must be >= 7");
+}
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+// Thrown inside the builder to stop the run; caught in triangulate_by_front, which keeps the
+// mesh built so far (it is valid: every step leaves a consistent partial mesh).
+struct StopRun {
+  CoveringTermination termination;
+  std::string message;
+};
+
+std::string describe_point(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  std::ostringstream out;
+  out.precision(4);
+  out << "(";
+  const int shown = std::min<int>(static_cast<int>(x.size()), 4);
+  for (int i = 0; i < shown; ++i) {
+    out << (i ? ", " : "") << x(i);
+  }
+  out << (x.size() > shown ? ", …)" : ")");
+  return out.str();
+}
+
+// A gap in the neighbourhood of a frontal vertex: counterclockwise from open edge (x_c, last)
+// to open edge (x_c, first), `angle` radians wide in the tangent plane.
+struct Gap {
+  int last;
+  int first;
+  double angle;
+};
+
+class FrontBuilder {
+ public:
+  FrontBuilder(const ImplicitProblem& problem, const Domain& domain, const FrontOptions& options)
+      : problem_(problem),
+        domain_(domain),
+        options_(options),
+        state_(problem.ambient_dimension(), options.step * options.collision_distance_fraction) {}
+
+  void run(const Eigen::VectorXd& start_point, const Linearization& start_frame,
+           CoveringSummary& summary);
+  FrontState& state() { return state_; }
+
+ private:
+  void build_initial_hexagon(const Eigen::VectorXd& center, const Linearization& frame);
+  void process(int center);
+  std::vector<Gap> find_gaps(int center, const std::vector<FanChain>& chains,
+                             const Eigen::MatrixXd& U) const;
+  void close_gap(int center, const Linearization& frame, const Eigen::MatrixXd& U,
+                 const Gap& gap);
+  std::optional<int> colliding_front_vertex(int center, const Eigen::VectorXd& x);
+  void connect_to_front_vertex(int center, int previous, int w, const Eigen::MatrixXd& U);
+  bool try_merge(int center, int first, int last, const Linearization& frame);
+  void add_closing_triangle(int center, int last, int first);
+  /// Projects x_c + h·U·direction onto M (chord, with step-halving continuation on failure).
+  Eigen::VectorXd new_point(int center, const Linearization& frame, const Eigen::MatrixXd& U,
+                            double angle);
+  int add_point(const Eigen::VectorXd& x);
+  bool close_small_loop(int center, const Eigen::MatrixXd& U);
+
+  const ImplicitProblem& problem_;
+  const Domain& domain_;
+  const FrontOptions& options_;
+  FrontState state_;
+  CorrectorOptions chord_options_;
+  double step_ = 0.0;
+  int merges_ = 0;
+  int step_reductions_ = 0;
+  int connections_ = 0;
+};
+
+void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& start_frame,
+                       CoveringSummary& summary) {
+  step_ = options_.step;
+  // The chord corrector contracts like O(h·curvature); a projection that needs to move the
+  // point by more than the step itself has left the neighbourhood of x_c (paper: Proj fails).
+  chord_options_.max_displacement = 0.75 * options_.step;
+  try {
+    build_initial_hexagon(start_point, start_frame);
+    int processed = 0;
+    while (auto center = state_.pop_frontal()) {
+      process(*center);
+      if (options_.progress && (++processed % 1000) == 0) {
+        options_.progress({state_.live_vertex_count(), state_.live_triangle_count(),
+                           state_.front_size()});
+      }
+      if (state_.live_vertex_count() >= options_.max_vertices) {
+        throw StopRun{CoveringTermination::VertexLimit,
+                      "stopped at the vertex limit of " + std::to_string(options_.max_vertices)};
+      }
+    }
+  } catch (const StopRun& stop) {
+    summary.termination = stop.termination;
+    summary.message = stop.message;
+  }
+  summary.step = step_;
+  summary.merges = merges_;
+  summary.step_reductions = step_reductions_;
+  summary.front_connections = connections_;
+}
+
+void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,
+                                         const Linearization& frame) {
+  const int c = state_.add_vertex(center, VertexType::Interior);
+  const Eigen::MatrixXd& U = frame.tangent_basis();
+  // Paper: the user's h or a smaller one, whichever projects the first hexagon vertex; that h
+  // is then kept for the whole run.
+  std::vector<Eigen::VectorXd> corners(6);
+  const auto corner_prediction = [&](int i) {
+    const double angle = std::numbers::pi / 6 + i * std::numbers::pi / 3;
+    return Eigen::VectorXd(center + step_ * U * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+  };
+  for (;;) {
+    Eigen::VectorXd x = corner_prediction(0);
+    chord_options_.max_displacement = 0.75 * step_;
+    if (project_chord(problem_, frame, x, chord_options_).is_success()) {
+      corners[0] = x;
+      break;
+    }
+    step_ /= 2;
+    ++step_reductions_;
+    if (step_ < options_.step * options_.min_step_fraction) {
+      throw StopRun{CoveringTermination::ProjectionFailed,
+                    "cannot project the first hexagon vertex around the start " +
+                        describe_point(center) + " even with step " + std::to_string(step_) +
+                        ": the corrector does not converge near the start"};
+    }
+  }
+  int first_vertex = -1;
+  int previous = -1;
+  for (int i = 0; i < 6; ++i) {
+    Eigen::VectorXd x = i == 0 ? corners[0] : new_point(c, frame, U, std::numbers::pi / 6 + i * std::numbers::pi / 3);
+    const int v = add_point(x);
+    if (i == 0) {
+      first_vertex = v;
+    } else {
+      state_.add_triangle(c, previous, v);
+    }
+    previous = v;
+  }
+  state_.add_triangle(c, previous, first_vertex);
+}
+
+int FrontBuilder::add_point(const Eigen::VectorXd& x) {
+  const bool inside = domain_.is_unbounded() || domain_.boundary_distance(x).signed_distance > 0;
+  return state_.add_vertex(x, inside ? VertexType::Frontal : VertexType::Exterior);
+}
+
+Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
+                                        const Eigen::MatrixXd& U, double angle) {
+  const Eigen::VectorXd direction = U * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+  const Eigen::VectorXd x_center = state_.point(center);
+  Eigen::VectorXd x = x_center + step_ * direction;
+  chord_options_.max_displacement = 0.75 * step_;
+  if (project_chord(problem_, frame, x, chord_options_).is_success()) {
+    return x;
+  }
+  // Paper, section 4: continuation along the direction t with h/2^k until a projection
+  // succeeds, then further steps of that size until their sum exceeds h.
+  ++step_reductions_;
+  double sub_step = step_ / 2;
+  double travelled = 0.0;
+  Eigen::VectorXd current = x_center;
+  Linearization current_frame = frame;
+  Eigen::VectorXd current_direction = direction;
+  while (travelled < step_ * (1 - 1e-12)) {
+    if (sub_step < step_ * options_.min_step_fraction) {
+      std::ostringstream message;
+      message << "projection onto M failed from frontal vertex " << center << " "
+              << describe_point(x_center) << " in tangent direction " << angle
+              << " rad even with step " << sub_step;
+      throw StopRun{CoveringTermination::ProjectionFailed, message.str()};
+    }
+    Eigen::VectorXd trial = current + sub_step * current_direction;
+    CorrectorOptions options = chord_options_;
+    options.max_displacement = 0.75 * sub_step;
+    if (!project_chord(problem_, current_frame, trial, options).is_success()) {
+      sub_step /= 2;
+      continue;
+    }
+    travelled += sub_step;
+    current = trial;
+    const Eigen::MatrixXd previous_basis = current_frame.tangent_basis();
+    if (!current_frame.factor(problem_, current, &previous_basis)) {
+      std::ostringstream message;
+      message << "the Jacobian is rank deficient at " << describe_point(current)
+              << " while continuing from frontal vertex " << center;
+      throw StopRun{CoveringTermination::ProjectionFailed, message.str()};
+    }
+    // Keep the direction: its component in the new tangent plane, renormalised.
+    const Eigen::MatrixXd& T = current_frame.tangent_basis();
+    current_direction = T * (T.transpose() * current_direction);
+    current_direction.normalize();
+  }
+  return current;
+}
+
+void FrontBuilder::process(int center) {
+  Linearization frame;
+  if (!frame.factor(problem_, state_.point(center))) {
+    std::ostringstream message;
+    message << "the Jacobian is rank deficient at frontal vertex " << center << " "
+            << describe_point(state_.point(center)) << " (a singular point of M)";
+    throw StopRun{CoveringTermination::ProjectionFailed, message.str()};
+  }
+  // Each pass closes one gap; a vertex normally has one gap, more only where the front was
+  // connected to a non-adjacent part of itself. The bound only guards against a logic error.
+  for (int pass = 0; pass < 4 * options_.max_valence; ++pass) {
+    const auto chains = state_.fan_chains(center);
+    if (chains.size() == 1 && chains[0].is_closed) {
+      state_.set_type(center, VertexType::Interior);
+      return;
+    }
+    for (const auto& chain : chains) {
+      if (chain.is_closed) {
+        std::ostringstream message;
+        message << "vertex " << center << " " << describe_point(state_.point(center))
+                << " has a closed fan and further triangles: the mesh folds there";
+        throw StopRun{CoveringTermination::FrontCollision, message.str()};
+      }
+    }
+    // Orient U so that the existing triangles turn counterclockwise in the local coordinates:
+    // each gap is then the counterclockwise angle from an open edge to the next (this replaces
+    // the paper's average-direction test in Agap; see docs/algorithms/front.md).
+    Eigen::MatrixXd U = frame.tangent_basis();
+    double signed_area = 0.0;
+    for (const auto& chain : chains) {
+      signed_area += state_.fan_signed_area(center, chain, U);
+    }
+    if (signed_area < 0) {
+      U.col(1) *= -1.0;
+    }
+    if (chains.size() == 1 && close_small_loop(center, U)) {
+      continue;
+    }
+    const std::vector<Gap> gaps = find_gaps(center, chains, U);
+    const Gap& smallest = *std::min_element(
+        gaps.begin(), gaps.end(), [](const Gap& a, const Gap& b) { return a.angle < b.angle; });
+    close_gap(center, frame, U, smallest);
+  }
+  std::ostringstream message;
+  message << "frontal vertex " << center << " " << describe_point(state_.point(center))
+          << " could not be given a complete neighbourhood";
+  throw StopRun{CoveringTermination::FrontCollision, message.str()};
+}
+
+std::vector<Gap> FrontBuilder::find_gaps(int center, const std::vector<FanChain>& chains,
+                                         const Eigen::MatrixXd& U) const {
+  if (chains.size() == 1) {
+    return {{chains[0].vertices.back(), chains[0].vertices.front(),
+             kTwoPi - state_.fan_angle(center, chains[0], U)}};
+  }
+  // Several fans: order them by the direction of their first edge; the gap after each fan
+  // runs counterclockwise from its last edge to the first edge of the next fan.
+  const auto direction = [&](int v) {
+    const Eigen::Vector2d y = U.transpose() * (state_.point(v) - state_.point(center));
+    return std::atan2(y(1), y(0));
+  };
+  std::vector<std::pair<double, const FanChain*>> ordered;
+  for (const auto& chain : chains) {
+    ordered.emplace_back(direction(chain.vertices.front()), &chain);
+  }
+  std::sort(ordered.begin(), ordered.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Gap> gaps;
+  for (std::size_t i = 0; i < ordered.size(); ++i) {
+    const FanChain& chain = *ordered[i].second;
+    const FanChain& next = *ordered[(i + 1) % ordered.size()].second;
+    double angle = direction(next.vertices.front()) - direction(chain.vertices.back());
+    angle = std::fmod(angle + 2 * kTwoPi, kTwoPi);
+    gaps.push_back({chain.vertices.back(), next.vertices.front(), angle});
+  }
+  return gaps;
+}
+
+void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen::MatrixXd& U,
+                             const Gap& gap) {
+  const int old_count = state_.valence(center);
+  if (gap.angle < options_.min_gap_angle) {
+    if (try_merge(center, gap.first, gap.last, frame)) {
+      return;
+    }
+    if (gap.angle <= 0) {
+      std::ostringstream message;
+      message << "the triangles around frontal vertex " << center << " "
+              << describe_point(state_.point(center))
+              << " overlap (no room is left between open edges " << gap.last << " and "
+              << gap.first << ") and the open edges cannot be merged";
+      throw StopRun{CoveringTermination::FrontCollision, message.str()};
+    }
+    add_closing_triangle(center, gap.last, gap.first);
+    return;
+  }
+  if (old_count >= options_.max_valence) {
+    std::ostringstream message;
+    message << "frontal vertex " << center << " " << describe_point(state_.point(center))
+            << " already has " << old_count << " triangles and a gap of " << gap.angle
+            << " rad >= α_min remains (raise --max-valence or lower the step)";
+    throw StopRun{CoveringTermination::FrontCollision, message.str()};
+  }
+  // Paper: n_new = max{i : gap/i ≥ α_min, 1 ≤ i ≤ max_valence − n_old}.
+  int sectors = 1;
+  for (int i = 1; i <= options_.max_valence - old_count; ++i) {
+    if (gap.angle / i >= options_.min_gap_angle) {
+      sectors = i;
+    }
+  }
+  if (sectors == 1) {
+    add_closing_triangle(center, gap.last, gap.first);
+    return;
+  }
+  const Eigen::Vector2d y_last = U.transpose() * (state_.point(gap.last) - state_.point(center));
+  const double start_angle = std::atan2(y_last(1), y_last(0));
+  int previous = gap.last;
+  for (int i = 1; i < sectors; ++i) {
+    const Eigen::VectorXd x = new_point(center, frame, U, start_angle + i * gap.angle / sectors);
+    if (const auto w = colliding_front_vertex(center, x)) {
+      // The front meets a non-adjacent part of itself: connect to that vertex instead of
+      // creating a new one (an extension of PITMAN; the front loop splits in two there).
+      connect_to_front_vertex(center, previous, *w, U);
+      return;
+    }
+    const int v = add_point(x);
+    state_.add_triangle(center, previous, v);
+    previous = v;
+  }
+  state_.add_triangle(center, previous, gap.first);
+}
+
+std::optional<int> FrontBuilder::colliding_front_vertex(int center, const Eigen::VectorXd& x) {
+  // Vertices within two edges of x_c are the local overlap that PITMAN resolves itself: the
+  // next frontal vertex sees a small gap and merges the pair.
+  const double radius = options_.collision_distance_fraction * step_;
+  const std::vector<int> nearby = state_.ring(center, 2);
+  std::optional<int> closest;
+  double closest_distance = radius;
+  for (int w : state_.vertices_near(x, radius)) {
+    if (std::binary_search(nearby.begin(), nearby.end(), w)) {
+      continue;
+    }
+    const double distance = (state_.point(w) - x).norm();
+    if (state_.type(w) == VertexType::Interior) {
+      std::ostringstream message;
+      message << "the front runs into the finished part of the mesh near " << describe_point(x)
+              << ": a new vertex from frontal vertex " << center << " "
+              << describe_point(state_.point(center)) << " falls within " << distance
+              << " of interior vertex " << w << " " << describe_point(state_.point(w));
+      throw StopRun{CoveringTermination::FrontCollision, message.str()};
+    }
+    if (distance <= closest_distance) {
+      closest = w;
+      closest_distance = distance;
+    }
+  }
+  return closest;
+}
+
+void FrontBuilder::connect_to_front_vertex(int center, int previous, int w,
+                                           const Eigen::MatrixXd& U) {
+  const Eigen::Vector2d y_previous =
+      U.transpose() * (state_.point(previous) - state_.point(center));
+  const Eigen::Vector2d y_w = U.transpose() * (state_.point(w) - state_.point(center));
+  const bool turns_counterclockwise = y_previous(0) * y_w(1) - y_previous(1) * y_w(0) > 0;
+  if (!turns_counterclockwise || !state_.can_add_edge(previous, w) ||
+      !state_.can_add_edge(w, center)) {
+    std::ostringstream message;
+    message << "the front meets itself near " << describe_point(state_.point(w))
+            << ": frontal vertex " << center << " " << describe_point(state_.point(center))
+            << " reaches vertex " << w
+            << ", a non-adjacent part of the front, in a way that cannot be glued without "
+               "folding the mesh";
+    throw StopRun{CoveringTermination::FrontCollision, message.str()};
+  }
+  state_.add_triangle(center, previous, w);
+  ++connections_;
+}
+
+void FrontBuilder::add_closing_triangle(int center, int last, int first) {
+  // The new edge last→first must be free on this side, else the mesh would fold.
+  if (!state_.can_add_edge(last, first)) {
+    std::ostringstream message;
+    message << "cannot close the gap at frontal vertex " << center << " "
+            << describe_point(state_.point(center)) << ": edge (" << last << ", " << first
+            << ") already has triangles on both sides";
+    throw StopRun{CoveringTermination::FrontCollision, message.str()};
+  }
+  state_.add_triangle(center, last, first);
+}
+
+bool FrontBuilder::try_merge(int center, int first, int last, const Linearization& frame) {
+  if (first == last || state_.are_adjacent(first, last) ||
+      !state_.can_identify(first, last)) {
+    return false;
+  }
+  // Paper's Merge: replace both endpoints by the projection of their average (chord at x_c).
+  Eigen::VectorXd average = 0.5 * (state_.point(first) + state_.point(last));
+  chord_options_.max_displacement = 0.75 * step_;
+  if (!project_chord(problem_, frame, average, chord_options_).is_success()) {
+    return false;
+  }
+  const bool inside =
+      domain_.is_unbounded() || domain_.boundary_distance(average).signed_distance > 0;
+  state_.identify(first, last, average, inside ? std::nullopt : std::optional(VertexType::Exterior));
+  ++merges_;
+  return true;
+}
+
+bool FrontBuilder::close_small_loop(int center, const Eigen::MatrixXd& U) {
+  // At the end of a closed surface the front shrinks to a small loop; adding new points inside
+  // it would only create overlaps, so a loop of at most eight vertices is triangulated directly
+  // when a triangulation with all angles above 20° exists (a regular octagon allows 22.5°).
+  const auto loop = state_.front_loop(center, 9);
+  if (loop.size() < 3 || loop.size() > 8) {
+    return false;
+  }
+  for (int v : loop) {
+    if (state_.type(v) == VertexType::Exterior) {
+      return false;  // the loop runs outside the domain: not a hole of M ∩ S
+    }
+  }
+  return state_.triangulate_hole(loop, U, loop.size() <= 3 ? 0.0 : 20.0 * std::numbers::pi / 180);
+}
+
+}  // namespace
+
+CoveringResult triangulate_by_front(const ImplicitProblem& user_problem,
+                                    const Eigen::VectorXd& start, const Domain& domain,
+                                    const FrontOptions& options) {
+  options.validate();
+  TESSERA_CHECK(domain.is_unbounded() || domain.ambient_dimension() == user_problem.ambient_dimension(),
+                "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^"
+                                  << user_problem.ambient_dimension());
+  const auto clock_start = std::chrono::steady_clock::now();
+  CountedProblem problem(user_problem);
+  StartPoint start_point = project_start_point(problem, start, domain,
+                                               options.max_start_distance_steps * options.step);
+  CoveringResult result;
+  result.summary.method = "front";
+  FrontBuilder builder(problem, domain, options);
+  builder.run(start_point.x, start_point.linearization, result.summary);
+  result.mesh = builder.state().to_mesh();
+  if (!domain.is_unbounded()) {
+    ClipOptions clip;
+    clip.snap_distance = options.boundary_snap_fraction * result.summary.step;
+    const ClipSummary clipped = clip_to_domain(problem, domain, result.mesh, clip);
+    result.summary.clipped_half_spaces = clipped.half_spaces_crossed;
+    if (!clipped.message.empty() && result.summary.is_complete()) {
+      result.summary.termination = CoveringTermination::ProjectionFailed;
+      result.summary.message = clipped.message;
+    }
+  }
+  result.summary.vertex_count = result.mesh.vertex_count();
+  result.summary.triangle_count = result.mesh.triangle_count();
+  result.summary.function_evaluations = problem.function_evaluations();
+  result.summary.jacobian_evaluations = problem.jacobian_evaluations();
+  result.summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+}  // namespace tessera

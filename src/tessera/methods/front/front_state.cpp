@@ -1,0 +1,406 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/methods/front/front_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "tessera/core/error.h"
+
+namespace tessera {
+namespace {
+
+// Rotates triangle t so that v comes first: (v, a, b) with a→b counterclockwise around v.
+std::pair<int, int> opposite_edge(const Triangle& t, int v) {
+  if (t[0] == v) {
+    return {t[1], t[2]};
+  }
+  if (t[1] == v) {
+    return {t[2], t[0]};
+  }
+  return {t[0], t[1]};
+}
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a(0) * b(1) - a(1) * b(0);
+}
+
+double angle_at(const Eigen::VectorXd& apex, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const Eigen::VectorXd u = a - apex;
+  const Eigen::VectorXd w = b - apex;
+  const double c = u.dot(w) / (u.norm() * w.norm());
+  return std::acos(std::clamp(c, -1.0, 1.0));
+}
+
+}  // namespace
+
+FrontState::FrontState(int ambient_dimension, double grid_cell)
+    : dimension_(ambient_dimension), grid_(ambient_dimension, grid_cell) {}
+
+int FrontState::add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexType type) {
+  const int v = static_cast<int>(types_.size());
+  coordinates_.insert(coordinates_.end(), x.data(), x.data() + dimension_);
+  types_.push_back(type);
+  incident_.emplace_back();
+  grid_.insert(v, x);
+  ++live_vertices_;
+  if (type == VertexType::Frontal) {
+    queue_.push_back(v);
+  }
+  return v;
+}
+
+int FrontState::add_triangle(int a, int b, int c) {
+  const int t = static_cast<int>(triangles_.size());
+  triangles_.push_back({a, b, c});
+  for (int v : {a, b, c}) {
+    incident_[v].push_back(t);
+  }
+  return t;
+}
+
+void FrontState::set_type(int v, VertexType type) {
+  if (type == VertexType::Frontal && types_[v] != VertexType::Frontal) {
+    queue_.push_back(v);
+  }
+  types_[v] = type;
+}
+
+std::optional<int> FrontState::pop_frontal() {
+  while (!queue_.empty()) {
+    const int v = queue_.front();
+    queue_.pop_front();
+    if (types_[v] == VertexType::Frontal) {
+      return v;
+    }
+  }
+  return std::nullopt;
+}
+
+std::vector<int> FrontState::vertices_near(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                           double radius) const {
+  return grid_.near(x, radius, [this](int id) { return point(id); });
+}
+
+bool FrontState::are_adjacent(int a, int b) const {
+  for (int t : incident_[a]) {
+    const Triangle& tri = triangles_[t];
+    if (tri[0] == b || tri[1] == b || tri[2] == b) {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<int> FrontState::ring(int v, int depth) const {
+  std::vector<int> result{v};
+  std::vector<int> layer{v};
+  for (int d = 0; d < depth; ++d) {
+    std::vector<int> next;
+    for (int u : layer) {
+      for (int t : incident_[u]) {
+        for (int w : triangles_[t]) {
+          if (std::find(result.begin(), result.end(), w) == result.end()) {
+            result.push_back(w);
+            next.push_back(w);
+          }
+        }
+      }
+    }
+    layer = std::move(next);
+  }
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
+int FrontState::edge_triangle_count(int a, int b) const {
+  int count = 0;
+  for (int t : incident_[a]) {
+    const Triangle& tri = triangles_[t];
+    count += (tri[0] == b || tri[1] == b || tri[2] == b) ? 1 : 0;
+  }
+  return count;
+}
+
+bool FrontState::has_directed_edge(int a, int b) const {
+  for (int t : incident_[a]) {
+    const Triangle& tri = triangles_[t];
+    for (int i = 0; i < 3; ++i) {
+      if (tri[i] == a && tri[(i + 1) % 3] == b) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+std::vector<FanChain> FrontState::fan_chains(int v) const {
+  // next[a] = b for each triangle (v, a, b); chains follow next from vertices that are no b.
+  std::vector<std::pair<int, int>> edges;
+  for (int t : incident_[v]) {
+    edges.push_back(opposite_edge(triangles_[t], v));
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 1; i < edges.size(); ++i) {
+    if (edges[i].first == edges[i - 1].first) {
+      throw ComputationFailed("internal fold: vertex " + std::to_string(v) +
+                              " has two triangles leaving edge (" + std::to_string(v) + ", " +
+                              std::to_string(edges[i].first) + ") on the same side");
+    }
+  }
+  const auto next = [&](int a) -> int {
+    auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(a, std::numeric_limits<int>::min()));
+    return (it != edges.end() && it->first == a) ? it->second : -1;
+  };
+  std::vector<int> is_target;
+  for (const auto& e : edges) {
+    is_target.push_back(e.second);
+  }
+  std::sort(is_target.begin(), is_target.end());
+  std::vector<char> used(edges.size(), 0);
+  std::vector<FanChain> chains;
+  const auto index_of = [&](int a) {
+    return static_cast<std::size_t>(
+        std::lower_bound(edges.begin(), edges.end(), std::make_pair(a, std::numeric_limits<int>::min())) -
+        edges.begin());
+  };
+  // Open chains first, from their starting vertices (sources that are no target).
+  for (const auto& e : edges) {
+    if (std::binary_search(is_target.begin(), is_target.end(), e.first)) {
+      continue;
+    }
+    FanChain chain;
+    int a = e.first;
+    chain.vertices.push_back(a);
+    while (true) {
+      const int b = next(a);
+      if (b < 0) {
+        break;
+      }
+      used[index_of(a)] = 1;
+      chain.vertices.push_back(b);
+      a = b;
+    }
+    chains.push_back(std::move(chain));
+  }
+  // What is left forms closed cycles.
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (used[i]) {
+      continue;
+    }
+    FanChain chain;
+    chain.is_closed = true;
+    int a = edges[i].first;
+    while (!used[index_of(a)]) {
+      used[index_of(a)] = 1;
+      chain.vertices.push_back(a);
+      a = next(a);
+    }
+    chains.push_back(std::move(chain));
+  }
+  return chains;
+}
+
+double FrontState::fan_signed_area(int v, const FanChain& chain, const Eigen::MatrixXd& U) const {
+  double area = 0.0;
+  const Eigen::VectorXd center = point(v);
+  for (std::size_t i = 0; i + 1 < chain.vertices.size(); ++i) {
+    const Eigen::Vector2d a = U.transpose() * (point(chain.vertices[i]) - center);
+    const Eigen::Vector2d b = U.transpose() * (point(chain.vertices[i + 1]) - center);
+    area += 0.5 * cross(a, b);
+  }
+  return area;
+}
+
+double FrontState::fan_angle(int v, const FanChain& chain, const Eigen::MatrixXd& U) const {
+  double total = 0.0;
+  const Eigen::VectorXd center = point(v);
+  for (std::size_t i = 0; i + 1 < chain.vertices.size(); ++i) {
+    const Eigen::Vector2d a = U.transpose() * (point(chain.vertices[i]) - center);
+    const Eigen::Vector2d b = U.transpose() * (point(chain.vertices[i + 1]) - center);
+    total += std::atan2(cross(a, b), a.dot(b));
+  }
+  return total;
+}
+
+bool FrontState::can_add_edge(int a, int b) const {
+  return !has_directed_edge(a, b) && edge_triangle_count(a, b) <= 1;
+}
+
+bool FrontState::can_identify(int a, int b) const {
+  // For every common neighbour w the two edges (a, w) and (b, w) become one: each must have a
+  // single triangle and the two must traverse the merged edge in opposite directions.
+  std::vector<int> neighbours_a;
+  for (int t : incident_[a]) {
+    for (int u : triangles_[t]) {
+      if (u != a) {
+        neighbours_a.push_back(u);
+      }
+    }
+  }
+  std::sort(neighbours_a.begin(), neighbours_a.end());
+  neighbours_a.erase(std::unique(neighbours_a.begin(), neighbours_a.end()), neighbours_a.end());
+  for (int t : incident_[b]) {
+    for (int w : triangles_[t]) {
+      if (w == b || !std::binary_search(neighbours_a.begin(), neighbours_a.end(), w)) {
+        continue;
+      }
+      if (edge_triangle_count(a, w) != 1 || edge_triangle_count(b, w) != 1) {
+        return false;
+      }
+      const bool a_to_w = has_directed_edge(a, w);
+      const bool b_to_w = has_directed_edge(b, w);
+      if (a_to_w == b_to_w) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+void FrontState::identify(int a, int b, const Eigen::Ref<const Eigen::VectorXd>& position,
+                          std::optional<VertexType> type) {
+  for (int t : incident_[b]) {
+    for (int& u : triangles_[t]) {
+      if (u == b) {
+        u = a;
+      }
+    }
+    incident_[a].push_back(t);
+  }
+  incident_[b].clear();
+  grid_.remove(b, point(b));
+  grid_.remove(a, point(a));
+  std::copy(position.data(), position.data() + dimension_,
+            coordinates_.begin() + static_cast<std::ptrdiff_t>(a) * dimension_);
+  grid_.insert(a, position);
+  const bool either_frontal =
+      types_[a] == VertexType::Frontal || types_[b] == VertexType::Frontal;
+  types_[b] = VertexType::Removed;
+  --live_vertices_;
+  if (type) {
+    types_[a] = *type;
+  } else if (either_frontal || types_[a] == VertexType::Exterior) {
+    set_type(a, VertexType::Frontal);
+  }
+}
+
+std::vector<int> FrontState::front_loop(int v, int max_length) const {
+  std::vector<int> loop{v};
+  int current = v;
+  while (true) {
+    const auto chains = fan_chains(current);
+    if (chains.size() != 1 || chains[0].is_closed) {
+      return {};
+    }
+    current = chains[0].vertices.front();
+    if (current == v) {
+      return loop;
+    }
+    if (static_cast<int>(loop.size()) >= max_length) {
+      return {};
+    }
+    loop.push_back(current);
+  }
+}
+
+bool FrontState::triangulate_hole(const std::vector<int>& loop, const Eigen::MatrixXd& U,
+                                  double min_angle) {
+  // The hole lies to the left of the reversed loop: polygon (v0, v_{L−1}, …, v1) is
+  // counterclockwise in U, and each triangle (p_i, p_j, p_k), i < j < k, keeps that orientation.
+  std::vector<int> polygon{loop[0]};
+  for (std::size_t i = loop.size() - 1; i >= 1; --i) {
+    polygon.push_back(loop[i]);
+  }
+  const int L = static_cast<int>(polygon.size());
+  const Eigen::VectorXd center = point(polygon[0]);
+  std::vector<Eigen::Vector2d> planar;
+  for (int p : polygon) {
+    planar.push_back(U.transpose() * (point(p) - center));
+  }
+  std::vector<Triangle> best;
+  double best_score = -1.0;
+  std::vector<Triangle> current;
+  // Enumerate the triangulations of the sub-polygon [i, k] by the apex j of edge (i, k).
+  std::function<void(std::vector<std::pair<int, int>>)> search =
+      [&](std::vector<std::pair<int, int>> pending) {
+        if (pending.empty()) {
+          double score = std::numeric_limits<double>::infinity();
+          for (const Triangle& t : current) {
+            for (int r = 0; r < 3; ++r) {
+              score = std::min(score, angle_at(point(t[r]), point(t[(r + 1) % 3]), point(t[(r + 2) % 3])));
+            }
+          }
+          if (score > best_score) {
+            best_score = score;
+            best = current;
+          }
+          return;
+        }
+        const auto [i, k] = pending.back();
+        pending.pop_back();
+        if (k - i < 2) {
+          search(pending);
+          return;
+        }
+        for (int j = i + 1; j < k; ++j) {
+          if (cross(planar[j] - planar[i], planar[k] - planar[i]) <= 0) {
+            continue;
+          }
+          // A diagonal that already is a mesh edge would create a non-manifold edge.
+          const bool diagonal_ij = j - i > 1;
+          const bool diagonal_jk = k - j > 1;
+          if ((diagonal_ij && are_adjacent(polygon[i], polygon[j])) ||
+              (diagonal_jk && are_adjacent(polygon[j], polygon[k]))) {
+            continue;
+          }
+          current.push_back({polygon[i], polygon[j], polygon[k]});
+          auto next = pending;
+          next.emplace_back(i, j);
+          next.emplace_back(j, k);
+          search(next);
+          current.pop_back();
+        }
+      };
+  if (L == 3 && are_adjacent(polygon[1], polygon[2]) && !can_add_edge(polygon[1], polygon[2])) {
+    return false;
+  }
+  search({{0, L - 1}});
+  if (best.empty() || best_score < min_angle) {
+    return false;
+  }
+  for (const Triangle& t : best) {
+    add_triangle(t[0], t[1], t[2]);
+  }
+  for (int p : polygon) {
+    if (types_[p] == VertexType::Frontal) {
+      // Their fans are now closed; processing them would find nothing to do.
+      types_[p] = VertexType::Interior;
+    }
+  }
+  return true;
+}
+
+TriangleMesh FrontState::to_mesh() const {
+  std::vector<int> new_index(types_.size(), -1);
+  TriangleMesh mesh(dimension_);
+  for (const Triangle& t : triangles_) {
+    for (int v : t) {
+      if (new_index[v] < 0) {
+        new_index[v] = 0;
+      }
+    }
+  }
+  for (std::size_t v = 0; v < types_.size(); ++v) {
+    if (new_index[v] == 0 && types_[v] != VertexType::Removed) {
+      new_index[v] = mesh.add_vertex(point(static_cast<int>(v)));
+    }
+  }
+  for (const Triangle& t : triangles_) {
+    mesh.add_triangle(new_index[t[0]], new_index[t[1]], new_index[t[2]]);
+  }
+  return mesh;
+}
+
+}  // namespace tessera

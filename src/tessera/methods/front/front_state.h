@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: MIT
+// The growing mesh of the advancing front: vertices with their types, triangles, vertex–triangle
+// incidence (the paper's xnod, sim and nod arrays), the queue of frontal vertices and a
+// proximity grid. Internal to the front method.
+#pragma once
+
+#include <Eigen/Core>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "tessera/geometry/triangle_mesh.h"
+#include "tessera/methods/common/point_grid.h"
+
+namespace tessera {
+
+/// Node types of the paper's Table 4.1 (−1 frontal, 0/1 interior, 2 exterior).
+enum class VertexType { Frontal, Interior, Exterior, Removed };
+
+/// The triangles around a vertex v in counterclockwise order: triangle i is
+/// (v, vertices[i], vertices[i+1]). Open chains start and end at the two open edges.
+struct FanChain {
+  std::vector<int> vertices;
+  bool is_closed = false;  ///< a full neighbourhood: vertices.front() follows vertices.back()
+};
+
+class FrontState {
+ public:
+  FrontState(int ambient_dimension, double grid_cell);
+
+  int add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexType type);
+  int add_triangle(int a, int b, int c);
+
+  Eigen::Map<const Eigen::VectorXd> point(int v) const {
+    return {coordinates_.data() + static_cast<std::ptrdiff_t>(v) * dimension_, dimension_};
+  }
+  VertexType type(int v) const { return types_[v]; }
+  void set_type(int v, VertexType type);
+
+  /// Next vertex of the FIFO queue that is still frontal; nullopt when the front is empty.
+  std::optional<int> pop_frontal();
+  int front_size() const { return static_cast<int>(queue_.size()); }
+  int live_vertex_count() const { return live_vertices_; }
+  int live_triangle_count() const { return static_cast<int>(triangles_.size()); }
+
+  std::vector<int> vertices_near(const Eigen::Ref<const Eigen::VectorXd>& x, double radius) const;
+  bool are_adjacent(int a, int b) const;
+  int valence(int v) const { return static_cast<int>(incident_[v].size()); }
+  /// Vertices within `depth` edges of v (v included), sorted.
+  std::vector<int> ring(int v, int depth) const;
+
+  /// The fans of triangles around v (one chain for a manifold vertex).
+  /// \throw ComputationFailed if the triangles around v do not form chains (an internal fold).
+  std::vector<FanChain> fan_chains(int v) const;
+  /// Σ over the chain's triangles of the signed area of their projections onto U (n×2).
+  double fan_signed_area(int v, const FanChain& chain, const Eigen::MatrixXd& U) const;
+  /// Σ of the signed angles at v of the chain's triangles projected onto U, in radians.
+  double fan_angle(int v, const FanChain& chain, const Eigen::MatrixXd& U) const;
+
+  /// True if a triangle may use the directed edge a→b (no triangle uses it yet, and the
+  /// undirected edge has at most one triangle).
+  bool can_add_edge(int a, int b) const;
+  /// True if identifying b with a keeps every edge manifold and consistently oriented.
+  bool can_identify(int a, int b) const;
+  /// Replaces b by a everywhere and moves a to `position` (the paper's Equate).
+  void identify(int a, int b, const Eigen::Ref<const Eigen::VectorXd>& position,
+                std::optional<VertexType> type);
+
+  /// The front loop through v: v, then repeatedly the first vertex of the open chain, until it
+  /// returns to v. Empty if longer than max_length or if a vertex on it is not a simple chain.
+  std::vector<int> front_loop(int v, int max_length) const;
+  /// Fills the hole bounded by `loop` (as returned by front_loop) with the triangulation of
+  /// largest minimum angle whose triangles are positively oriented in the tangent frame U.
+  /// Fails (returns false, changes nothing) if no triangulation has all angles ≥ min_angle.
+  bool triangulate_hole(const std::vector<int>& loop, const Eigen::MatrixXd& U, double min_angle);
+
+  /// The live part as a compact TriangleMesh (unreferenced vertices dropped).
+  TriangleMesh to_mesh() const;
+
+ private:
+  int edge_triangle_count(int a, int b) const;
+  bool has_directed_edge(int a, int b) const;
+
+  int dimension_;
+  std::vector<double> coordinates_;
+  std::vector<VertexType> types_;
+  std::vector<std::vector<int>> incident_;  // vertex → triangles
+  std::vector<Triangle> triangles_;
+  std::deque<int> queue_;
+  PointGrid grid_;
+  int live_vertices_ = 0;
+};
+
+}  // namespace tessera

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/methods/start_point.h"
+
+#include <sstream>
+
+#include "tessera/core/error.h"
+
+namespace tessera {
+namespace {
+
+std::string format_point(const Eigen::VectorXd& x) {
+  std::ostringstream out;
+  out.precision(6);
+  out << "(";
+  const int shown = std::min<int>(static_cast<int>(x.size()), 6);
+  for (int i = 0; i < shown; ++i) {
+    out << (i ? ", " : "") << x(i);
+  }
+  if (x.size() > shown) {
+    out << ", … " << x.size() - shown << " more";
+  }
+  out << ")";
+  return out.str();
+}
+
+}  // namespace
+
+StartPoint project_start_point(const ImplicitProblem& problem, const Eigen::VectorXd& guess,
+                               const Domain& domain, double max_distance) {
+  const int n = problem.ambient_dimension();
+  TESSERA_CHECK(guess.size() == n, "start point has " << guess.size()
+                                                      << " coordinates, problem '"
+                                                      << problem.name() << "' has n = " << n);
+  TESSERA_CHECK(guess.allFinite(), "start point " << format_point(guess) << " is not finite");
+  StartPoint start;
+  start.x = guess;
+  CorrectorOptions options;
+  // From a user's guess the first steps may contract slowly; accept any θ < 1 (Deuflhard's
+  // criterion for a convergent Newton-type iteration) and allow more iterations.
+  options.max_contraction = 0.99;
+  options.max_iterations = 50;
+  options.max_displacement = max_distance;
+  start.corrector = project_gauss_newton(problem, start.x, options, start.linearization);
+  const std::string where = "start point " + format_point(guess);
+  switch (start.corrector.termination) {
+    case CorrectorTermination::Converged:
+      break;
+    case CorrectorTermination::NonFiniteResidual:
+      throw ComputationFailed(where + ": F is not finite (NaN or infinity) at " +
+                              format_point(start.x) + "; is the start inside the domain of F?");
+    case CorrectorTermination::SingularJacobian:
+      throw ComputationFailed(where + ": the Jacobian DF is rank deficient at " +
+                              format_point(start.x) +
+                              "; M is not a smooth surface there (a singular point). Choose "
+                              "another start point");
+    case CorrectorTermination::TooFar: {
+      std::ostringstream message;
+      message << where << " is too far from M: Gauss–Newton moved it more than " << max_distance
+              << " (the limit is a multiple of the step; pass a start closer to F = 0 or raise "
+                 "--max-start-distance)";
+      throw ComputationFailed(message.str());
+    }
+    case CorrectorTermination::Diverged:
+    case CorrectorTermination::MaxIterations:
+      throw ComputationFailed(where + " could not be projected onto M: Gauss–Newton " +
+                              start.corrector.brief_report() +
+                              "; pass a start closer to F = 0");
+  }
+  if (!domain.contains(start.x, 1e-12)) {
+    const auto nearest = domain.boundary_distance(start.x);
+    std::ostringstream message;
+    message << where << " projects onto M at " << format_point(start.x)
+            << ", which lies outside the domain: it violates '"
+            << domain.half_spaces()[nearest.nearest_half_space].label << "' by "
+            << -nearest.signed_distance
+            << ". Choose a start inside the domain, or check that the domain is not empty";
+    throw ComputationFailed(message.str());
+  }
+  // Refactor exactly at the converged point so that its tangent basis is current.
+  const bool ok = start.linearization.factor(problem, start.x);
+  if (!ok) {
+    throw ComputationFailed(where + ": the Jacobian is rank deficient at the projected point " +
+                            format_point(start.x));
+  }
+  return start;
+}
+
+}  // namespace tessera
