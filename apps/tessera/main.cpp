@@ -1,3 +1,263 @@
 // SPDX-License-Identifier: MIT
-// The tessera command line tool.
-int main() { return 0; }
+// The tessera command line tool: `tessera mesh`, `tessera problems`, `tessera check`.
+// Exit codes: 0 success, 1 a computation failed (message says why), 2 usage error.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "tessera/core/error.h"
+#include "tessera/geometry/mesh_quality.h"
+#include "tessera/geometry/mesh_validation.h"
+#include "tessera/io/mesh_io.h"
+#include "tessera/io/summary_json.h"
+#include "tessera/methods/front/advancing_front.h"
+#include "tessera/problems/catalogue.h"
+
+namespace {
+
+constexpr int kComputationFailed = 1;
+constexpr int kUsageError = 2;
+
+std::vector<double> parse_numbers(const std::string& text, const std::string& option) {
+  std::vector<double> values;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    while (used < item.size() && std::isspace(static_cast<unsigned char>(item[used]))) {
+      ++used;
+    }
+    if (item.empty() || used != item.size()) {
+      throw tessera::InvalidArgument(option + ": '" + item + "' is not a number (expected a "
+                                     "comma-separated list such as 0,0,1)");
+    }
+    values.push_back(value);
+  }
+  return values;
+}
+
+struct MeshCommand {
+  std::string problem;
+  std::string method = "front";
+  double step = 0.0;
+  std::string start;
+  std::string box;
+  std::string output;
+  std::string summary;
+  bool ascii = false;
+  bool quiet = false;
+  int max_vertices = 2'000'000;
+  double min_gap_degrees = 0.0;
+  int max_valence = 0;
+  double max_start_distance = 0.0;
+};
+
+tessera::MeshReport make_report(const tessera::TriangleMesh& mesh,
+                                const tessera::ProblemSetup& setup) {
+  tessera::MeshReport report;
+  report.problem = setup.problem->name();  // replaced by the user's spelling where known
+  report.ambient_dimension = setup.problem->ambient_dimension();
+  report.validation = tessera::validate(mesh);
+  report.quality = tessera::measure_quality(mesh, *setup.problem);
+  report.expected_euler_characteristic = setup.expected_euler_characteristic;
+  report.exact_area = setup.exact_area;
+  return report;
+}
+
+int run_mesh(const MeshCommand& command) {
+  tessera::ProblemSetup setup = tessera::resolve_problem(command.problem);
+  const int n = setup.problem->ambient_dimension();
+  if (!command.start.empty()) {
+    const auto values = parse_numbers(command.start, "--start");
+    TESSERA_CHECK(static_cast<int>(values.size()) == n,
+                  "--start has " << values.size() << " values, problem '" << setup.problem->name()
+                                 << "' has n = " << n << " coordinates");
+    setup.start = Eigen::Map<const Eigen::VectorXd>(values.data(), n);
+  }
+  if (!command.box.empty()) {
+    const auto values = parse_numbers(command.box, "--box");
+    TESSERA_CHECK(static_cast<int>(values.size()) == 2 * n,
+                  "--box has " << values.size() << " values, expected " << 2 * n
+                               << " (lower,upper for each of the " << n << " coordinates)");
+    Eigen::VectorXd lower(n);
+    Eigen::VectorXd upper(n);
+    for (int i = 0; i < n; ++i) {
+      lower(i) = values[2 * i];
+      upper(i) = values[2 * i + 1];
+    }
+    setup.domain.intersect_with(
+        tessera::Domain::box(lower, upper, setup.problem->coordinate_names()));
+  }
+  TESSERA_CHECK(command.method == "front",
+                "--method '" << command.method << "' is not available; methods: front");
+  tessera::FrontOptions options;
+  options.step = command.step > 0 ? command.step : setup.suggested_step;
+  options.max_vertices = command.max_vertices;
+  if (command.min_gap_degrees > 0) {
+    options.min_gap_angle = command.min_gap_degrees * M_PI / 180.0;
+  }
+  if (command.max_valence > 0) {
+    options.max_valence = command.max_valence;
+  }
+  if (command.max_start_distance > 0) {
+    options.max_start_distance_steps = command.max_start_distance / options.step;
+  }
+  const bool show_progress = !command.quiet && isatty(STDERR_FILENO);
+  if (show_progress) {
+    options.progress = [](const tessera::CoveringProgress& p) {
+      std::fprintf(stderr, "\r  %d vertices, %d triangles, front %d   ", p.vertex_count,
+                   p.triangle_count, p.front_size);
+    };
+  }
+  const tessera::CoveringResult result =
+      tessera::triangulate_by_front(*setup.problem, setup.start, setup.domain, options);
+  if (show_progress) {
+    std::fprintf(stderr, "\r%60s\r", "");
+  }
+  // Whatever happened, keep the work: write the mesh and the summary before reporting.
+  tessera::MeshFileOptions file_options;
+  file_options.binary = !command.ascii;
+  // PLY keeps the standard names (x, y, z or x0 … x{n−1}) that readers look for; the problem's
+  // own names go into a comment, and into the arrays of VTK files.
+  const bool is_ply = command.output.size() >= 4 &&
+                      command.output.compare(command.output.size() - 4, 4, ".ply") == 0;
+  std::string names;
+  for (const auto& name : setup.problem->coordinate_names()) {
+    names += " " + name;
+  }
+  if (!is_ply) {
+    file_options.coordinate_names = setup.problem->coordinate_names();
+  }
+  file_options.comments = {"tessera mesh " + command.problem + " --method " + command.method,
+                           "coordinates:" + names};
+  tessera::write_mesh(command.output, result.mesh, file_options);
+  tessera::MeshReport report = make_report(result.mesh, setup);
+  report.run = result.summary;
+  if (!command.summary.empty()) {
+    tessera::write_summary_json(command.summary, report);
+  }
+  if (!command.quiet) {
+    std::cout << tessera::to_text(report) << "wrote          " << command.output
+              << (command.summary.empty() ? "" : " and " + command.summary) << "\n";
+  }
+  if (!result.summary.is_complete()) {
+    std::cerr << "tessera: the " << command.method << " method stopped early ("
+              << tessera::to_string(result.summary.termination)
+              << "): " << result.summary.message << "\n"
+              << "tessera: the partial mesh was written to " << command.output << "\n";
+    return kComputationFailed;
+  }
+  if (!report.validation.is_valid()) {
+    std::cerr << "tessera: the mesh is not valid:\n" << report.validation.report();
+    return kComputationFailed;
+  }
+  return 0;
+}
+
+int run_problems() {
+  for (const auto& entry : tessera::catalogue()) {
+    std::cout << entry.name << std::string(entry.name.size() < 15 ? 15 - entry.name.size() : 1, ' ')
+              << entry.summary;
+    if (!entry.parameters.empty()) {
+      std::cout << " [";
+      for (std::size_t i = 0; i < entry.parameters.size(); ++i) {
+        std::cout << (i ? ", " : "") << entry.parameters[i].name << "="
+                  << entry.parameters[i].default_value;
+      }
+      std::cout << "]";
+    }
+    std::cout << "\n";
+  }
+  std::cout << "\nUse NAME:key=value,... to set parameters, e.g. tessera mesh torus:R=2,r=0.5\n"
+               "or pass a problem file (see docs/problem-files.md).\n";
+  return 0;
+}
+
+int run_check(const std::string& mesh_path, const std::string& problem, bool json) {
+  const tessera::ProblemSetup setup = tessera::resolve_problem(problem);
+  const tessera::TriangleMesh mesh = tessera::read_mesh(mesh_path);
+  const tessera::MeshReport report = make_report(mesh, setup);
+  std::cout << (json ? tessera::to_json(report) : tessera::to_text(report));
+  return report.validation.is_valid() ? 0 : kComputationFailed;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"tessera: trustworthy triangulations of implicitly defined surfaces F(x) = 0"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "tessera 0.1.0");
+
+  MeshCommand mesh;
+  auto* mesh_app = app.add_subcommand("mesh", "cover a problem's surface with a triangle mesh");
+  mesh_app->add_option("problem", mesh.problem, "catalogue name (see `tessera problems`) or problem file")
+      ->required();
+  mesh_app->add_option("--method", mesh.method, "covering method")
+      ->check(CLI::IsMember({"front"}));
+  mesh_app->add_option("--step,-s", mesh.step, "edge length h (default: the problem's suggestion)")
+      ->check(CLI::PositiveNumber);
+  mesh_app->add_option("--start", mesh.start, "start point, comma separated, e.g. 0,0,1");
+  mesh_app->add_option("--box", mesh.box,
+                       "clip to a box: lower,upper for each coordinate, e.g. -1,1,-1,1,-0.8,1");
+  mesh_app->add_option("-o,--output", mesh.output, "mesh file: .ply, .obj, .vtk or .vtu")
+      ->required();
+  mesh_app->add_option("--summary", mesh.summary, "write a JSON summary to this file");
+  mesh_app->add_flag("--ascii", mesh.ascii, "write ASCII instead of binary PLY");
+  mesh_app->add_flag("--quiet,-q", mesh.quiet, "print nothing but errors");
+  mesh_app->add_option("--max-vertices", mesh.max_vertices, "stop after this many vertices")
+      ->check(CLI::Range(7, 100'000'000));
+  mesh_app->add_option("--min-gap-angle", mesh.min_gap_degrees,
+                       "front: α_min in degrees (default 45.8)")
+      ->check(CLI::Range(1.0, 89.0));
+  mesh_app->add_option("--max-valence", mesh.max_valence,
+                       "front: most triangles per vertex (paper: 6; default 7)")
+      ->check(CLI::Range(6, 12));
+  mesh_app->add_option("--max-start-distance", mesh.max_start_distance,
+                       "how far the start may be from M (default: 10 steps)")
+      ->check(CLI::PositiveNumber);
+
+  app.add_subcommand("problems", "list the built-in catalogue");
+
+  std::string check_mesh;
+  std::string check_problem;
+  bool check_json = false;
+  auto* check_app = app.add_subcommand("check", "validate a mesh and measure it against M");
+  check_app->add_option("mesh", check_mesh, "mesh file (.ply or .obj)")->required();
+  check_app->add_option("--problem,-p", check_problem, "catalogue name or problem file")
+      ->required();
+  check_app->add_flag("--json", check_json, "print the report as JSON");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kUsageError;
+  }
+  try {
+    if (app.got_subcommand("mesh")) {
+      return run_mesh(mesh);
+    }
+    if (app.got_subcommand("problems")) {
+      return run_problems();
+    }
+    return run_check(check_mesh, check_problem, check_json);
+  } catch (const tessera::InvalidArgument& e) {
+    std::cerr << "tessera: error: " << e.what() << "\n";
+    return kUsageError;
+  } catch (const tessera::ComputationFailed& e) {
+    std::cerr << "tessera: failed: " << e.what() << "\n";
+    return kComputationFailed;
+  } catch (const std::exception& e) {
+    std::cerr << "tessera: failed: " << e.what() << "\n";
+    return kComputationFailed;
+  }
+}

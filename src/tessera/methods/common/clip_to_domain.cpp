@@ -68,6 +68,18 @@ double min_angle(const TriangleMesh& mesh, int a, int b, int c) {
   return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
 }
 
+// A vertex already at the corner point x of M ∩ (the faces), or −1. Two vertices snapped or cut
+// onto the same corner would make a zero-area triangle.
+int find_corner(const TriangleMesh& mesh, const std::vector<std::vector<int>>& vertex_faces,
+                const std::vector<int>& faces, const Eigen::VectorXd& x) {
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    if (vertex_faces[v] == faces && (mesh.point(v) - x).norm() <= 1e-8 * (1 + x.norm())) {
+      return v;
+    }
+  }
+  return -1;
+}
+
 std::vector<int> common_faces(const std::vector<int>& a, const std::vector<int>& b) {
   std::vector<int> result;
   std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(result));
@@ -106,9 +118,11 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
       faces.push_back(k);
       std::sort(faces.begin(), faces.end());
       Eigen::VectorXd x = work.point(v);
+      const bool is_corner =
+          static_cast<int>(faces.size()) + problem.equation_count() == problem.ambient_dimension();
       if (project_onto_faces(problem, domain, faces, x, 3 * options.snap_distance,
                              options.corrector) &&
-          domain.contains(x, 1e-9)) {
+          domain.contains(x, 1e-9) && !(is_corner && find_corner(work, work_faces, faces, x) >= 0)) {
         work.mutable_point(v) = x;
         work_faces[v] = faces;
         d[v] = 0.0;
@@ -142,6 +156,16 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
           summary.message = message.str();
           return summary;
         }
+        // Where the face meets an earlier face, M ∩ both is a point (a corner of the clipped
+        // surface): reuse the corner vertex if one is already there, else the corner doubles.
+        const int existing =
+            static_cast<int>(faces.size()) + problem.equation_count() == problem.ambient_dimension()
+                ? find_corner(work, work_faces, faces, x)
+                : -1;
+        if (existing >= 0) {
+          cut_vertex[key] = existing;
+          continue;
+        }
         cut_vertex[key] = work.add_vertex(x);
         work_faces.push_back(faces);
         d.push_back(0.0);
@@ -153,6 +177,9 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
     std::vector<Triangle> kept;
     const auto add_polygon = [&](std::vector<int> polygon) {
       polygon.erase(std::unique(polygon.begin(), polygon.end()), polygon.end());
+      while (polygon.size() > 1 && polygon.front() == polygon.back()) {
+        polygon.pop_back();
+      }
       if (polygon.size() == 3) {
         kept.push_back({polygon[0], polygon[1], polygon[2]});
       } else if (polygon.size() == 4) {

@@ -336,6 +336,12 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
     add_closing_triangle(center, gap.last, gap.first);
     return;
   }
+  // The paper stops when a vertex already has its maximum of triangles; tessera first closes
+  // a gap below 120° with one triangle, which keeps its angles bounded by 120°.
+  if (old_count >= options_.max_valence && gap.angle < kTwoPi / 3) {
+    add_closing_triangle(center, gap.last, gap.first);
+    return;
+  }
   if (old_count >= options_.max_valence) {
     std::ostringstream message;
     message << "frontal vertex " << center << " " << describe_point(state_.point(center))

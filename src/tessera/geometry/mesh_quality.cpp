@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/geometry/mesh_quality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "tessera/core/corrector.h"
+#include "tessera/core/error.h"
+#include "tessera/core/linearization.h"
+#include "tessera/geometry/mesh_topology.h"
+
+namespace tessera {
+namespace {
+
+double triangle_area(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& c) {
+  // Gram determinant: valid in any dimension.
+  const Eigen::VectorXd u = b - a;
+  const Eigen::VectorXd v = c - a;
+  const double uu = u.squaredNorm();
+  const double vv = v.squaredNorm();
+  const double uv = u.dot(v);
+  return 0.5 * std::sqrt(std::max(0.0, uu * vv - uv * uv));
+}
+
+void accumulate(Statistic& statistic, double value) {
+  statistic.max = std::max(statistic.max, value);
+  statistic.mean += (value - statistic.mean) / ++statistic.count;
+}
+
+}  // namespace
+
+MeshQuality measure_shape(const TriangleMesh& mesh) {
+  MeshQuality quality;
+  double min_angle = std::numeric_limits<double>::infinity();
+  double max_angle = 0.0;
+  double min_edge = std::numeric_limits<double>::infinity();
+  double max_edge = 0.0;
+  long below = 0;
+  for (const Triangle& t : mesh.triangles()) {
+    const Eigen::VectorXd p[3] = {mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2])};
+    quality.area += triangle_area(p[0], p[1], p[2]);
+    for (int r = 0; r < 3; ++r) {
+      const Eigen::VectorXd u = p[(r + 1) % 3] - p[r];
+      const Eigen::VectorXd w = p[(r + 2) % 3] - p[r];
+      const double angle = std::acos(std::clamp(u.dot(w) / (u.norm() * w.norm()), -1.0, 1.0)) *
+                           180.0 / std::numbers::pi;
+      min_angle = std::min(min_angle, angle);
+      max_angle = std::max(max_angle, angle);
+      below += angle < 30.0 ? 1 : 0;
+      min_edge = std::min(min_edge, u.norm());
+      max_edge = std::max(max_edge, u.norm());
+    }
+  }
+  if (mesh.triangle_count() > 0) {
+    quality.min_angle_degrees = min_angle;
+    quality.max_angle_degrees = max_angle;
+    quality.fraction_angles_below_30 = static_cast<double>(below) / (3.0 * mesh.triangle_count());
+    quality.min_edge_length = min_edge;
+    quality.max_edge_length = max_edge;
+  }
+  return quality;
+}
+
+double surface_area(const TriangleMesh& mesh) { return measure_shape(mesh).area; }
+
+MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem) {
+  TESSERA_CHECK(mesh.ambient_dimension() == problem.ambient_dimension(),
+                "the mesh is in R^" << mesh.ambient_dimension() << " but problem '"
+                                    << problem.name() << "' is in R^"
+                                    << problem.ambient_dimension());
+  MeshQuality quality = measure_shape(mesh);
+  const int n = problem.ambient_dimension();
+  Eigen::VectorXd F(n - 2);
+  Linearization workspace;
+  CorrectorOptions options;
+  options.tolerance = 1e-13;  // distances down to ~1e-12 must be resolved
+  options.residual_tolerance = 1e-11;
+  options.max_contraction = 0.9;
+  const auto distance = [&](const Eigen::VectorXd& x, Statistic& statistic) {
+    Eigen::VectorXd y = x;
+    const auto summary = project_gauss_newton(problem, y, options, workspace);
+    if (!summary.is_success()) {
+      ++quality.failed_projections;
+      return;
+    }
+    accumulate(statistic, (y - x).norm());
+  };
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    const Eigen::VectorXd x = mesh.point(v);
+    problem.evaluate(x, F);
+    accumulate(quality.vertex_residual, F.norm());
+    distance(x, quality.vertex_distance);
+  }
+  for (const Triangle& t : mesh.triangles()) {
+    const Eigen::VectorXd centroid =
+        (mesh.point(t[0]) + mesh.point(t[1]) + mesh.point(t[2])) / 3.0;
+    distance(centroid, quality.centroid_distance);
+  }
+  const MeshTopology topology(mesh);
+  for (const auto& edge : topology.edges()) {
+    const Eigen::VectorXd midpoint = 0.5 * (mesh.point(edge[0]) + mesh.point(edge[1]));
+    distance(midpoint, quality.midpoint_distance);
+  }
+  return quality;
+}
+
+}  // namespace tessera

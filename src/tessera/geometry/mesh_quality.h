@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// Quality of a mesh of M: how far it is from M (at vertices, and at points the method did not
+// produce: triangle centroids and edge midpoints), its angles and its area.
+#pragma once
+
+#include "tessera/core/implicit_problem.h"
+#include "tessera/geometry/triangle_mesh.h"
+
+namespace tessera {
+
+/// Summary statistics of one measured quantity.
+struct Statistic {
+  double max = 0.0;
+  double mean = 0.0;
+  int count = 0;
+};
+
+struct MeshQuality {
+  Statistic vertex_residual;      ///< |F(x)| at the vertices
+  Statistic vertex_distance;      ///< distance of the vertices to M
+  Statistic centroid_distance;    ///< distance of the triangle centroids to M
+  Statistic midpoint_distance;    ///< distance of the edge midpoints to M
+  int failed_projections = 0;     ///< points whose projection onto M did not converge
+  double min_angle_degrees = 0.0;
+  double max_angle_degrees = 0.0;
+  double fraction_angles_below_30 = 0.0;  ///< share of all triangle angles below 30°
+  double area = 0.0;                       ///< sum of the triangle areas in R^n
+  double min_edge_length = 0.0;
+  double max_edge_length = 0.0;
+};
+
+/// Measures `mesh` against M = {F = 0}. Distances are ‖x − P(x)‖, where P is the Gauss–Newton
+/// projection with minimum-norm steps: it converges to a point of M whose offset from x is
+/// normal to M up to O(‖x − P(x)‖²), so it measures the distance to that order. O(N) projections.
+/// \throw InvalidArgument if the mesh and the problem live in different dimensions.
+MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem);
+
+/// Angles, areas and edge lengths only (no problem needed).
+MeshQuality measure_shape(const TriangleMesh& mesh);
+
+/// Sum of the triangle areas in R^n.
+double surface_area(const TriangleMesh& mesh);
+
+}  // namespace tessera

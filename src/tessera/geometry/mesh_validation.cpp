@@ -1,0 +1,451 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/geometry/mesh_validation.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <utility>
+
+#include "tessera/core/error.h"
+#include "tessera/geometry/mesh_topology.h"
+
+namespace tessera {
+namespace {
+
+constexpr int kind_count = static_cast<int>(MeshDefectKind::NonFiniteCoordinate) + 1;
+constexpr std::size_t max_listed_indices = 8;  // per example line, e.g. triangles of an edge
+
+std::string triangle_text(int t, const Triangle& tri) {
+  std::ostringstream out;
+  out << "triangle " << t << " = (" << tri[0] << ", " << tri[1] << ", " << tri[2] << ")";
+  return out.str();
+}
+
+// "7, 9, 31" or "7, 9, 31, ... (12 in all)"
+template <class Range, class Map>
+std::string index_list(const Range& indices, Map map) {
+  std::ostringstream out;
+  std::size_t i = 0;
+  for (auto index : indices) {
+    if (i == max_listed_indices) {
+      out << ", ... (" << std::size(indices) << " in all)";
+      break;
+    }
+    out << (i == 0 ? "" : ", ") << map(index);
+    ++i;
+  }
+  return out.str();
+}
+
+// Counts every occurrence and keeps the first `max_examples` descriptions of each kind. The
+// description is built lazily so that a mesh with a million defects costs no strings.
+class DefectRecorder {
+ public:
+  explicit DefectRecorder(int max_examples) : max_examples_(max_examples) {
+    for (int i = 0; i < kind_count; ++i) {
+      defects_[i].kind = static_cast<MeshDefectKind>(i);
+    }
+  }
+  template <class Describe>
+  void record(MeshDefectKind kind, const Describe& describe) {
+    MeshDefect& defect = defects_[static_cast<int>(kind)];
+    ++defect.count;
+    if (static_cast<int>(defect.examples.size()) < max_examples_) {
+      defect.examples.push_back(describe());
+    }
+  }
+  int count(MeshDefectKind kind) const { return defects_[static_cast<int>(kind)].count; }
+  std::vector<MeshDefect> take_present() {
+    std::vector<MeshDefect> present;
+    for (MeshDefect& defect : defects_) {
+      if (defect.count > 0) {
+        present.push_back(std::move(defect));
+      }
+    }
+    return present;
+  }
+
+ private:
+  int max_examples_;
+  std::array<MeshDefect, kind_count> defects_;
+};
+
+// Union-find over triangle corners (corner 3t + k is vertex tri[k] of triangle t), used to
+// group the triangles around each vertex into fans.
+class CornerSets {
+ public:
+  explicit CornerSets(std::size_t size) : parent_(size) {
+    for (std::size_t i = 0; i < size; ++i) {
+      parent_[i] = static_cast<int>(i);
+    }
+  }
+  int find(int c) {
+    while (parent_[c] != c) {
+      parent_[c] = parent_[parent_[c]];  // path halving
+      c = parent_[c];
+    }
+    return c;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) {
+      parent_[std::max(a, b)] = std::min(a, b);
+    }
+  }
+
+ private:
+  std::vector<int> parent_;
+};
+
+int corner(const std::vector<Triangle>& triangles, int t, int v) {
+  const Triangle& tri = triangles[t];
+  return 3 * t + (tri[0] == v ? 0 : (tri[1] == v ? 1 : 2));
+}
+
+// Area of the triangle (a, b, c) in R^n and its longest edge squared. The area equals
+// sqrt(det G) / 2 for the Gram matrix G of two edge vectors, but det G = |u|^2 |v|^2 - (u.v)^2
+// cancels catastrophically for thin triangles (its rounding error, ~1e-16 L^4, would give a
+// collinear triangle an area of ~1e-8 L^2). Instead the apex is projected onto the longest
+// edge u: area = |u| |w| / 2 with w = v - (u.v / u.u) u, whose error is a few ulp * L^2.
+std::pair<double, double> area_and_longest_squared(const Eigen::Map<const Eigen::MatrixXd>& points,
+                                                   const Triangle& tri) {
+  std::array<double, 3> squared_length;  // edge k joins tri[k] and tri[(k + 1) % 3]
+  for (int k = 0; k < 3; ++k) {
+    squared_length[k] = (points.col(tri[(k + 1) % 3]) - points.col(tri[k])).squaredNorm();
+  }
+  const int k = static_cast<int>(std::max_element(squared_length.begin(), squared_length.end()) -
+                                 squared_length.begin());
+  const double uu = squared_length[k];
+  if (uu == 0.0) {
+    return {0.0, 0.0};
+  }
+  const auto base = points.col(tri[k]);
+  const auto u = points.col(tri[(k + 1) % 3]) - base;
+  const auto v = points.col(tri[(k + 2) % 3]) - base;
+  const double s = u.dot(v) / uu;
+  const double ww = (v - s * u).squaredNorm();
+  return {0.5 * std::sqrt(uu * ww), uu};
+}
+
+}  // namespace
+
+std::string_view to_string(MeshDefectKind kind) {
+  switch (kind) {
+    case MeshDefectKind::IndexOutOfRange:
+      return "index out of range";
+    case MeshDefectKind::RepeatedIndex:
+      return "repeated index";
+    case MeshDefectKind::DuplicateTriangle:
+      return "duplicate triangle";
+    case MeshDefectKind::NonManifoldEdge:
+      return "non-manifold edge";
+    case MeshDefectKind::NonManifoldVertex:
+      return "non-manifold vertex";
+    case MeshDefectKind::InconsistentOrientation:
+      return "inconsistent orientation";
+    case MeshDefectKind::UnreferencedVertex:
+      return "unreferenced vertex";
+    case MeshDefectKind::DegenerateTriangle:
+      return "degenerate triangle";
+    case MeshDefectKind::NonFiniteCoordinate:
+      return "non-finite coordinate";
+  }
+  return "unknown defect";
+}
+
+int MeshValidation::count(MeshDefectKind kind) const {
+  for (const MeshDefect& defect : defects) {
+    if (defect.kind == kind) {
+      return defect.count;
+    }
+  }
+  return 0;
+}
+
+std::string MeshValidation::report() const {
+  std::ostringstream out;
+  out << "mesh in R^" << ambient_dimension << ": " << triangle_count << " triangles, "
+      << vertex_count << " vertices (" << referenced_vertex_count << " referenced), " << edge_count
+      << " edges\n";
+  out << "topology: " << component_count << (component_count == 1 ? " component" : " components")
+      << ", Euler characteristic " << euler_characteristic << ", ";
+  if (is_closed()) {
+    out << "closed";
+  } else {
+    out << boundary_edge_count
+        << (boundary_edge_count == 1 ? " boundary edge in " : " boundary edges in ")
+        << boundary_loop_count << (boundary_loop_count == 1 ? " loop" : " loops");
+    if (!boundary_loop_vertex_counts.empty()) {
+      out << " of " << index_list(boundary_loop_vertex_counts, [](int n) { return n; })
+          << " vertices";
+    }
+  }
+  if (is_orientable) {
+    out << ", orientable";
+  } else {
+    out << ", non-orientable (" << non_orientable_component_count
+        << (non_orientable_component_count == 1 ? " component)" : " components)");
+  }
+  if (genus >= 0) {
+    out << ", genus " << genus;
+  }
+  out << "\n";
+  if (is_valid()) {
+    out << "valid: no defects\n";
+    return out.str();
+  }
+  out << "invalid:\n";
+  for (const MeshDefect& defect : defects) {
+    out << "  " << to_string(defect.kind) << ": " << defect.count << "\n";
+    for (const std::string& example : defect.examples) {
+      out << "    " << example << "\n";
+    }
+    if (defect.count > static_cast<int>(defect.examples.size())) {
+      out << "    ... and " << defect.count - static_cast<int>(defect.examples.size()) << " more\n";
+    }
+  }
+  return out.str();
+}
+
+MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& options) {
+  TESSERA_CHECK(options.degenerate_area_ratio >= 0,
+                "ValidationOptions::degenerate_area_ratio = " << options.degenerate_area_ratio
+                                                              << " must be >= 0");
+  TESSERA_CHECK(options.max_examples >= 0,
+                "ValidationOptions::max_examples = " << options.max_examples << " must be >= 0");
+  using Kind = MeshDefectKind;
+  DefectRecorder recorder(options.max_examples);
+  MeshValidation result;
+  const int vertex_count = mesh.vertex_count();
+  const std::vector<Triangle>& triangles = mesh.triangles();
+  const auto points = mesh.points();
+  result.ambient_dimension = mesh.ambient_dimension();
+  result.vertex_count = vertex_count;
+  result.triangle_count = mesh.triangle_count();
+
+  // Malformed triangles (index out of range, repeated index) have no well-defined edges; they
+  // are reported and left out of the topology. `kept` maps topology triangles back to mesh
+  // triangles, and stays empty (the identity) in the common case that all are well-formed.
+  std::vector<std::uint8_t> is_referenced(vertex_count, 0);
+  std::vector<int> kept;
+  bool is_every_triangle_well_formed = true;
+  for (int t = 0; t < result.triangle_count; ++t) {
+    const Triangle& tri = triangles[t];
+    bool is_out_of_range = false;
+    int bad_index = 0;  // the first index out of range, which may well be negative
+    for (int v : tri) {
+      if (v >= 0 && v < vertex_count) {
+        is_referenced[v] = 1;
+      } else if (!is_out_of_range) {
+        is_out_of_range = true;
+        bad_index = v;
+      }
+    }
+    const bool is_repeated = tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0];
+    if (is_out_of_range || is_repeated) {
+      if (is_every_triangle_well_formed) {
+        is_every_triangle_well_formed = false;
+        for (int s = 0; s < t; ++s) {
+          kept.push_back(s);
+        }
+      }
+    } else if (!is_every_triangle_well_formed) {
+      kept.push_back(t);
+    }
+    if (is_out_of_range) {
+      recorder.record(Kind::IndexOutOfRange, [&] {
+        std::ostringstream out;
+        out << triangle_text(t, tri) << " has index " << bad_index << " outside [0, "
+            << vertex_count << ")";
+        return out.str();
+      });
+    } else if (is_repeated) {
+      recorder.record(Kind::RepeatedIndex, [&] {
+        const int v = tri[0] == tri[1] || tri[0] == tri[2] ? tri[0] : tri[1];
+        return triangle_text(t, tri) + " repeats vertex " + std::to_string(v);
+      });
+    }
+  }
+  std::vector<Triangle> well_formed;
+  if (!is_every_triangle_well_formed) {
+    well_formed.reserve(kept.size());
+    for (int t : kept) {
+      well_formed.push_back(triangles[t]);
+    }
+  }
+  const MeshTopology topology(vertex_count, is_every_triangle_well_formed
+                                                ? std::span<const Triangle>(triangles)
+                                                : std::span<const Triangle>(well_formed));
+  auto original = [&](int t) { return is_every_triangle_well_formed ? t : kept[t]; };
+  const std::vector<Triangle>& topology_triangles = topology.triangles();
+
+  result.referenced_vertex_count = topology.referenced_vertex_count();
+  result.edge_count = topology.edge_count();
+  result.boundary_edge_count = static_cast<int>(topology.boundary_edges().size());
+  result.boundary_loop_count = topology.boundary_loop_count();
+  for (int i = 0; i < result.boundary_loop_count; ++i) {
+    result.boundary_loop_vertex_counts.push_back(
+        static_cast<int>(topology.boundary_loop(i).size()));
+  }
+  result.component_count = topology.component_count();
+  result.euler_characteristic = topology.euler_characteristic();
+
+  std::vector<std::uint8_t> is_finite(vertex_count, 1);
+  for (int v = 0; v < vertex_count; ++v) {
+    if (!points.col(v).allFinite()) {
+      is_finite[v] = 0;
+      recorder.record(Kind::NonFiniteCoordinate, [&] {
+        std::ostringstream out;
+        out << "vertex " << v << " = (" << index_list(points.col(v), [](double x) { return x; })
+            << ")";
+        return out.str();
+      });
+    }
+  }
+  for (int v = 0; v < vertex_count; ++v) {
+    if (!is_referenced[v]) {
+      recorder.record(Kind::UnreferencedVertex,
+                      [&] { return "vertex " + std::to_string(v) + " is in no triangle"; });
+    }
+  }
+
+  for (int e = 0; e < topology.edge_count(); ++e) {
+    if (!topology.is_manifold_edge(e)) {
+      recorder.record(Kind::NonManifoldEdge, [&] {
+        const auto on_edge = topology.edge_triangles(e);
+        std::ostringstream out;
+        out << "edge (" << topology.edge(e)[0] << ", " << topology.edge(e)[1] << ") has "
+            << on_edge.size() << " triangles: " << index_list(on_edge, original);
+        return out.str();
+      });
+    }
+  }
+
+  // Two triangles with the same vertex set share all their edges, so comparing each triangle
+  // with the earlier triangles on its first edge finds every duplicate in O(N).
+  auto sorted = [](Triangle tri) {
+    std::sort(tri.begin(), tri.end());
+    return tri;
+  };
+  for (int t = 0; t < topology.triangle_count(); ++t) {
+    const Triangle vertices = sorted(topology_triangles[t]);
+    for (int u : topology.edge_triangles(topology.triangle_edges(t)[0])) {
+      if (u >= t) {
+        break;
+      }
+      if (sorted(topology_triangles[u]) == vertices) {
+        recorder.record(Kind::DuplicateTriangle, [&] {
+          return triangle_text(original(t), topology_triangles[t]) + " repeats " +
+                 triangle_text(original(u), topology_triangles[u]);
+        });
+        break;
+      }
+    }
+  }
+
+  // Fans: the corners at a vertex are joined across every edge at that vertex that has two or
+  // more triangles. A manifold vertex has one fan; a bow tie has two or more.
+  CornerSets corners(topology_triangles.size() * 3);
+  for (int e = 0; e < topology.edge_count(); ++e) {
+    const auto on_edge = topology.edge_triangles(e);
+    for (std::size_t i = 1; i < on_edge.size(); ++i) {
+      for (int v : topology.edge(e)) {
+        corners.unite(corner(topology_triangles, on_edge[0], v),
+                      corner(topology_triangles, on_edge[i], v));
+      }
+    }
+  }
+  std::vector<int> fan_count(vertex_count, 0);
+  for (int c = 0; c < static_cast<int>(topology_triangles.size() * 3); ++c) {
+    if (corners.find(c) == c) {
+      ++fan_count[topology_triangles[c / 3][c % 3]];
+    }
+  }
+  for (int v = 0; v < vertex_count; ++v) {
+    if (fan_count[v] > 1) {
+      recorder.record(Kind::NonManifoldVertex, [&] {
+        std::vector<std::pair<int, int>> fan_and_triangle;  // only for the few examples
+        for (int t : topology.vertex_triangles(v)) {
+          fan_and_triangle.emplace_back(corners.find(corner(topology_triangles, t, v)), t);
+        }
+        std::sort(fan_and_triangle.begin(), fan_and_triangle.end());
+        std::ostringstream out;
+        out << "vertex " << v << " is shared by " << fan_count[v]
+            << " fans of triangles that share no edge there: ";
+        for (std::size_t i = 0; i < fan_and_triangle.size(); ++i) {
+          const bool is_new_fan =
+              i == 0 || fan_and_triangle[i].first != fan_and_triangle[i - 1].first;
+          out << (i == 0 ? "{" : (is_new_fan ? "}, {" : ", "))
+              << original(fan_and_triangle[i].second);
+        }
+        out << "}";
+        return out.str();
+      });
+    }
+  }
+
+  const OrientationAssignment orientation = topology.orientation_assignment();
+  for (std::uint8_t is_orientable : orientation.is_component_orientable) {
+    result.non_orientable_component_count += is_orientable ? 0 : 1;
+  }
+  result.is_orientable = result.non_orientable_component_count == 0;
+  for (int e = 0; e < topology.edge_count(); ++e) {
+    if (topology.is_orientation_consistent(e)) {
+      continue;
+    }
+    const auto on_edge = topology.edge_triangles(e);
+    if (!orientation.is_component_orientable[topology.component_of(on_edge[0])]) {
+      continue;  // unavoidable, as on a Möbius strip
+    }
+    recorder.record(Kind::InconsistentOrientation, [&] {
+      const Triangle& tri = topology_triangles[on_edge[0]];
+      const auto [a, b] = topology.edge(e);
+      const bool is_forward = (tri[0] == a && tri[1] == b) || (tri[1] == a && tri[2] == b) ||
+                              (tri[2] == a && tri[0] == b);
+      std::ostringstream out;
+      out << "triangles " << original(on_edge[0]) << " and " << original(on_edge[1])
+          << " both traverse edge (" << a << ", " << b << ") from " << (is_forward ? a : b)
+          << " to " << (is_forward ? b : a) << "; orient_consistently() repairs this";
+      return out.str();
+    });
+  }
+
+  for (int t = 0; t < topology.triangle_count(); ++t) {
+    const Triangle& tri = topology_triangles[t];
+    if (!is_finite[tri[0]] || !is_finite[tri[1]] || !is_finite[tri[2]]) {
+      continue;  // reported as a non-finite coordinate
+    }
+    const auto [area, longest_squared] = area_and_longest_squared(points, tri);
+    if (area <= options.degenerate_area_ratio * longest_squared) {
+      recorder.record(Kind::DegenerateTriangle, [&] {
+        std::ostringstream out;
+        out << triangle_text(original(t), tri) << " has area " << area << " (longest edge "
+            << std::sqrt(longest_squared) << ")";
+        return out.str();
+      });
+    }
+  }
+
+  result.index_out_of_range_count = recorder.count(Kind::IndexOutOfRange);
+  result.repeated_index_count = recorder.count(Kind::RepeatedIndex);
+  result.duplicate_triangle_count = recorder.count(Kind::DuplicateTriangle);
+  result.non_manifold_edge_count = recorder.count(Kind::NonManifoldEdge);
+  result.non_manifold_vertex_count = recorder.count(Kind::NonManifoldVertex);
+  result.inconsistent_orientation_count = recorder.count(Kind::InconsistentOrientation);
+  result.unreferenced_vertex_count = recorder.count(Kind::UnreferencedVertex);
+  result.degenerate_triangle_count = recorder.count(Kind::DegenerateTriangle);
+  result.non_finite_vertex_count = recorder.count(Kind::NonFiniteCoordinate);
+  result.defects = recorder.take_present();
+
+  // For a closed orientable surface each component has chi_i = 2 - 2 g_i.
+  if (result.is_closed() && result.is_orientable && result.is_manifold() &&
+      is_every_triangle_well_formed) {
+    result.genus = result.component_count - result.euler_characteristic / 2;
+  }
+  return result;
+}
+
+}  // namespace tessera

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+// Internal to the io layer: buffered file output with exact number formatting, whole-file input,
+// tokenising of text formats and error messages that name the file.
+#pragma once
+
+#include <bit>
+#include <charconv>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tessera::io_detail {
+
+/// `value` with its bytes in reverse order (to convert between little and big endian).
+template <class T>
+T byte_swapped(T value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  for (std::size_t i = 0; i < sizeof(T) / 2; ++i) {
+    const char c = bytes[i];
+    bytes[i] = bytes[sizeof(T) - 1 - i];
+    bytes[sizeof(T) - 1 - i] = c;
+  }
+  std::memcpy(&value, bytes, sizeof(T));
+  return value;
+}
+
+/// Throws InvalidArgument "<format> file '<path>': <message>".
+[[noreturn]] void throw_file_error(std::string_view format, const std::string& path,
+                                   const std::string& message);
+/// Throws InvalidArgument "<format> file '<path>', line <line>: <message>" (lines count from 1).
+[[noreturn]] void throw_file_error(std::string_view format, const std::string& path,
+                                   std::size_t line, const std::string& message);
+
+/// The whole content of `path`, byte for byte. \throw InvalidArgument naming the file.
+std::string read_file(std::string_view format, const std::string& path);
+
+/// Writes a file through one large buffer; numbers are formatted with std::to_chars.
+///
+/// Writing goes through fwrite in blocks of `kBufferSize` bytes, so a mesh with 10^6 vertices is
+/// written without per-value stream formatting.
+class OutputFile {
+ public:
+  /// Opens (and truncates) `path`. \throw InvalidArgument naming the file if it cannot be opened.
+  OutputFile(std::string_view format, std::string path);
+  ~OutputFile();
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  void text(std::string_view text) { bytes(text.data(), text.size()); }
+  void character(char c) {
+    make_room(1);
+    buffer_[used_++] = c;
+  }
+  /// Shortest decimal representation that reads back to the same double (std::to_chars).
+  void real(double value) {
+    make_room(kMaxNumberLength);
+    used_ = static_cast<std::size_t>(
+        std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), value).ptr -
+        buffer_.data());
+  }
+  void integer(std::int64_t value) {
+    make_room(kMaxNumberLength);
+    used_ = static_cast<std::size_t>(
+        std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), value).ptr -
+        buffer_.data());
+  }
+  void bytes(const void* data, std::size_t size);
+  /// Little-endian binary values, whatever the byte order of this machine.
+  void little_endian_double(double value);
+  void little_endian_int32(std::int32_t value);
+
+  /// Writes the rest of the buffer and closes. \throw InvalidArgument if any write failed.
+  void close();
+
+ private:
+  static constexpr std::size_t kBufferSize = std::size_t{1} << 20;
+  static constexpr std::size_t kMaxNumberLength = 32;  // "-2.2250738585072014e-308" is 24
+  void make_room(std::size_t size) {
+    if (used_ + size > buffer_.size()) {
+      flush();
+    }
+  }
+  void flush();
+
+  std::string format_;
+  std::string path_;
+  std::FILE* file_ = nullptr;
+  bool failed_ = false;
+  std::vector<char> buffer_;
+  std::size_t used_ = 0;
+};
+
+/// Parses the whole token as a double (std::from_chars, correctly rounded, so text written by
+/// OutputFile::real reads back bit for bit). Accepts a leading '+', "inf" and "nan".
+bool parse_real(std::string_view token, double& value);
+/// Parses the whole token as a decimal integer (a leading '+' is accepted).
+bool parse_integer(std::string_view token, std::int64_t& value);
+
+/// Whitespace-separated tokens of a text, with the line number of each token.
+class TextCursor {
+ public:
+  TextCursor(std::string_view text, std::size_t first_line) : text_(text), line_(first_line) {}
+  /// The next token, or an empty view at the end of the text.
+  std::string_view next_token();
+  /// Line of the last token returned (at the end of the text: of the last token).
+  std::size_t line() const { return line_; }
+  /// Characters not yet consumed.
+  std::size_t remaining() const { return text_.size() - position_; }
+
+ private:
+  std::string_view text_;
+  std::size_t position_ = 0;
+  std::size_t line_;
+};
+
+/// Splits one line into whitespace-separated tokens (spaces, tabs, '\r').
+std::vector<std::string_view> split_tokens(std::string_view line);
+
+/// True if `name` is non-empty and has no whitespace or control characters, as needed for a
+/// property or array name in PLY and legacy VTK headers.
+bool is_plain_name(std::string_view name);
+
+}  // namespace tessera::io_detail

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/io/mesh_io.h"
+
+#include <cctype>
+#include <filesystem>
+
+#include "tessera/core/error.h"
+
+namespace tessera {
+
+namespace {
+
+std::string lowercase_extension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return extension;
+}
+
+}  // namespace
+
+void write_mesh(const std::string& path, const TriangleMesh& mesh, const MeshFileOptions& options) {
+  const std::string extension = lowercase_extension(path);
+  if (extension == ".ply") {
+    write_ply(path, mesh,
+              {.binary = options.binary,
+               .coordinate_names = options.coordinate_names,
+               .vertex_scalars = options.vertex_scalars,
+               .comments = options.comments});
+  } else if (extension == ".obj") {
+    write_obj(path, mesh, options.obj_coordinates);
+  } else if (extension == ".vtk" || extension == ".vtu") {
+    const VtkOptions vtk_options{.coordinate_names = options.coordinate_names,
+                                 .vertex_scalars = options.vertex_scalars,
+                                 .comments = options.comments};
+    if (extension == ".vtk") {
+      write_vtk(path, mesh, vtk_options);
+    } else {
+      write_vtu(path, mesh, vtk_options);
+    }
+  } else {
+    TESSERA_CHECK(false, "cannot write '" << path << "': unknown extension '" << extension
+                                          << "'; supported: .ply, .obj, .vtk, .vtu");
+  }
+}
+
+TriangleMesh read_mesh(const std::string& path) {
+  const std::string extension = lowercase_extension(path);
+  if (extension == ".ply") {
+    return read_ply(path);
+  }
+  if (extension == ".obj") {
+    return read_obj(path);
+  }
+  TESSERA_CHECK(false, "cannot read '" << path << "': unknown extension '" << extension
+                                       << "'; supported: .ply, .obj");
+  return {};
+}
+
+}  // namespace tessera

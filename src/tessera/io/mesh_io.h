@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// Mesh files by extension: write_mesh / read_mesh choose PLY, OBJ, VTK or VTU from the path.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "tessera/geometry/triangle_mesh.h"
+#include "tessera/io/obj.h"
+#include "tessera/io/ply.h"
+#include "tessera/io/vertex_data.h"
+#include "tessera/io/vtk.h"
+
+namespace tessera {
+
+/// Options for write_mesh; each format uses the fields it has a place for.
+struct MeshFileOptions {
+  /// .ply only: binary little endian (exact, compact) or ASCII (exact too, readable).
+  bool binary = true;
+  /// .ply, .vtk, .vtu: one name per coordinate; empty means default_coordinate_names(n)
+  /// (core/implicit_problem.h). See PlyOptions::coordinate_names for viewers of PLY files.
+  std::vector<std::string> coordinate_names{};
+  /// .ply, .vtk, .vtu: extra per-vertex scalars. Ignored for .obj, which has no place for them.
+  std::vector<VertexScalars> vertex_scalars{};
+  /// .ply: comment lines; .vtk: the title; .vtu: XML comments. Ignored for .obj.
+  std::vector<std::string> comments{};
+  /// .obj only: the three coordinates written (see write_obj).
+  std::array<int, 3> obj_coordinates = {0, 1, 2};
+};
+
+/// Writes `mesh` in the format named by the extension of `path` (case-insensitive):
+/// .ply (write_ply), .obj (write_obj), .vtk (write_vtk), .vtu (write_vtu).
+///
+/// \throw InvalidArgument for another extension (the message lists the supported ones), and
+///        whatever the chosen writer throws.
+void write_mesh(const std::string& path, const TriangleMesh& mesh,
+                const MeshFileOptions& options = {});
+
+/// Reads a mesh from .ply (read_ply, any n) or .obj (read_obj, n = 3), by extension
+/// (case-insensitive).
+///
+/// \throw InvalidArgument for another extension (the message lists the supported ones), and
+///        whatever the chosen reader throws.
+TriangleMesh read_mesh(const std::string& path);
+
+}  // namespace tessera

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// PLY (Stanford polygon file) reading and writing for triangle meshes in R^n.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tessera/geometry/triangle_mesh.h"
+#include "tessera/io/vertex_data.h"
+
+namespace tessera {
+
+/// How write_ply lays out the file.
+struct PlyOptions {
+  /// Binary little endian is exact and about ten times smaller and faster than ASCII; ASCII is
+  /// for reading by eye and is exact too (shortest round-trip decimal form of each double).
+  bool binary = true;
+  /// One name per coordinate; empty means default_coordinate_names(n) (core/implicit_problem.h):
+  /// x, y, z for n = 3, else x0 ... x{n-1}. ParaView and meshio take a PLY vertex position only
+  /// from properties named x, y and z, so for n != 3 pass {"x", "y", "z", "x3", ...} if the file
+  /// is to be opened there; read_ply recognises both spellings. Other names are written as
+  /// given, and read_ply then needs them too.
+  std::vector<std::string> coordinate_names{};
+  /// Extra vertex properties (double), written after the coordinates in this order.
+  std::vector<VertexScalars> vertex_scalars{};
+  /// Written as "comment ..." header lines; each must be a single line.
+  std::vector<std::string> comments{};
+};
+
+/// Writes `mesh` as PLY: one element "vertex" with a double property per coordinate and per
+/// scalar field, one element "face" with "property list uchar int vertex_indices".
+///
+/// \throw InvalidArgument if the options break their documented rules, if a triangle has an
+///        index outside [0, vertex_count), or if the file cannot be written (message names it).
+void write_ply(const std::string& path, const TriangleMesh& mesh, const PlyOptions& options = {});
+
+/// Reads a PLY file: ASCII, binary little endian or binary big endian.
+///
+/// Coordinates are the vertex properties named `coordinate_names` in that order, or, if it is
+/// empty, x0, x1, ... (as many as are consecutive) if x0 is present, else x, y, z, x3, x4, ...
+/// (as many as are consecutive). They may be of any PLY scalar type; the point has as many
+/// coordinates as names found, so the mesh is in R^n for the n of the file. Other vertex
+/// properties and other elements are skipped. Faces come from the list property
+/// "vertex_indices" (or "vertex_index") of element "face"; a polygon with k > 3 vertices
+/// (v0, v1, ..., v{k-1}) becomes the fan (v0, v{i}, v{i+1}), i = 1..k-2, which keeps its
+/// orientation; a face with fewer than 3 vertices is rejected. No face element gives a mesh
+/// without triangles. Data after the last declared element is ignored.
+///
+/// \throw InvalidArgument naming the file (and for ASCII the line) if it cannot be read, the
+///        header is malformed, the data is truncated or malformed, or an index is out of range.
+TriangleMesh read_ply(const std::string& path,
+                      const std::vector<std::string>& coordinate_names = {});
+
+}  // namespace tessera

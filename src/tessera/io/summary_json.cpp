@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/io/summary_json.h"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "tessera/core/error.h"
+
+namespace tessera {
+namespace {
+
+nlohmann::json statistic(const Statistic& s) {
+  return {{"max", s.max}, {"mean", s.mean}, {"count", s.count}};
+}
+
+}  // namespace
+
+std::string to_json(const MeshReport& report) {
+  const MeshValidation& v = report.validation;
+  const MeshQuality& q = report.quality;
+  nlohmann::json j;
+  j["problem"] = report.problem;
+  j["ambient_dimension"] = report.ambient_dimension;
+  if (report.run) {
+    const CoveringSummary& r = *report.run;
+    j["run"] = {{"method", r.method},
+                {"termination", to_string(r.termination)},
+                {"completed", r.is_complete()},
+                {"message", r.message},
+                {"step", r.step},
+                {"wall_seconds", r.wall_seconds},
+                {"function_evaluations", r.function_evaluations},
+                {"jacobian_evaluations", r.jacobian_evaluations},
+                {"merges", r.merges},
+                {"front_connections", r.front_connections},
+                {"step_reductions", r.step_reductions},
+                {"clipped_half_spaces", r.clipped_half_spaces}};
+  }
+  j["counts"] = {{"vertices", v.referenced_vertex_count},
+                 {"edges", v.edge_count},
+                 {"triangles", v.triangle_count},
+                 {"boundary_edges", v.boundary_edge_count},
+                 {"boundary_loops", v.boundary_loop_count},
+                 {"components", v.component_count}};
+  j["topology"] = {{"euler_characteristic", v.euler_characteristic},
+                   {"orientable", v.is_orientable},
+                   {"closed", v.is_closed()},
+                   {"genus", v.genus}};
+  if (report.expected_euler_characteristic) {
+    j["topology"]["expected_euler_characteristic"] = *report.expected_euler_characteristic;
+  }
+  j["valid"] = v.is_valid();
+  nlohmann::json defects = nlohmann::json::array();
+  for (const MeshDefect& d : v.defects) {
+    defects.push_back({{"kind", std::string(to_string(d.kind))}, {"count", d.count},
+                       {"examples", d.examples}});
+  }
+  j["defects"] = defects;
+  j["distance_to_manifold"] = {{"vertex_residual_F", statistic(q.vertex_residual)},
+                               {"vertices", statistic(q.vertex_distance)},
+                               {"centroids", statistic(q.centroid_distance)},
+                               {"edge_midpoints", statistic(q.midpoint_distance)},
+                               {"failed_projections", q.failed_projections}};
+  j["shape"] = {{"min_angle_degrees", q.min_angle_degrees},
+                {"max_angle_degrees", q.max_angle_degrees},
+                {"fraction_angles_below_30_degrees", q.fraction_angles_below_30},
+                {"min_edge_length", q.min_edge_length},
+                {"max_edge_length", q.max_edge_length},
+                {"area", q.area}};
+  if (report.exact_area) {
+    j["shape"]["exact_area"] = *report.exact_area;
+    j["shape"]["area_relative_error"] = std::abs(q.area - *report.exact_area) / *report.exact_area;
+  }
+  return j.dump(2) + "\n";
+}
+
+void write_summary_json(const std::string& path, const MeshReport& report) {
+  std::ofstream out(path);
+  TESSERA_CHECK(out.good(), "cannot write the summary file '" << path << "'");
+  out << to_json(report);
+  TESSERA_CHECK(out.good(), "error while writing the summary file '" << path << "'");
+}
+
+std::string to_text(const MeshReport& report) {
+  const MeshValidation& v = report.validation;
+  const MeshQuality& q = report.quality;
+  std::ostringstream out;
+  out.precision(3);
+  out << "problem        " << report.problem << " (n = " << report.ambient_dimension << ")\n";
+  if (report.run) {
+    const CoveringSummary& r = *report.run;
+    out << "method         " << r.method << ", step " << r.step << ", " << to_string(r.termination)
+        << (r.message.empty() ? "" : ": " + r.message) << "\n";
+    out << "work           " << r.wall_seconds << " s, " << r.function_evaluations
+        << " evaluations of F, " << r.jacobian_evaluations << " of DF";
+    if (r.vertex_count > 0) {
+      out << " (" << static_cast<double>(r.function_evaluations) / r.vertex_count << " and "
+          << static_cast<double>(r.jacobian_evaluations) / r.vertex_count << " per vertex)";
+    }
+    out << "\n";
+  }
+  out << "mesh           " << v.referenced_vertex_count << " vertices, " << v.edge_count
+      << " edges, " << v.triangle_count << " triangles, " << v.boundary_loop_count
+      << " boundary loop(s)\n";
+  out << "topology       Euler characteristic " << v.euler_characteristic;
+  if (report.expected_euler_characteristic) {
+    out << " (expected " << *report.expected_euler_characteristic << ")";
+  }
+  out << ", " << (v.is_orientable ? "orientable" : "non-orientable") << ", "
+      << (v.is_valid() ? "valid" : "INVALID") << "\n";
+  for (const MeshDefect& d : v.defects) {
+    out << "  defect       " << to_string(d.kind) << ": " << d.count
+        << (d.examples.empty() ? "" : " (" + d.examples.front() + ")") << "\n";
+  }
+  out << "on M           max |F| " << q.vertex_residual.max << " at vertices; distance to M: "
+      << "vertices " << q.vertex_distance.max << ", centroids " << q.centroid_distance.max
+      << ", edge midpoints " << q.midpoint_distance.max << "\n";
+  if (q.failed_projections > 0) {
+    out << "  warning      " << q.failed_projections << " points could not be projected onto M\n";
+  }
+  out << "shape          angles " << q.min_angle_degrees << "° … " << q.max_angle_degrees
+      << "°, " << 100 * q.fraction_angles_below_30 << "% below 30°; edges "
+      << q.min_edge_length << " … " << q.max_edge_length << "\n";
+  out.precision(8);
+  out << "area           " << q.area;
+  if (report.exact_area) {
+    out.precision(3);
+    out << " (exact " << *report.exact_area << ", relative error "
+        << std::abs(q.area - *report.exact_area) / *report.exact_area << ")";
+  }
+  out << "\n";
+  return out.str();
+}
+
+}  // namespace tessera

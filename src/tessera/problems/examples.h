@@ -1,0 +1,216 @@
+// SPDX-License-Identifier: MIT
+// Example manifolds with exact analytic Jacobians: the papers' test cases and a sparse large-n BVP.
+//
+// Each class is an ImplicitProblem that users can construct directly, e.g.
+//     tessera::Torus torus{1.0, 0.4};
+// The catalogue (catalogue.h) pairs each of them with a start point, a domain and what is known
+// about the manifold (Euler characteristic, area).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+#include "tessera/core/implicit_problem.h"
+
+namespace tessera {
+
+/// The plane z = 0 in R³: F(x, y, z) = z. The simplest test case (flat, J constant).
+class Plane final : public ImplicitProblem {
+ public:
+  int ambient_dimension() const override { return 3; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override;
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override;
+  std::string name() const override { return "plane"; }
+};
+
+/// The sphere |x|² − r² = 0 in R³, centred at the origin.
+class Sphere final : public ImplicitProblem {
+ public:
+  /// \throw InvalidArgument unless radius is finite and > 0.
+  explicit Sphere(double radius = 1.0);
+
+  int ambient_dimension() const override { return 3; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override;
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override;
+  std::string name() const override { return "sphere"; }
+  double radius() const { return radius_; }
+
+ private:
+  double radius_;
+};
+
+/// The torus about the first coordinate axis in Hohmann's polynomial form
+///     F(y) = (|y|² + R² − r²)² − 4R²(y₂² + y₃²),
+/// the points at distance r from the circle of radius R in the plane y₁ = 0.
+/// \see Hohmann, "An adaptive continuation method for implicitly defined surfaces", ZIB report
+///      SC 91-20 (1991), example 4 (after Allgower & Gnutzmann).
+class Torus final : public ImplicitProblem {
+ public:
+  /// \throw InvalidArgument unless 0 < minor_radius < major_radius (finite); for r ≥ R the
+  ///        surface has singular points on the axis.
+  Torus(double major_radius = 1.0, double minor_radius = 0.4);
+
+  int ambient_dimension() const override { return 3; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override;
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override;
+  std::string name() const override { return "torus"; }
+  double major_radius() const { return major_radius_; }
+  double minor_radius() const { return minor_radius_; }
+
+ private:
+  double major_radius_;
+  double minor_radius_;
+};
+
+/// Bloomenthal's equipotential surface of two point charges ("blobby" molecule):
+///     F(y) = r_p²/|y − p|² + r_q²/|y − q|² − c,   p = (0, 0, 0),  q = (0, q_y, 0),  r_p = r_q = 1.
+/// F is singular (+infinity) at p and q; both lie inside the surface.
+/// \see Bloomenthal, "Polygonization of implicit surfaces", CAGD 5 (1988); Hohmann (1991),
+///      example 2, with c = 1.7 and the start (0, −0.8, 0).
+class Equipotential final : public ImplicitProblem {
+ public:
+  /// \throw InvalidArgument unless level > 0 and separation is finite.
+  explicit Equipotential(double level = 1.7, double separation = 2.0);
+
+  int ambient_dimension() const override { return 3; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override;
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override;
+  std::string name() const override { return "equipotential"; }
+
+ private:
+  double level_;       // c
+  double separation_;  // q_y, the second charge sits at (0, q_y, 0)
+};
+
+/// Whitney's pleat (the cusp catastrophe surface) F(x, λ, μ) = x³ − λx − μ in coordinates
+/// (x, lambda, mu). It is the graph μ = x³ − λx over the (x, λ) plane; its projection to the
+/// (λ, μ) plane folds along 3x² = λ and has a cusp at the origin. \see Hohmann (1991), example 3.
+class WhitneyPleat final : public ImplicitProblem {
+ public:
+  int ambient_dimension() const override { return 3; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override;
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override;
+  std::string name() const override { return "whitney_pleat"; }
+  std::vector<std::string> coordinate_names() const override { return {"x", "lambda", "mu"}; }
+};
+
+/// Melville and Mackey's trough F(x, y, z) = z (a² z² (b² − z²) − x²) + ε, a cylinder in y over a
+/// plane curve. For ε = 0 the curve is the line z = 0 together with the figure-eight
+/// x² = a² z² (b² − z²) (lobes of half-width a b²/2 at z = ±b/√2); ε > 0 separates them into an
+/// arch over the upper lobe (z > 0, reaching down to the line far from the lobe) and a loop
+/// inside the lower lobe. The narrow gaps of width O(ε) make it a hard test of step control.
+/// \see Melville & Mackey, "A new algorithm for two-dimensional numerical continuation" (1994),
+///      as used by Brodzik & Rheinboldt, "On the computation of simplicial approximations of
+///      implicitly defined two-dimensional manifolds", section 5, figure 5.4.
+class Trough final : public ImplicitProblem {
+ public:
+  /// \throw InvalidArgument unless a, b > 0 and ε are finite.
+  Trough(double a = 4.0, double b = 0.25, double epsilon = 5e-5);
+
+  int ambient_dimension() const override { return 3; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override;
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override;
+  std::string name() const override { return "trough"; }
+
+ private:
+  double a_;
+  double b_;
+  double epsilon_;
+};
+
+/// Steady states of a continuous stirred tank reactor with a first-order exothermic reaction,
+/// in coordinates (x1, x2, Da, B): rescaled concentration x1, dimensionless temperature x2,
+/// Damköhler number Da, adiabatic temperature rise B, and heat transfer coefficient β (the limit
+/// of infinite activation energy and zero cooling temperature):
+///     f₁ = −x₁ + Da (1 − x₁) exp(x₂),
+///     f₂ = −(1 + β) x₂ + B Da (1 − x₁) exp(x₂).
+/// The manifold is the graph x₂ = B x₁/(1 + β), Da = x₁ exp(−x₂)/(1 − x₁) over (x₁, B) with
+/// x₁ < 1; see point_on_manifold. Seen as a function of Da it folds (ignition and extinction).
+/// \see Hohmann (1991), example 5, after Uppal, Ray & Poore, Chem. Engng. Sci. 29 (1974).
+class StirredTankReactor final : public ImplicitProblem {
+ public:
+  /// \throw InvalidArgument unless beta is finite and > −1.
+  explicit StirredTankReactor(double beta = 0.5);
+
+  int ambient_dimension() const override { return 4; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override;
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override;
+  std::string name() const override { return "cstr"; }
+  std::vector<std::string> coordinate_names() const override { return {"x1", "x2", "Da", "B"}; }
+
+  /// The point of M with concentration x1 and temperature rise B (exact parametrisation).
+  /// \pre x1 < 1.
+  Eigen::VectorXd point_on_manifold(double x1, double B) const;
+
+ private:
+  double beta_;
+};
+
+/// The Gelfand–Bratu problem with Arrhenius nonlinearity, a two-parameter boundary value problem
+///     u'' + λ exp(u / (1 + ε u)) = 0 on (0, 1),  u(0) = u(1) = 0,
+/// discretised by central differences on N interior points x_i = i h, h = 1/(N + 1).
+/// Coordinates (u1 … uN, lambda, epsilon), n = N + 2. Equation i, multiplied by h² so that J has
+/// O(1) entries and |F| is not amplified by 1/h² rounding:
+///     F_i = u_{i−1} − 2 u_i + u_{i+1} + h² λ exp(u_i / (1 + ε u_i)),   u_0 = u_{N+1} = 0.
+/// For ε below about 0.2457 the branch λ ↦ u is S-shaped (ignition and extinction folds); the
+/// two fold curves meet in a cusp near ε ≈ 0.2457, max u ≈ 4.9, λ ≈ 5.22 (N = 100), so M is a
+/// genuine fold surface over the (λ, ε) plane.
+///
+/// Scale: the u-block dominates Euclidean distances in R^n. Moving along M changes the discrete
+/// profile u by a vector of norm ≈ 0.7–0.8 √N times the change of its maximum, while λ and ε
+/// move by O(1) and O(0.1): seen in the (λ, ε) plane, a mesh with uniform edges in R^n is dense
+/// along the branches and coarse across them, and near u = 0 (where ε hardly matters) M is a
+/// strip only ≈ 0.3 wide.
+///
+/// J is tridiagonal in the u-block plus two dense columns: has_sparse_jacobian() is true.
+/// \see Brown, Ibrahim & Shivaji, "S-shaped bifurcation curves", Nonlinear Anal. 5 (1981).
+class ArrheniusBratu final : public ImplicitProblem {
+ public:
+  /// \throw InvalidArgument unless point_count >= 1.
+  explicit ArrheniusBratu(int point_count = 100);
+
+  int ambient_dimension() const override { return point_count_ + 2; }
+  int point_count() const { return point_count_; }
+
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override;
+  /// Dense N×(N+2) form; fine for small N, O(N²) memory.
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override;
+  bool has_sparse_jacobian() const override { return true; }
+  /// 5N − 2 nonzeros in compressed column storage. When J already has this problem's shape the
+  /// storage is reused, so repeated calls do not allocate.
+  void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                       Eigen::SparseMatrix<double>& J) const override;
+  std::string name() const override { return "bvp"; }
+  std::vector<std::string> coordinate_names() const override;
+
+  /// The point of M whose profile has maximum value `amplitude` (taken at the middle grid point
+  /// ⌊(N+1)/2⌋), at the given ε. Positive solutions are symmetric and determined by (u_max, ε),
+  /// so this reaches every branch, folds included. Computed by continuation in the amplitude
+  /// from u = 0, with Newton's method on F together with u_mid = amplitude.
+  /// \pre amplitude >= 0, epsilon >= 0.
+  /// \throw ComputationFailed if Newton's method does not converge (the message says where).
+  Eigen::VectorXd point_with_amplitude(double amplitude, double epsilon) const;
+
+ private:
+  int point_count_;
+};
+
+}  // namespace tessera
