@@ -7,6 +7,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
+#include <set>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -93,15 +97,26 @@ class FrontBuilder {
                              const Eigen::MatrixXd& U) const;
   void close_gap(int center, const Linearization& frame, const Eigen::MatrixXd& U,
                  const Gap& gap);
-  std::optional<int> colliding_front_vertex(int center, const Eigen::VectorXd& x);
+  std::optional<int> colliding_front_vertex(int center, int previous, const Eigen::VectorXd& x,
+                                            const Eigen::MatrixXd& U);
   void connect_to_front_vertex(int center, int previous, int w, const Eigen::MatrixXd& U);
   bool try_merge(int center, int first, int last, const Linearization& frame);
-  void add_closing_triangle(int center, int last, int first);
+  void add_closing_triangle(int center, int last, int first, const Eigen::MatrixXd& U);
+  void require_fit(const Triangle& t, const Eigen::MatrixXd& U);
   /// Projects x_c + h·U·direction onto M (chord, with step-halving continuation on failure).
   Eigen::VectorXd new_point(int center, const Linearization& frame, const Eigen::MatrixXd& U,
                             double angle);
   int add_point(const Eigen::VectorXd& x);
   bool close_small_loop(int center, const Eigen::MatrixXd& U);
+  /// The next frontal vertex in the order of options.order; nullopt when the front is empty.
+  std::optional<int> next_frontal();
+  /// Re-keys v in the smallest-gap-first order (removes it if it is no longer frontal).
+  void refresh_priority(int v);
+  /// The smallest gap angle at v, in v's own tangent plane (cached per vertex).
+  double smallest_gap(int v);
+  /// U oriented so that v's triangles turn counterclockwise.
+  Eigen::MatrixXd oriented_frame(int v, const Eigen::MatrixXd& basis,
+                                 const std::vector<FanChain>& chains) const;
 
   const ImplicitProblem& problem_;
   const Domain& domain_;
@@ -112,7 +127,85 @@ class FrontBuilder {
   int merges_ = 0;
   int step_reductions_ = 0;
   int connections_ = 0;
+  std::set<std::pair<double, int>> by_gap_;  // (gap angle, vertex), smallest first
+  std::vector<double> gap_key_;              // key of each vertex in by_gap_, NaN if absent
+  std::vector<Eigen::MatrixXd> tangent_cache_;  // n×2 tangent basis per vertex, empty if unknown
 };
+
+std::optional<int> FrontBuilder::next_frontal() {
+  if (options_.order == FrontOrder::Fifo) {
+    return state_.pop_frontal();
+  }
+  // Lazy priority queue: a popped key is re-checked and re-inserted if it went stale.
+  while (!by_gap_.empty()) {
+    const auto [key, v] = *by_gap_.begin();
+    by_gap_.erase(by_gap_.begin());
+    gap_key_[v] = std::numeric_limits<double>::quiet_NaN();
+    if (state_.type(v) != VertexType::Frontal) {
+      continue;
+    }
+    const double gap = smallest_gap(v);
+    if (gap > key + 1e-12) {
+      by_gap_.emplace(gap, v);
+      gap_key_[v] = gap;
+      continue;
+    }
+    return v;
+  }
+  // Vertices made frontal but never keyed (none expected): fall back to the FIFO queue.
+  return state_.pop_frontal();
+}
+
+void FrontBuilder::refresh_priority(int v) {
+  if (gap_key_.size() <= static_cast<std::size_t>(v)) {
+    gap_key_.resize(v + 1, std::numeric_limits<double>::quiet_NaN());
+  }
+  if (!std::isnan(gap_key_[v])) {
+    by_gap_.erase({gap_key_[v], v});
+    gap_key_[v] = std::numeric_limits<double>::quiet_NaN();
+  }
+  if (state_.type(v) != VertexType::Frontal) {
+    return;
+  }
+  gap_key_[v] = smallest_gap(v);
+  by_gap_.emplace(gap_key_[v], v);
+}
+
+Eigen::MatrixXd FrontBuilder::oriented_frame(int v, const Eigen::MatrixXd& basis,
+                                             const std::vector<FanChain>& chains) const {
+  Eigen::MatrixXd U = basis;
+  double signed_area = 0.0;
+  for (const auto& chain : chains) {
+    signed_area += state_.fan_signed_area(v, chain, U);
+  }
+  if (signed_area < 0) {
+    U.col(1) *= -1.0;
+  }
+  return U;
+}
+
+double FrontBuilder::smallest_gap(int v) {
+  const auto chains = state_.fan_chains(v);
+  if (chains.empty() || (chains.size() == 1 && chains[0].is_closed)) {
+    return -1.0;  // nothing to close: process at once, it only changes the vertex type
+  }
+  if (tangent_cache_.size() <= static_cast<std::size_t>(v)) {
+    tangent_cache_.resize(v + 1);
+  }
+  if (tangent_cache_[v].size() == 0) {
+    Linearization frame;
+    if (!frame.factor(problem_, state_.point(v))) {
+      return -1.0;  // process() will report the singular point
+    }
+    tangent_cache_[v] = frame.tangent_basis();
+  }
+  const Eigen::MatrixXd U = oriented_frame(v, tangent_cache_[v], chains);
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const Gap& gap : find_gaps(v, chains, U)) {
+    smallest = std::min(smallest, gap.angle);
+  }
+  return smallest;
+}
 
 void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& start_frame,
                        CoveringSummary& summary) {
@@ -123,8 +216,13 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
   try {
     build_initial_hexagon(start_point, start_frame);
     int processed = 0;
-    while (auto center = state_.pop_frontal()) {
+    while (auto center = next_frontal()) {
       process(*center);
+      if (options_.order == FrontOrder::SmallestGapFirst) {
+        for (int v : state_.ring(*center, 1)) {
+          refresh_priority(v);
+        }
+      }
       if (options_.progress && (++processed % 1000) == 0) {
         options_.progress({state_.live_vertex_count(), state_.live_triangle_count(),
                            state_.front_size()});
@@ -184,6 +282,11 @@ void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,
     previous = v;
   }
   state_.add_triangle(c, previous, first_vertex);
+  if (options_.order == FrontOrder::SmallestGapFirst) {
+    for (int v : state_.ring(c, 1)) {
+      refresh_priority(v);
+    }
+  }
 }
 
 int FrontBuilder::add_point(const Eigen::VectorXd& x) {
@@ -267,20 +370,18 @@ void FrontBuilder::process(int center) {
     // Orient U so that the existing triangles turn counterclockwise in the local coordinates:
     // each gap is then the counterclockwise angle from an open edge to the next (this replaces
     // the paper's average-direction test in Agap; see docs/algorithms/front.md).
-    Eigen::MatrixXd U = frame.tangent_basis();
-    double signed_area = 0.0;
-    for (const auto& chain : chains) {
-      signed_area += state_.fan_signed_area(center, chain, U);
-    }
-    if (signed_area < 0) {
-      U.col(1) *= -1.0;
-    }
+    const Eigen::MatrixXd U = oriented_frame(center, frame.tangent_basis(), chains);
     if (chains.size() == 1 && close_small_loop(center, U)) {
       continue;
     }
     const std::vector<Gap> gaps = find_gaps(center, chains, U);
     const Gap& smallest = *std::min_element(
         gaps.begin(), gaps.end(), [](const Gap& a, const Gap& b) { return a.angle < b.angle; });
+    if (std::getenv("TESSERA_DEBUG_FRONT")) {
+      std::fprintf(stderr, "v%d chains=%zu", center, chains.size());
+      for (const auto& g : gaps) std::fprintf(stderr, " gap(%d->%d %.3f)", g.last, g.first, g.angle);
+      std::fprintf(stderr, " valence=%d\n", state_.valence(center));
+    }
     close_gap(center, frame, U, smallest);
   }
   std::ostringstream message;
@@ -333,13 +434,13 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
               << gap.first << ") and the open edges cannot be merged";
       throw StopRun{CoveringTermination::FrontCollision, message.str()};
     }
-    add_closing_triangle(center, gap.last, gap.first);
+    add_closing_triangle(center, gap.last, gap.first, U);
     return;
   }
   // The paper stops when a vertex already has its maximum of triangles; tessera first closes
   // a gap below 120° with one triangle, which keeps its angles bounded by 120°.
   if (old_count >= options_.max_valence && gap.angle < kTwoPi / 3) {
-    add_closing_triangle(center, gap.last, gap.first);
+    add_closing_triangle(center, gap.last, gap.first, U);
     return;
   }
   if (old_count >= options_.max_valence) {
@@ -357,7 +458,7 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
     }
   }
   if (sectors == 1) {
-    add_closing_triangle(center, gap.last, gap.first);
+    add_closing_triangle(center, gap.last, gap.first, U);
     return;
   }
   const Eigen::Vector2d y_last = U.transpose() * (state_.point(gap.last) - state_.point(center));
@@ -365,20 +466,24 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
   int previous = gap.last;
   for (int i = 1; i < sectors; ++i) {
     const Eigen::VectorXd x = new_point(center, frame, U, start_angle + i * gap.angle / sectors);
-    if (const auto w = colliding_front_vertex(center, x)) {
+    if (const auto w = colliding_front_vertex(center, previous, x, U)) {
       // The front meets a non-adjacent part of itself: connect to that vertex instead of
       // creating a new one (an extension of PITMAN; the front loop splits in two there).
       connect_to_front_vertex(center, previous, *w, U);
       return;
     }
     const int v = add_point(x);
+    require_fit({center, previous, v}, U);
     state_.add_triangle(center, previous, v);
     previous = v;
   }
+  require_fit({center, previous, gap.first}, U);
   state_.add_triangle(center, previous, gap.first);
 }
 
-std::optional<int> FrontBuilder::colliding_front_vertex(int center, const Eigen::VectorXd& x) {
+std::optional<int> FrontBuilder::colliding_front_vertex(int center, int previous,
+                                                         const Eigen::VectorXd& x,
+                                                         const Eigen::MatrixXd& U) {
   // Vertices within two edges of x_c are the local overlap that PITMAN resolves itself: the
   // next frontal vertex sees a small gap and merges the pair.
   const double radius = options_.collision_distance_fraction * step_;
@@ -398,7 +503,8 @@ std::optional<int> FrontBuilder::colliding_front_vertex(int center, const Eigen:
               << " of interior vertex " << w << " " << describe_point(state_.point(w));
       throw StopRun{CoveringTermination::FrontCollision, message.str()};
     }
-    if (distance <= closest_distance) {
+    if (distance <= closest_distance && state_.triangle_fits({center, previous, w}, U) &&
+        state_.can_add_edge(previous, w) && state_.can_add_edge(w, center)) {
       closest = w;
       closest_distance = distance;
     }
@@ -423,16 +529,30 @@ void FrontBuilder::connect_to_front_vertex(int center, int previous, int w,
     throw StopRun{CoveringTermination::FrontCollision, message.str()};
   }
   state_.add_triangle(center, previous, w);
+  if (std::getenv("TESSERA_DEBUG_FRONT")) std::fprintf(stderr, "  connect v%d prev %d -> w %d\n", center, previous, w);
   ++connections_;
 }
 
-void FrontBuilder::add_closing_triangle(int center, int last, int first) {
-  // The new edge last→first must be free on this side, else the mesh would fold.
-  if (!state_.can_add_edge(last, first)) {
+void FrontBuilder::require_fit(const Triangle& t, const Eigen::MatrixXd& U) {
+  if (state_.triangle_fits(t, U)) {
+    return;
+  }
+  std::ostringstream message;
+  message << "the front overlaps itself near frontal vertex " << t[0] << " "
+          << describe_point(state_.point(t[0])) << ": triangle (" << t[0] << ", " << t[1] << ", "
+          << t[2] << ") would overlap the triangles already there";
+  throw StopRun{CoveringTermination::FrontCollision, message.str()};
+}
+
+void FrontBuilder::add_closing_triangle(int center, int last, int first,
+                                        const Eigen::MatrixXd& U) {
+  // The new edge last→first must be free on this side, and the triangle must not overlap the
+  // triangles already at last and first, else the mesh would fold.
+  if (!state_.can_add_edge(last, first) || !state_.triangle_fits({center, last, first}, U)) {
     std::ostringstream message;
     message << "cannot close the gap at frontal vertex " << center << " "
             << describe_point(state_.point(center)) << ": edge (" << last << ", " << first
-            << ") already has triangles on both sides";
+            << ") is taken or the triangle would overlap the mesh there";
     throw StopRun{CoveringTermination::FrontCollision, message.str()};
   }
   state_.add_triangle(center, last, first);
@@ -451,6 +571,10 @@ bool FrontBuilder::try_merge(int center, int first, int last, const Linearizatio
   }
   const bool inside =
       domain_.is_unbounded() || domain_.boundary_distance(average).signed_distance > 0;
+  if (std::getenv("TESSERA_DEBUG_FRONT")) std::fprintf(stderr, "  merge %d %d\n", first, last);
+  if (tangent_cache_.size() > static_cast<std::size_t>(first)) {
+    tangent_cache_[first].resize(0, 0);  // it moved
+  }
   state_.identify(first, last, average, inside ? std::nullopt : std::optional(VertexType::Exterior));
   ++merges_;
   return true;

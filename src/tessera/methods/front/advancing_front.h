@@ -11,6 +11,16 @@
 
 namespace tessera {
 
+/// The order in which frontal vertices are processed.
+enum class FrontOrder {
+  /// The paper's: a FIFO queue of frontal points. Neighbouring fans then overlap locally and
+  /// are repaired by merges; on some surfaces (elongated or saddle-shaped) the repairs fail.
+  Fifo,
+  /// Smallest gap angle first (the usual advancing-front rule): small gaps are closed before
+  /// their neighbours add points over them, which avoids most overlaps. tessera's default.
+  SmallestGapFirst,
+};
+
 struct FrontOptions {
   /// h, the edge length of the projected hexagons, in ambient units (paper: "suggested step").
   double step = 0.1;
@@ -29,6 +39,7 @@ struct FrontOptions {
   double boundary_snap_fraction = 0.35;
   /// The start must project onto M within this many steps of the guess.
   double max_start_distance_steps = 10.0;
+  FrontOrder order = FrontOrder::SmallestGapFirst;
   int max_vertices = 2'000'000;  ///< hard stop; VertexLimit
   ProgressCallback progress;     ///< called every ~1000 vertices when set
 

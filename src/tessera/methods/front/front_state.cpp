@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 
 #include "tessera/core/error.h"
 
@@ -222,6 +223,42 @@ double FrontState::fan_angle(int v, const FanChain& chain, const Eigen::MatrixXd
     total += std::atan2(cross(a, b), a.dot(b));
   }
   return total;
+}
+
+bool FrontState::triangle_fits(const Triangle& t, const Eigen::MatrixXd& U) const {
+  // Sectors that share an edge touch exactly; the tolerance only absorbs rounding.
+  constexpr double kTolerance = 1e-9;
+  const auto direction = [&](int from, int to) {
+    const Eigen::Vector2d y = U.transpose() * (point(to) - point(from));
+    return std::atan2(y(1), y(0));
+  };
+  const auto ccw = [](double from, double to) {
+    const double two_pi = 2 * std::numbers::pi;
+    double angle = std::fmod(to - from, two_pi);
+    return angle < 0 ? angle + two_pi : angle;
+  };
+  for (int r = 0; r < 3; ++r) {
+    const int v = t[r];
+    const double start = direction(v, t[(r + 1) % 3]);
+    const double width = ccw(start, direction(v, t[(r + 2) % 3]));
+    if (width <= 0 || width >= std::numbers::pi) {
+      return false;  // not positively oriented in U
+    }
+    for (int existing : incident_[v]) {
+      const auto [p, q] = opposite_edge(triangles_[existing], v);
+      const double other_start = ccw(start, direction(v, p));
+      const double other_width = ccw(direction(v, p), direction(v, q));
+      if (other_width >= std::numbers::pi) {
+        continue;  // folded in this frame: too far away to judge
+      }
+      const bool disjoint = other_start >= width - kTolerance &&
+                            other_start + other_width <= 2 * std::numbers::pi + kTolerance;
+      if (!disjoint) {
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 bool FrontState::can_add_edge(int a, int b) const {

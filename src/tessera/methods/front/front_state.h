@@ -57,6 +57,10 @@ class FrontState {
   /// Σ of the signed angles at v of the chain's triangles projected onto U, in radians.
   double fan_angle(int v, const FanChain& chain, const Eigen::MatrixXd& U) const;
 
+  /// True if the new triangle t = (a, b, c), positively oriented in the tangent frame U (n×2),
+  /// does not overlap any existing triangle at any of its corners: at each corner, its angular
+  /// sector in U must be disjoint from the sectors of the triangles already there.
+  bool triangle_fits(const Triangle& t, const Eigen::MatrixXd& U) const;
   /// True if a triangle may use the directed edge a→b (no triangle uses it yet, and the
   /// undirected edge has at most one triangle).
   bool can_add_edge(int a, int b) const;
