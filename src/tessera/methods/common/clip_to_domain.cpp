@@ -7,6 +7,8 @@
 #include <map>
 #include <sstream>
 
+#include "tessera/geometry/mesh_validation.h"
+
 namespace tessera {
 namespace {
 
@@ -88,25 +90,25 @@ std::vector<int> common_faces(const std::vector<int>& a, const std::vector<int>&
 
 }  // namespace
 
-ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
-                           TriangleMesh& mesh, const ClipOptions& options) {
-  ClipSummary summary;
-  const int face_count = static_cast<int>(domain.half_spaces().size());
-  std::vector<std::vector<int>> on_faces(mesh.vertex_count());  // sorted face indices
-  for (int k = 0; k < face_count; ++k) {
-    const int vertex_count = mesh.vertex_count();
-    std::vector<double> d(vertex_count);
-    bool crosses = false;
-    for (int v = 0; v < vertex_count; ++v) {
-      d[v] = std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)
-                 ? 0.0
-                 : domain.signed_distance(k, mesh.point(v));
-      crosses = crosses || d[v] < 0;
-    }
-    if (!crosses) {
-      continue;
-    }
-    ++summary.half_spaces_crossed;
+namespace {
+
+using FaceSets = std::vector<std::vector<int>>;  // per vertex: sorted faces it lies on
+
+// Clips to face k. Returns false (with `message` set) if a cut point cannot be found.
+bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k,
+                  double snap_distance, const CorrectorOptions& corrector, TriangleMesh& mesh,
+                  FaceSets& on_faces, ClipSummary& summary) {
+  ClipOptions options;
+  options.snap_distance = snap_distance;
+  options.corrector = corrector;
+  const int vertex_count = mesh.vertex_count();
+  std::vector<double> d(vertex_count);
+  for (int v = 0; v < vertex_count; ++v) {
+    d[v] = std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)
+               ? 0.0
+               : domain.signed_distance(k, mesh.point(v));
+  }
+  {
     TriangleMesh work = mesh;
     auto work_faces = on_faces;
     // 1. Snap vertices near the face onto M ∩ face.
@@ -154,7 +156,7 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
                   << "': no point of M on the face near edge (" << u << ", " << w
                   << "); the mesh is left unclipped there";
           summary.message = message.str();
-          return summary;
+          return false;
         }
         // Where the face meets an earlier face, M ∩ both is a point (a corner of the clipped
         // surface): reuse the corner vertex if one is already there, else the corner doubles.
@@ -242,6 +244,55 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
     clipped.set_triangles(std::move(kept));
     mesh = std::move(clipped);
     on_faces = std::move(clipped_faces);
+  }
+  return true;
+}
+
+}  // namespace
+
+ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
+                           TriangleMesh& mesh, const ClipOptions& options) {
+  ClipSummary summary;
+  const int face_count = static_cast<int>(domain.half_spaces().size());
+  FaceSets on_faces(mesh.vertex_count());
+  for (int k = 0; k < face_count; ++k) {
+    bool crosses = false;
+    for (int v = 0; v < mesh.vertex_count() && !crosses; ++v) {
+      crosses = !std::binary_search(on_faces[v].begin(), on_faces[v].end(), k) &&
+                domain.signed_distance(k, mesh.point(v)) < 0;
+    }
+    if (!crosses) {
+      continue;
+    }
+    ++summary.half_spaces_crossed;
+    // Snapping keeps needles away but, where the mesh is coarse next to a corner of the
+    // domain, can pull two vertices onto each other; then clip again without snapping. A clip
+    // that would still leave an invalid mesh is refused: the mesh stays unclipped there.
+    bool done = false;
+    for (const double snap : {options.snap_distance, 0.0}) {
+      TriangleMesh attempt = mesh;
+      FaceSets attempt_faces = on_faces;
+      ClipSummary attempt_summary;
+      if (!clip_to_face(problem, domain, k, snap, options.corrector, attempt, attempt_faces,
+                        attempt_summary)) {
+        summary.message = attempt_summary.message;
+        return summary;
+      }
+      if (validate(attempt).is_valid()) {
+        mesh = std::move(attempt);
+        on_faces = std::move(attempt_faces);
+        summary.snapped_vertices += attempt_summary.snapped_vertices;
+        summary.cut_edges += attempt_summary.cut_edges;
+        done = true;
+        break;
+      }
+    }
+    if (!done) {
+      summary.message = "clipping to the face '" + domain.half_spaces()[k].label +
+                        "' would leave an invalid mesh; the mesh is left unclipped there "
+                        "(try a smaller step)";
+      return summary;
+    }
   }
   return summary;
 }

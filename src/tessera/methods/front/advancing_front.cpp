@@ -9,8 +9,6 @@
 #include <chrono>
 #include <limits>
 #include <set>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -377,11 +375,6 @@ void FrontBuilder::process(int center) {
     const std::vector<Gap> gaps = find_gaps(center, chains, U);
     const Gap& smallest = *std::min_element(
         gaps.begin(), gaps.end(), [](const Gap& a, const Gap& b) { return a.angle < b.angle; });
-    if (std::getenv("TESSERA_DEBUG_FRONT")) {
-      std::fprintf(stderr, "v%d chains=%zu", center, chains.size());
-      for (const auto& g : gaps) std::fprintf(stderr, " gap(%d->%d %.3f)", g.last, g.first, g.angle);
-      std::fprintf(stderr, " valence=%d\n", state_.valence(center));
-    }
     close_gap(center, frame, U, smallest);
   }
   std::ostringstream message;
@@ -529,7 +522,6 @@ void FrontBuilder::connect_to_front_vertex(int center, int previous, int w,
     throw StopRun{CoveringTermination::FrontCollision, message.str()};
   }
   state_.add_triangle(center, previous, w);
-  if (std::getenv("TESSERA_DEBUG_FRONT")) std::fprintf(stderr, "  connect v%d prev %d -> w %d\n", center, previous, w);
   ++connections_;
 }
 
@@ -571,7 +563,6 @@ bool FrontBuilder::try_merge(int center, int first, int last, const Linearizatio
   }
   const bool inside =
       domain_.is_unbounded() || domain_.boundary_distance(average).signed_distance > 0;
-  if (std::getenv("TESSERA_DEBUG_FRONT")) std::fprintf(stderr, "  merge %d %d\n", first, last);
   if (tangent_cache_.size() > static_cast<std::size_t>(first)) {
     tangent_cache_[first].resize(0, 0);  // it moved
   }
