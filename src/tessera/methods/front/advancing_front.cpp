@@ -48,6 +48,8 @@ void FrontOptions::validate() const {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// Front loops up to this length are closed by a triangulation of the loop itself.
+constexpr int kMaxClosedLoop = 6;
 
 // Thrown inside the builder to stop the run; caught in triangulate_by_front, which keeps the
 // mesh built so far (it is valid: every step leaves a consistent partial mesh).
@@ -575,8 +577,8 @@ bool FrontBuilder::close_small_loop(int center, const Eigen::MatrixXd& U) {
   // At the end of a closed surface the front shrinks to a small loop; adding new points inside
   // it would only create overlaps, so a loop of at most eight vertices is triangulated directly
   // when a triangulation with all angles above 20° exists (a regular octagon allows 22.5°).
-  const auto loop = state_.front_loop(center, 9);
-  if (loop.size() < 3 || loop.size() > 8) {
+  const auto loop = state_.front_loop(center, kMaxClosedLoop + 1);
+  if (loop.size() < 3 || static_cast<int>(loop.size()) > kMaxClosedLoop) {
     return false;
   }
   for (int v : loop) {
