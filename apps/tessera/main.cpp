@@ -59,12 +59,14 @@ struct MeshCommand {
   double min_gap_degrees = 0.0;
   int max_valence = 0;
   double max_start_distance = 0.0;
+  std::string order = "gap";
 };
 
 tessera::MeshReport make_report(const tessera::TriangleMesh& mesh,
-                                const tessera::ProblemSetup& setup) {
+                                const tessera::ProblemSetup& setup,
+                                const std::string& problem_argument) {
   tessera::MeshReport report;
-  report.problem = setup.problem->name();  // replaced by the user's spelling where known
+  report.problem = problem_argument;  // as the user spelled it, e.g. "torus:R=2"
   report.ambient_dimension = setup.problem->ambient_dimension();
   report.validation = tessera::validate(mesh);
   report.quality = tessera::measure_quality(mesh, *setup.problem);
@@ -108,6 +110,8 @@ int run_mesh(const MeshCommand& command) {
   if (command.max_valence > 0) {
     options.max_valence = command.max_valence;
   }
+  options.order =
+      command.order == "fifo" ? tessera::FrontOrder::Fifo : tessera::FrontOrder::SmallestGapFirst;
   if (command.max_start_distance > 0) {
     options.max_start_distance_steps = command.max_start_distance / options.step;
   }
@@ -140,7 +144,7 @@ int run_mesh(const MeshCommand& command) {
   file_options.comments = {"tessera mesh " + command.problem + " --method " + command.method,
                            "coordinates:" + names};
   tessera::write_mesh(command.output, result.mesh, file_options);
-  tessera::MeshReport report = make_report(result.mesh, setup);
+  tessera::MeshReport report = make_report(result.mesh, setup, command.problem);
   report.run = result.summary;
   if (!command.summary.empty()) {
     tessera::write_summary_json(command.summary, report);
@@ -185,7 +189,7 @@ int run_problems() {
 int run_check(const std::string& mesh_path, const std::string& problem, bool json) {
   const tessera::ProblemSetup setup = tessera::resolve_problem(problem);
   const tessera::TriangleMesh mesh = tessera::read_mesh(mesh_path);
-  const tessera::MeshReport report = make_report(mesh, setup);
+  const tessera::MeshReport report = make_report(mesh, setup, problem);
   std::cout << (json ? tessera::to_json(report) : tessera::to_text(report));
   return report.validation.is_valid() ? 0 : kComputationFailed;
 }
@@ -221,6 +225,9 @@ int main(int argc, char** argv) {
   mesh_app->add_option("--max-valence", mesh.max_valence,
                        "front: most triangles per vertex (paper: 6; default 7)")
       ->check(CLI::Range(6, 12));
+  mesh_app->add_option("--order", mesh.order,
+                       "front: 'gap' (smallest gap first, default) or 'fifo' (the paper's queue)")
+      ->check(CLI::IsMember({"gap", "fifo"}));
   mesh_app->add_option("--max-start-distance", mesh.max_start_distance,
                        "how far the start may be from M (default: 10 steps)")
       ->check(CLI::PositiveNumber);

@@ -235,6 +235,10 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
   } catch (const StopRun& stop) {
     summary.termination = stop.termination;
     summary.message = stop.message;
+    // Keep the work, but only as a valid mesh: undo connections that were not glued yet.
+    // Removing one fan can pinch another vertex, so repeat until none is left.
+    while (state_.drop_pinched_fans() > 0) {
+    }
   }
   summary.step = step_;
   summary.merges = merges_;

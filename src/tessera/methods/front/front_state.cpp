@@ -55,6 +55,7 @@ int FrontState::add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexTyp
 int FrontState::add_triangle(int a, int b, int c) {
   const int t = static_cast<int>(triangles_.size());
   triangles_.push_back({a, b, c});
+  ++live_triangles_;
   for (int v : {a, b, c}) {
     incident_[v].push_back(t);
   }
@@ -419,10 +420,64 @@ bool FrontState::triangulate_hole(const std::vector<int>& loop, const Eigen::Mat
   return true;
 }
 
+void FrontState::remove_triangle(int t) {
+  for (int v : triangles_[t]) {
+    auto& list = incident_[v];
+    list.erase(std::remove(list.begin(), list.end(), t), list.end());
+  }
+  triangles_[t] = {-1, -1, -1};
+  --live_triangles_;
+}
+
+int FrontState::drop_pinched_fans() {
+  int removed = 0;
+  for (int v = 0; v < static_cast<int>(types_.size()); ++v) {
+    if (types_[v] == VertexType::Removed || incident_[v].empty()) {
+      continue;
+    }
+    const auto chains = fan_chains(v);
+    if (chains.size() <= 1) {
+      continue;
+    }
+    std::size_t largest = 0;
+    for (std::size_t i = 1; i < chains.size(); ++i) {
+      if (chains[i].vertices.size() > chains[largest].vertices.size()) {
+        largest = i;
+      }
+    }
+    std::vector<int> doomed;
+    for (std::size_t i = 0; i < chains.size(); ++i) {
+      if (i == largest) {
+        continue;
+      }
+      const auto& chain = chains[i].vertices;
+      const std::size_t count = chains[i].is_closed ? chain.size() : chain.size() - 1;
+      for (std::size_t j = 0; j < count; ++j) {
+        const int a = chain[j];
+        const int b = chain[(j + 1) % chain.size()];
+        for (int t : incident_[v]) {
+          const auto edge = opposite_edge(triangles_[t], v);
+          if (edge.first == a && edge.second == b) {
+            doomed.push_back(t);
+          }
+        }
+      }
+    }
+    for (int t : doomed) {
+      remove_triangle(t);
+      ++removed;
+    }
+  }
+  return removed;
+}
+
 TriangleMesh FrontState::to_mesh() const {
   std::vector<int> new_index(types_.size(), -1);
   TriangleMesh mesh(dimension_);
   for (const Triangle& t : triangles_) {
+    if (t[0] < 0) {
+      continue;  // removed
+    }
     for (int v : t) {
       if (new_index[v] < 0) {
         new_index[v] = 0;
@@ -435,7 +490,9 @@ TriangleMesh FrontState::to_mesh() const {
     }
   }
   for (const Triangle& t : triangles_) {
-    mesh.add_triangle(new_index[t[0]], new_index[t[1]], new_index[t[2]]);
+    if (t[0] >= 0) {
+      mesh.add_triangle(new_index[t[0]], new_index[t[1]], new_index[t[2]]);
+    }
   }
   return mesh;
 }

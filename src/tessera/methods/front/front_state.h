@@ -41,7 +41,7 @@ class FrontState {
   std::optional<int> pop_frontal();
   int front_size() const { return static_cast<int>(queue_.size()); }
   int live_vertex_count() const { return live_vertices_; }
-  int live_triangle_count() const { return static_cast<int>(triangles_.size()); }
+  int live_triangle_count() const { return live_triangles_; }
 
   std::vector<int> vertices_near(const Eigen::Ref<const Eigen::VectorXd>& x, double radius) const;
   bool are_adjacent(int a, int b) const;
@@ -78,6 +78,11 @@ class FrontState {
   /// Fails (returns false, changes nothing) if no triangulation has all angles ≥ min_angle.
   bool triangulate_hole(const std::vector<int>& loop, const Eigen::MatrixXd& U, double min_angle);
 
+  /// Makes a partial mesh valid after a stopped run: where a vertex has several fans (the front
+  /// was connected to a part of itself that was not yet glued), only its largest fan is kept.
+  /// Only removes triangles, so no overlap can appear. Returns the number removed.
+  int drop_pinched_fans();
+
   /// The live part as a compact TriangleMesh (unreferenced vertices dropped).
   TriangleMesh to_mesh() const;
 
@@ -93,6 +98,8 @@ class FrontState {
   std::deque<int> queue_;
   PointGrid grid_;
   int live_vertices_ = 0;
+  int live_triangles_ = 0;
+  void remove_triangle(int t);
 };
 
 }  // namespace tessera

@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: MIT
+// Cost of the correctors and of the linearisation they rest on: dense (the sphere, n = 3) and
+// sparse (the Arrhenius–Bratu BVP, n = N + 2 up to 10⁵), to show that the sparse path scales
+// linearly in n.
+//
+// Each sparse benchmark projects or factors at points of the catalogue's "bvp:points=N" problem:
+// the start x₀ on M and the prediction x₀ + h·T·(cos 0.3, sin 0.3) with the catalogue's suggested
+// step h = 0.05·√N (distances along M grow like √N, so this is the same step on the continuous
+// profile for every N, and the corrector needs the same number of iterations).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <string>
+
+#include "tessera/core/corrector.h"
+#include "tessera/core/linearization.h"
+#include "tessera/problems/catalogue.h"
+
+namespace {
+
+constexpr double kDirectionAngle = 0.3;  // radians in the tangent plane; any generic direction
+
+// x₀ + h·T·(cos θ, sin θ): a point at distance O(h²) from M, as the front predicts its new vertices.
+Eigen::VectorXd predicted_point(const tessera::Linearization& frame, double step) {
+  return frame.point() +
+         step * frame.tangent_basis() *
+             Eigen::Vector2d(std::cos(kDirectionAngle), std::sin(kDirectionAngle));
+}
+
+struct FactoredSetup {
+  tessera::ProblemSetup setup;
+  tessera::Linearization frame;  // factored at setup.start projected onto M
+  Eigen::VectorXd predicted;     // a prediction at the suggested step from frame.point()
+};
+
+FactoredSetup factored_setup(const std::string& specification) {
+  FactoredSetup result{tessera::make_catalogue_problem(specification), {}, {}};
+  Eigen::VectorXd x = result.setup.start;
+  tessera::Linearization workspace;
+  // The catalogue's starts are already on M to rounding; project anyway so that x₀ ∈ M exactly.
+  tessera::project_gauss_newton(*result.setup.problem, x, {}, workspace);
+  result.frame.factor(*result.setup.problem, x);
+  result.predicted = predicted_point(result.frame, result.setup.suggested_step);
+  return result;
+}
+
+// --- Dense: the sphere (n = 3) ---------------------------------------------------------------
+
+// One factorisation: J = DF(x) evaluated and QR-factored, tangent basis extracted.
+void BM_Factor_Dense(benchmark::State& state) {
+  const FactoredSetup fixture = factored_setup("sphere");
+  tessera::Linearization frame;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(frame.factor(*fixture.setup.problem, fixture.frame.point()));
+  }
+}
+BENCHMARK(BM_Factor_Dense);
+
+// One chord projection with the factorisation frozen at x_c (what the front does per new vertex),
+// from x_c + h·t for h = 0.1 and 0.4 (range in thousandths).
+void BM_Chord_Dense(benchmark::State& state) {
+  const FactoredSetup fixture = factored_setup("sphere");
+  const double step = static_cast<double>(state.range(0)) / 1000.0;
+  const Eigen::VectorXd prediction = predicted_point(fixture.frame, step);
+  Eigen::VectorXd x = prediction;
+  tessera::CorrectorSummary summary;
+  for (auto _ : state) {
+    x = prediction;  // same size: no allocation
+    summary = tessera::project_chord(*fixture.setup.problem, fixture.frame, x, {});
+    benchmark::DoNotOptimize(x.data());
+  }
+  if (!summary.is_success()) {
+    state.SkipWithError(("chord projection failed: " + summary.brief_report()).c_str());
+  }
+  state.counters["iterations"] = summary.iterations;
+}
+BENCHMARK(BM_Chord_Dense)->Arg(100)->Arg(400)->ArgName("h_thousandths");
+
+// --- Sparse: the Arrhenius–Bratu BVP, n = N + 2 ------------------------------------------------
+
+void sparse_sizes(benchmark::internal::Benchmark* benchmark) {
+  for (int points : {100, 1000, 10000, 100000}) {
+    benchmark->Arg(points);
+  }
+  benchmark->ArgName("N")->Unit(benchmark::kMicrosecond)->Complexity(benchmark::oN);
+}
+
+std::string bvp_specification(const benchmark::State& state) {
+  return "bvp:points=" + std::to_string(state.range(0));
+}
+
+// One factorisation: sparse J, bordered with the reference tangent, sparse LU, tangent basis.
+void BM_Factor_Sparse_Bvp(benchmark::State& state) {
+  const FactoredSetup fixture = factored_setup(bvp_specification(state));
+  const Eigen::MatrixXd reference = fixture.frame.tangent_basis();
+  tessera::Linearization frame;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(frame.factor(*fixture.setup.problem, fixture.predicted, &reference));
+  }
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_Factor_Sparse_Bvp)->Apply(sparse_sizes);
+
+// Full Gauss–Newton from the prediction at the suggested step: one factorisation per iteration.
+// seconds_per_factorisation = CPU time / (iterations × Gauss–Newton iterations).
+void BM_GaussNewton_Sparse_Bvp(benchmark::State& state) {
+  const FactoredSetup fixture = factored_setup(bvp_specification(state));
+  tessera::Linearization workspace = fixture.frame;
+  Eigen::VectorXd x = fixture.predicted;
+  tessera::CorrectorSummary summary;
+  double factorisations = 0.0;
+  for (auto _ : state) {
+    x = fixture.predicted;
+    summary = tessera::project_gauss_newton(*fixture.setup.problem, x, {}, workspace);
+    factorisations += summary.iterations;
+    benchmark::DoNotOptimize(x.data());
+  }
+  if (!summary.is_success()) {
+    state.SkipWithError(("Gauss-Newton failed: " + summary.brief_report()).c_str());
+  }
+  state.SetComplexityN(state.range(0));
+  state.counters["iterations"] = summary.iterations;
+  state.counters["seconds_per_factorisation"] = benchmark::Counter(
+      factorisations, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_GaussNewton_Sparse_Bvp)->Apply(sparse_sizes);
+
+// One chord projection frozen at x₀ (the front's per-vertex corrector): only solves, no factoring.
+void BM_Chord_Sparse_Bvp(benchmark::State& state) {
+  const FactoredSetup fixture = factored_setup(bvp_specification(state));
+  Eigen::VectorXd x = fixture.predicted;
+  tessera::CorrectorSummary summary;
+  for (auto _ : state) {
+    x = fixture.predicted;
+    summary = tessera::project_chord(*fixture.setup.problem, fixture.frame, x, {});
+    benchmark::DoNotOptimize(x.data());
+  }
+  if (!summary.is_success()) {
+    state.SkipWithError(("chord projection failed: " + summary.brief_report()).c_str());
+  }
+  state.SetComplexityN(state.range(0));
+  state.counters["iterations"] = summary.iterations;
+}
+BENCHMARK(BM_Chord_Sparse_Bvp)->Apply(sparse_sizes);
+
+}  // namespace

@@ -1,0 +1,321 @@
+// SPDX-License-Identifier: MIT
+// The command line as a user meets it: `tessera problems`, `tessera mesh`, `tessera check`.
+// Exit codes are part of the interface: 0 success, 1 a computation failed, 2 a usage error; a
+// message always names what is wrong, and no input makes the tool crash.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/test_support.h"
+#include "tessera/geometry/mesh_validation.h"
+#include "tessera/io/mesh_io.h"
+#include "tessera/methods/front/advancing_front.h"
+#include "tessera/problems/catalogue.h"
+
+namespace tessera {
+namespace {
+
+using testing::CommandResult;
+using testing::run_cli;
+
+constexpr int kSuccess = 0;
+constexpr int kComputationFailed = 1;
+constexpr int kUsageError = 2;
+
+// Vertices end where the corrector stopped, at ‖F‖ ≤ CorrectorOptions::residual_tolerance = 1e-9;
+// a factor 10 covers rounding in F.
+constexpr double kOnManifoldTolerance = 1e-8;
+
+std::string work_path(const std::string& file_name) {
+  static const std::string directory = testing::temporary_directory("cli");
+  return directory + "/" + file_name;
+}
+
+// Single quotes for the shell; paths of the temporary directory contain none.
+std::string quoted(const std::string& text) { return "'" + text + "'"; }
+
+std::string file_content(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream content;
+  content << in.rdbuf();
+  return content.str();
+}
+
+std::string write_problem_file(const std::string& file_name, const std::string& text) {
+  const std::string path = work_path(file_name);
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+bool contains(const std::string& text, const std::string& fragment) {
+  return text.find(fragment) != std::string::npos;
+}
+
+// The tool ran to an orderly end with `exit_code` (not a signal: run_cli reports those as −1),
+// and said something containing every fragment.
+void expect_exit(const CommandResult& result, int exit_code,
+                 const std::vector<std::string>& fragments) {
+  EXPECT_EQ(result.exit_code, exit_code) << result.output;
+  for (const std::string& fragment : fragments) {
+    EXPECT_TRUE(contains(result.output, fragment))
+        << "the message does not name '" << fragment << "':\n"
+        << result.output;
+  }
+}
+
+// --- tessera problems ----------------------------------------------------------------------
+
+TEST(CliProblems, ListsEveryCatalogueEntryInOrder) {
+  const CommandResult result = run_cli("problems");
+  ASSERT_EQ(result.exit_code, kSuccess) << result.output;
+  // One line per entry, "NAME  summary", then a blank line and usage hints.
+  std::vector<std::string> listed;
+  std::istringstream lines(result.output);
+  std::string line;
+  while (std::getline(lines, line) && !line.empty()) {
+    listed.push_back(line.substr(0, line.find(' ')));
+  }
+  std::vector<std::string> names;
+  for (const CatalogueEntry& entry : catalogue()) {
+    names.push_back(entry.name);
+  }
+  EXPECT_EQ(listed, names) << result.output;
+}
+
+// --- tessera mesh, and tessera check of its output ------------------------------------------
+
+class CliMeshSphereCut : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    result_ = new CommandResult(run_cli("mesh sphere_cut -o " + quoted(work_path("cut.ply")) +
+                                        " --summary " + quoted(work_path("cut.json"))));
+  }
+  static void TearDownTestSuite() {
+    delete result_;
+    result_ = nullptr;
+  }
+  static CommandResult* result_;
+};
+
+CommandResult* CliMeshSphereCut::result_ = nullptr;
+
+TEST_F(CliMeshSphereCut, WritesAMeshThatReadsBackValid) {
+  ASSERT_EQ(result_->exit_code, kSuccess) << result_->output;
+  const TriangleMesh mesh = read_mesh(work_path("cut.ply"));
+  EXPECT_EQ(mesh.ambient_dimension(), 3);
+  const MeshValidation validation = validate(mesh);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+  EXPECT_EQ(validation.euler_characteristic, 1);  // a spherical cap is a disk
+}
+
+TEST_F(CliMeshSphereCut, WritesExactlyWhatTheLibraryComputes) {
+  ASSERT_EQ(result_->exit_code, kSuccess) << result_->output;
+  // The CLI is thin over the library: with the problem's suggested step and default options the
+  // binary PLY must hold the library's mesh bit for bit.
+  const ProblemSetup setup = make_catalogue_problem("sphere_cut");
+  FrontOptions options;
+  options.step = setup.suggested_step;
+  const CoveringResult expected =
+      triangulate_by_front(*setup.problem, setup.start, setup.domain, options);
+  const TriangleMesh mesh = read_mesh(work_path("cut.ply"));
+  ASSERT_EQ(mesh.vertex_count(), expected.mesh.vertex_count());
+  EXPECT_TRUE(mesh.points() == expected.mesh.points());
+  EXPECT_TRUE(mesh.triangles() == expected.mesh.triangles());
+}
+
+TEST_F(CliMeshSphereCut, SummaryJsonDescribesTheMesh) {
+  ASSERT_EQ(result_->exit_code, kSuccess) << result_->output;
+  const TriangleMesh mesh = read_mesh(work_path("cut.ply"));
+  const MeshValidation validation = validate(mesh);
+  const auto summary = nlohmann::json::parse(file_content(work_path("cut.json")));
+  EXPECT_EQ(summary.at("counts").at("vertices").get<int>(), mesh.vertex_count());
+  EXPECT_EQ(summary.at("counts").at("triangles").get<int>(), mesh.triangle_count());
+  EXPECT_EQ(summary.at("counts").at("edges").get<int>(), validation.edge_count);
+  EXPECT_EQ(summary.at("topology").at("euler_characteristic").get<int>(), 1);
+  EXPECT_TRUE(summary.at("valid").get<bool>());
+  EXPECT_TRUE(summary.at("run").at("completed").get<bool>());
+  EXPECT_LT(summary.at("distance_to_manifold").at("vertex_residual_F").at("max").get<double>(),
+            kOnManifoldTolerance);
+}
+
+TEST_F(CliMeshSphereCut, CheckReportsTheSameCounts) {
+  ASSERT_EQ(result_->exit_code, kSuccess) << result_->output;
+  const CommandResult check =
+      run_cli("check " + quoted(work_path("cut.ply")) + " --problem sphere_cut --json");
+  ASSERT_EQ(check.exit_code, kSuccess) << check.output;
+  const auto report = nlohmann::json::parse(check.output);
+  const auto summary = nlohmann::json::parse(file_content(work_path("cut.json")));
+  EXPECT_EQ(report.at("counts"), summary.at("counts"));
+  EXPECT_EQ(report.at("topology").at("euler_characteristic").get<int>(), 1);
+  EXPECT_TRUE(report.at("valid").get<bool>());
+  EXPECT_FALSE(report.contains("run"));  // check measures a mesh; it did not compute one
+}
+
+TEST(CliMesh, WritesEveryFormatByExtension) {
+  const std::string ply = work_path("formats.ply");
+  ASSERT_EQ(run_cli("mesh sphere_cut -q -o " + quoted(ply)).exit_code, kSuccess);
+  const TriangleMesh reference = read_mesh(ply);
+  for (const std::string extension : {".obj", ".vtk", ".vtu"}) {
+    SCOPED_TRACE(extension);
+    const std::string path = work_path("formats" + extension);
+    const CommandResult result = run_cli("mesh sphere_cut -q -o " + quoted(path));
+    ASSERT_EQ(result.exit_code, kSuccess) << result.output;
+    ASSERT_TRUE(std::filesystem::exists(path));
+    EXPECT_GT(std::filesystem::file_size(path), 0u);
+    const std::string content = file_content(path);
+    if (extension == ".obj") {
+      const TriangleMesh mesh = read_mesh(path);
+      EXPECT_EQ(mesh.vertex_count(), reference.vertex_count());
+      EXPECT_EQ(mesh.triangle_count(), reference.triangle_count());
+    } else if (extension == ".vtk") {
+      EXPECT_EQ(content.rfind("# vtk DataFile", 0), 0u);
+    } else {
+      EXPECT_TRUE(contains(content, "<VTKFile"));
+    }
+  }
+}
+
+TEST(CliMesh, IsDeterministic) {
+  const std::string first = work_path("first.ply");
+  const std::string second = work_path("second.ply");
+  ASSERT_EQ(run_cli("mesh whitney_pleat -q -o " + quoted(first)).exit_code, kSuccess);
+  ASSERT_EQ(run_cli("mesh whitney_pleat -q -o " + quoted(second)).exit_code, kSuccess);
+  const std::string bytes = file_content(first);
+  EXPECT_FALSE(bytes.empty());
+  EXPECT_TRUE(bytes == file_content(second)) << "binary PLY files differ";
+}
+
+// --- Computations that cannot start: exit 1, saying why --------------------------------------
+
+TEST(CliMeshFails, WhenTheStartIsFarFromM) {
+  expect_exit(run_cli("mesh sphere --start 100,100,100 -o " + quoted(work_path("far.ply"))),
+              kComputationFailed, {"start point (100, 100, 100)", "too far from M"});
+}
+
+TEST(CliMeshFails, WhenFIsNotFiniteAtTheStart) {
+  // log(x) is NaN for x < 0; the file's own start (1, 0, 0) is fine, the override is not.
+  const std::string file = write_problem_file(
+      "log.tsr", "variables x y z\nequation log(x) + y^2 + z^2 - 1\nstart 1 0 0\n");
+  expect_exit(
+      run_cli("mesh " + quoted(file) + " --start -1,0,0 -o " + quoted(work_path("log.ply"))),
+      kComputationFailed, {"start point (-1, 0, 0)", "not finite"});
+}
+
+TEST(CliMeshFails, WhenTheJacobianIsRankDeficientAtTheStart) {
+  // F = |x|² vanishes only at 0, where DF = 2x = 0: not a smooth surface.
+  const std::string file =
+      write_problem_file("point.tsr", "variables x y z\nequation x^2 + y^2 + z^2\nstart 0 0 0\n");
+  expect_exit(run_cli("mesh " + quoted(file) + " -o " + quoted(work_path("point.ply"))),
+              kComputationFailed, {"start point (0, 0, 0)", "rank deficient"});
+}
+
+TEST(CliMeshFails, WhenTheStartProjectsOutsideTheBox) {
+  // The start (0, 0, 1) of the unit sphere projects onto itself, above z <= 0.5.
+  expect_exit(run_cli("mesh sphere --box -1,1,-1,1,-0.5,0.5 -o " + quoted(work_path("box.ply"))),
+              kComputationFailed, {"outside the domain", "z <= 0.5"});
+}
+
+// --- Problem files with mistakes: exit 2, naming the file and line --------------------------
+
+TEST(CliProblemFile, SyntaxErrorNamesFileLineAndColumn) {
+  const std::string file =
+      write_problem_file("syntax.tsr",
+                         "# a missing parenthesis\nvariables x y z\nequation x^2 + (y^2 - 1\n"
+                         "start 0 0 1\n");
+  expect_exit(run_cli("mesh " + quoted(file) + " -o " + quoted(work_path("syntax.ply"))),
+              kUsageError, {file + ":3:", "missing ')'"});
+}
+
+TEST(CliProblemFile, StartWhereFIsNotFiniteNamesTheLine) {
+  const std::string file = write_problem_file(
+      "sqrt.tsr", "variables x y z\nequation sqrt(x) + y^2 + z^2 - 1\nstart -1 0 0\n");
+  expect_exit(run_cli("mesh " + quoted(file) + " -o " + quoted(work_path("sqrt.ply"))), kUsageError,
+              {file + ":3:", "finite"});
+}
+
+// --- Malformed command lines: exit 2, naming the option --------------------------------------
+
+struct UsageCase {
+  std::string name;
+  std::string arguments;  // `{out}`, `{stl}`: an output path ending in .ply, .stl
+  std::vector<std::string> fragments;
+};
+
+// gtest prints parameters on failure; the command line says more than the bytes of the struct.
+void PrintTo(const UsageCase& usage_case, std::ostream* out) {
+  *out << "tessera " << usage_case.arguments;
+}
+
+class CliUsageError : public ::testing::TestWithParam<UsageCase> {};
+
+TEST_P(CliUsageError, ExitsWithTwoAndNamesTheMistake) {
+  std::string arguments = GetParam().arguments;
+  const auto out = arguments.find("{out}");
+  if (out != std::string::npos) {
+    arguments.replace(out, 5, quoted(work_path(GetParam().name + ".ply")));
+  }
+  const auto stl = arguments.find("{stl}");
+  if (stl != std::string::npos) {
+    arguments.replace(stl, 5, quoted(work_path(GetParam().name + ".stl")));
+  }
+  const CommandResult result = run_cli(arguments);
+  expect_exit(result, kUsageError, GetParam().fragments);
+  // A usage error is found before any work: no mesh file appears.
+  EXPECT_FALSE(std::filesystem::exists(work_path(GetParam().name + ".ply")));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Options, CliUsageError,
+    ::testing::Values(
+        UsageCase{"no_command", "", {"subcommand"}},
+        UsageCase{"negative_step", "mesh sphere --step -1 -o {out}", {"--step", "-1"}},
+        UsageCase{"zero_step", "mesh sphere --step 0 -o {out}", {"--step", "0"}},
+        UsageCase{"step_not_a_number", "mesh sphere --step abc -o {out}", {"--step", "abc"}},
+        UsageCase{"step_nan", "mesh sphere --step nan -o {out}", {"--step", "nan"}},
+        UsageCase{"max_start_distance_nan",
+                  "mesh sphere --max-start-distance nan -o {out}",
+                  {"--max-start-distance", "nan"}},
+        UsageCase{"start_too_short",
+                  "mesh sphere --start 1,2 -o {out}",
+                  {"--start has 2 values", "n = 3"}},
+        UsageCase{"start_not_a_number",
+                  "mesh sphere --start 1,x,3 -o {out}",
+                  {"--start", "'x' is not a number"}},
+        UsageCase{"start_nan", "mesh sphere --start nan,0,1 -o {out}", {"start point", "finite"}},
+        UsageCase{"unknown_option", "mesh sphere --frobnicate -o {out}", {"--frobnicate"}},
+        UsageCase{"missing_output", "mesh sphere", {"--output"}},
+        UsageCase{
+            "unknown_problem", "mesh spheer -o {out}", {"unknown problem 'spheer'", "sphere_cut"}},
+        UsageCase{"missing_problem_file",
+                  "mesh no/such/file.tsr -o {out}",
+                  {"no/such/file.tsr", "neither an existing file"}},
+        UsageCase{"unknown_parameter",
+                  "mesh sphere:radius=1,colour=2 -o {out}",
+                  {"no parameter 'colour'", "radius"}},
+        UsageCase{"unknown_method", "mesh sphere --method atlas -o {out}", {"--method", "atlas"}},
+        UsageCase{"box_wrong_count",
+                  "mesh sphere --box 1,2,3 -o {out}",
+                  {"--box has 3 values", "expected 6"}},
+        UsageCase{
+            "box_empty", "mesh sphere --box -1,1,1,-1,-1,1 -o {out}", {"empty", "coordinate y"}},
+        UsageCase{"unknown_extension", "mesh sphere -o {stl}", {"unknown extension '.stl'"}}),
+    [](const ::testing::TestParamInfo<UsageCase>& info) { return info.param.name; });
+
+TEST(CliCheck, MissingMeshFileIsNamed) {
+  const std::string missing = work_path("no_such_mesh.ply");
+  const CommandResult result = run_cli("check " + quoted(missing) + " --problem sphere");
+  EXPECT_TRUE(result.exit_code == kComputationFailed || result.exit_code == kUsageError)
+      << "exit " << result.exit_code << "\n"
+      << result.output;
+  EXPECT_TRUE(contains(result.output, missing)) << result.output;
+}
+
+}  // namespace
+}  // namespace tessera
