@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -19,6 +20,21 @@
 namespace {
 
 constexpr int kComputationFailed = 1;
+
+// CLI11's PositiveNumber lets NaN through; a step of NaN must be a usage error.
+const CLI::Validator kFinitePositive(
+    [](std::string& text) -> std::string {
+      try {
+        std::size_t used = 0;
+        const double value = std::stod(text, &used);
+        if (used == text.size() && std::isfinite(value) && value > 0) {
+          return {};
+        }
+      } catch (const std::exception&) {
+      }
+      return "'" + text + "' is not a finite number > 0";
+    },
+    "POSITIVE", "finite positive number");
 constexpr int kUsageError = 2;
 
 std::vector<double> parse_numbers(const std::string& text, const std::string& option) {
@@ -141,7 +157,7 @@ int run_mesh(const MeshCommand& command) {
   if (!is_ply) {
     file_options.coordinate_names = setup.problem->coordinate_names();
   }
-  file_options.comments = {"tessera mesh " + command.problem + " --method " + command.method,
+  file_options.comments = {"tessera mesh " + command.problem + ", method " + command.method,
                            "coordinates:" + names};
   tessera::write_mesh(command.output, result.mesh, file_options);
   tessera::MeshReport report = make_report(result.mesh, setup, command.problem);
@@ -191,7 +207,26 @@ int run_check(const std::string& mesh_path, const std::string& problem, bool jso
   const tessera::TriangleMesh mesh = tessera::read_mesh(mesh_path);
   const tessera::MeshReport report = make_report(mesh, setup, problem);
   std::cout << (json ? tessera::to_json(report) : tessera::to_text(report));
-  return report.validation.is_valid() ? 0 : kComputationFailed;
+  // A mesh passes the check if it is valid, has the known topology, and its vertices lie on
+  // M (1e-6 leaves room for meshes written by other tools in single precision).
+  bool passes = report.validation.is_valid();
+  if (!passes) {
+    std::cerr << "tessera: check failed: the mesh is not valid\n";
+  }
+  if (setup.expected_euler_characteristic &&
+      report.validation.euler_characteristic != *setup.expected_euler_characteristic) {
+    std::cerr << "tessera: check failed: Euler characteristic " << report.validation.euler_characteristic
+              << ", but the surface of '" << problem << "' has "
+              << *setup.expected_euler_characteristic << "\n";
+    passes = false;
+  }
+  if (report.quality.vertex_distance.max > 1e-6 || report.quality.failed_projections > 0) {
+    std::cerr << "tessera: check failed: vertices are not on M (max distance "
+              << report.quality.vertex_distance.max << ", "
+              << report.quality.failed_projections << " points could not be projected)\n";
+    passes = false;
+  }
+  return passes ? 0 : kComputationFailed;
 }
 
 }  // namespace
@@ -208,7 +243,7 @@ int main(int argc, char** argv) {
   mesh_app->add_option("--method", mesh.method, "covering method")
       ->check(CLI::IsMember({"front"}));
   mesh_app->add_option("--step,-s", mesh.step, "edge length h (default: the problem's suggestion)")
-      ->check(CLI::PositiveNumber);
+      ->check(kFinitePositive);
   mesh_app->add_option("--start", mesh.start, "start point, comma separated, e.g. 0,0,1");
   mesh_app->add_option("--box", mesh.box,
                        "clip to a box: lower,upper for each coordinate, e.g. -1,1,-1,1,-0.8,1");
@@ -230,7 +265,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"gap", "fifo"}));
   mesh_app->add_option("--max-start-distance", mesh.max_start_distance,
                        "how far the start may be from M (default: 10 steps)")
-      ->check(CLI::PositiveNumber);
+      ->check(kFinitePositive);
 
   app.add_subcommand("problems", "list the built-in catalogue");
 

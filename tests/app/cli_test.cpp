@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -93,18 +94,14 @@ TEST(CliProblems, ListsEveryCatalogueEntryInOrder) {
 
 class CliMeshSphereCut : public ::testing::Test {
  protected:
+  // One run serves every test of the suite.
   static void SetUpTestSuite() {
-    result_ = new CommandResult(run_cli("mesh sphere_cut -o " + quoted(work_path("cut.ply")) +
-                                        " --summary " + quoted(work_path("cut.json"))));
+    result_ = run_cli("mesh sphere_cut -o " + quoted(work_path("cut.ply")) + " --summary " +
+                      quoted(work_path("cut.json")));
   }
-  static void TearDownTestSuite() {
-    delete result_;
-    result_ = nullptr;
-  }
-  static CommandResult* result_;
+  static void TearDownTestSuite() { result_.reset(); }
+  static inline std::optional<CommandResult> result_;
 };
-
-CommandResult* CliMeshSphereCut::result_ = nullptr;
 
 TEST_F(CliMeshSphereCut, WritesAMeshThatReadsBackValid) {
   ASSERT_EQ(result_->exit_code, kSuccess) << result_->output;

@@ -50,6 +50,8 @@ namespace {
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // Front loops up to this length are closed by a triangulation of the loop itself.
 constexpr int kMaxClosedLoop = 6;
+// Edges longer than this multiple of h are avoided where a choice exists.
+constexpr double kMaxEdgeRatio = 1.5;
 
 // Thrown inside the builder to stop the run; caught in triangulate_by_front, which keeps the
 // mesh built so far (it is valid: every step leaves a consistent partial mesh).
@@ -455,6 +457,14 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
     if (gap.angle / i >= options_.min_gap_angle) {
       sectors = i;
     }
+  }
+  // A single sector whose far edge would be much longer than h is split in two after all
+  // (sectors of at least 30°): otherwise the longest edges, and with them the distance of
+  // the mesh to M, grow faster than h under refinement.
+  const double far_edge = (state_.point(gap.last) - state_.point(gap.first)).norm();
+  if (sectors == 1 && far_edge > kMaxEdgeRatio * step_ && gap.angle >= kTwoPi / 6 &&
+      old_count < options_.max_valence) {
+    sectors = 2;
   }
   if (sectors == 1) {
     add_closing_triangle(center, gap.last, gap.first, U);
