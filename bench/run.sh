@@ -77,22 +77,31 @@ for b in load("front.json")["benchmarks"]:
           f"{b['vertices_per_second']:,.0f} | {b['F_evals_per_vertex']:.2f} | "
           f"{b['DF_evals_per_vertex']:.2f} | {b['bytes_per_vertex']:.1f} |")
 
-print("\n## Correctors\n")
-print("| benchmark | time | iterations | s per factorisation |")
-print("|---|---|---|---|")
+print("\n## Correctors (CPU time; exponent p of time ∝ N^p against the previous N)\n")
+print("| benchmark | N | time | time / n | p | corrector iterations | per factorisation |")
+print("|---|---|---|---|---|---|---|")
+import math
+previous = {}
+scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 for b in load("corrector.json")["benchmarks"]:
+    family, _, arg = b["name"].partition("/")
     if "error_occurred" in b:
-        print(f"| {b['name']} | ERROR: {b.get('error_message', '')} | | |")
+        print(f"| {family} | {arg.partition(':')[2]} | ERROR: {b.get('error_message', '')} | | | | |")
         continue
-    if b.get("aggregate_name") == "BigO":
-        print(f"| {b['name']} | {b['cpu_coefficient']:.3g} {b['time_unit']} · N | | |")
-        continue
-    if b.get("aggregate_name") == "RMS":
-        print(f"| {b['name']} | {100 * b['rms']:.0f} % | | |")
-        continue
+    seconds = b["cpu_time"] * scale[b["time_unit"]]
+    size = int(arg.split(":")[1]) if arg.startswith("N:") else None
+    per_unknown = f"{1e9 * seconds / (size + 2):.0f} ns" if size else ""
+    exponent = ""
+    if size and family in previous:
+        previous_size, previous_seconds = previous[family]
+        exponent = f"{math.log(seconds / previous_seconds) / math.log(size / previous_size):.2f}"
+    if size:
+        previous[family] = (size, seconds)
     per_factorisation = b.get("seconds_per_factorisation")
-    print(f"| {b['name']} | {b['cpu_time']:.3g} {b['time_unit']} | {b.get('iterations', ''):} | "
-          + (f"{1e6 * per_factorisation:.1f} µs" if per_factorisation else "") + " |")
+    iterations = b.get("corrector_iterations")
+    print(f"| {family} | {size or arg} | {b['cpu_time']:.3g} {b['time_unit']} | {per_unknown} | "
+          f"{exponent} | {'' if iterations is None else f'{iterations:.0f}'} | "
+          + (f"{1e3 * per_factorisation:.3g} ms" if per_factorisation else "") + " |")
 
 print("\n## Front: peak memory (fresh process per row)\n")
 print("| problem | h | vertices | wall (s) | vertices/s | peak bytes/vertex | mesh bytes/vertex |")

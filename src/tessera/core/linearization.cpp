@@ -29,6 +29,19 @@ class LinearizationBackend {
 
 namespace {
 
+// Jᵀ P = Q R  ⇒  J = P Rᵀ Qᵀ; the minimum-norm solution of J dx = r is Q1 R⁻ᵀ Pᵀ r.
+void minimum_norm_from_qr(const Eigen::ColPivHouseholderQR<Eigen::MatrixXd>& qr,
+                          const Eigen::Ref<const Eigen::VectorXd>& rhs,
+                          Eigen::Ref<Eigen::VectorXd> dx) {
+  const int m = static_cast<int>(rhs.size());
+  const int n = static_cast<int>(dx.size());
+  Eigen::VectorXd z = qr.colsPermutation().transpose() * rhs;
+  qr.matrixR().topLeftCorner(m, m).transpose().triangularView<Eigen::Lower>().solveInPlace(z);
+  Eigen::VectorXd padded = Eigen::VectorXd::Zero(n);
+  padded.head(m) = z;
+  dx = qr.householderQ() * padded;
+}
+
 class DenseBackend final : public LinearizationBackend {
  public:
   std::unique_ptr<LinearizationBackend> clone() const override {
@@ -67,14 +80,7 @@ class DenseBackend final : public LinearizationBackend {
 
   void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd&,
              Eigen::Ref<Eigen::VectorXd> dx) const override {
-    // Jᵀ P = Q R  ⇒  J = P Rᵀ Qᵀ; the minimum-norm solution of J dx = r is Q1 R⁻ᵀ Pᵀ r.
-    const int m = static_cast<int>(rhs.size());
-    const int n = static_cast<int>(dx.size());
-    Eigen::VectorXd z = qr_.colsPermutation().transpose() * rhs;
-    qr_.matrixR().topLeftCorner(m, m).transpose().triangularView<Eigen::Lower>().solveInPlace(z);
-    Eigen::VectorXd padded = Eigen::VectorXd::Zero(n);
-    padded.head(m) = z;
-    dx = qr_.householderQ() * padded;
+    minimum_norm_from_qr(qr_, rhs, dx);
   }
 
  private:
@@ -236,6 +242,17 @@ void Linearization::solve_minimum_norm(const Eigen::Ref<const Eigen::VectorXd>& 
                                        Eigen::Ref<Eigen::VectorXd> dx) const {
   TESSERA_ASSERT(factored_);
   backend_->solve(rhs, tangent_, dx);
+}
+
+bool solve_minimum_norm_dense(const Eigen::Ref<const Eigen::MatrixXd>& J,
+                              const Eigen::Ref<const Eigen::VectorXd>& rhs,
+                              Eigen::Ref<Eigen::VectorXd> dx) {
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(J.transpose());
+  if (qr.rank() < J.rows()) {
+    return false;
+  }
+  minimum_norm_from_qr(qr, rhs, dx);
+  return true;
 }
 
 void align_tangent_basis(Eigen::MatrixXd& T, const Eigen::MatrixXd& reference) {

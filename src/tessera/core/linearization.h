@@ -56,6 +56,12 @@ class Linearization {
   bool factored_ = false;
 };
 
+/// Minimum-norm solution of J·dx = rhs for a dense J (m×n, m ≤ n) by column-pivoted QR of Jᵀ.
+/// \return false (dx untouched) if J has rank < m.
+bool solve_minimum_norm_dense(const Eigen::Ref<const Eigen::MatrixXd>& J,
+                              const Eigen::Ref<const Eigen::VectorXd>& rhs,
+                              Eigen::Ref<Eigen::VectorXd> dx);
+
 /// Flips the second column of T if needed so that det(Tᵀ·reference) > 0: keeps frames of
 /// neighbouring points consistently oriented.
 void align_tangent_basis(Eigen::MatrixXd& T, const Eigen::MatrixXd& reference);

@@ -3,35 +3,17 @@
 
 #include <sstream>
 
+#include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 
 namespace tessera {
-namespace {
-
-std::string format_point(const Eigen::VectorXd& x) {
-  std::ostringstream out;
-  out.precision(6);
-  out << "(";
-  const int shown = std::min<int>(static_cast<int>(x.size()), 6);
-  for (int i = 0; i < shown; ++i) {
-    out << (i ? ", " : "") << x(i);
-  }
-  if (x.size() > shown) {
-    out << ", … " << x.size() - shown << " more";
-  }
-  out << ")";
-  return out.str();
-}
-
-}  // namespace
-
 StartPoint project_start_point(const ImplicitProblem& problem, const Eigen::VectorXd& guess,
                                const Domain& domain, double max_distance) {
   const int n = problem.ambient_dimension();
   TESSERA_CHECK(guess.size() == n, "start point has " << guess.size()
                                                       << " coordinates, problem '"
                                                       << problem.name() << "' has n = " << n);
-  TESSERA_CHECK(guess.allFinite(), "start point " << format_point(guess) << " is not finite");
+  TESSERA_CHECK(guess.allFinite(), "start point " << describe_point(guess) << " is not finite");
   StartPoint start;
   start.x = guess;
   CorrectorOptions options;
@@ -41,16 +23,16 @@ StartPoint project_start_point(const ImplicitProblem& problem, const Eigen::Vect
   options.max_iterations = 50;
   options.max_displacement = max_distance;
   start.corrector = project_gauss_newton(problem, start.x, options, start.linearization);
-  const std::string where = "start point " + format_point(guess);
+  const std::string where = "start point " + describe_point(guess);
   switch (start.corrector.termination) {
     case CorrectorTermination::Converged:
       break;
     case CorrectorTermination::NonFiniteResidual:
       throw ComputationFailed(where + ": F is not finite (NaN or infinity) at " +
-                              format_point(start.x) + "; is the start inside the domain of F?");
+                              describe_point(start.x) + "; is the start inside the domain of F?");
     case CorrectorTermination::SingularJacobian:
       throw ComputationFailed(where + ": the Jacobian DF is rank deficient at " +
-                              format_point(start.x) +
+                              describe_point(start.x) +
                               "; M is not a smooth surface there (a singular point). Choose "
                               "another start point");
     case CorrectorTermination::TooFar: {
@@ -69,7 +51,7 @@ StartPoint project_start_point(const ImplicitProblem& problem, const Eigen::Vect
   if (!domain.contains(start.x, 1e-12)) {
     const auto nearest = domain.boundary_distance(start.x);
     std::ostringstream message;
-    message << where << " projects onto M at " << format_point(start.x)
+    message << where << " projects onto M at " << describe_point(start.x)
             << ", which lies outside the domain: it violates '"
             << domain.half_spaces()[nearest.nearest_half_space].label << "' by "
             << -nearest.signed_distance
@@ -80,7 +62,7 @@ StartPoint project_start_point(const ImplicitProblem& problem, const Eigen::Vect
   const bool ok = start.linearization.factor(problem, start.x);
   if (!ok) {
     throw ComputationFailed(where + ": the Jacobian is rank deficient at the projected point " +
-                            format_point(start.x));
+                            describe_point(start.x));
   }
   return start;
 }

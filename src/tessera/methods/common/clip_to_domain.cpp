@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/methods/common/clip_to_domain.h"
 
-#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
 
+#include "tessera/core/linearization.h"
 #include "tessera/geometry/mesh_validation.h"
 
 namespace tessera {
@@ -39,16 +39,10 @@ bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
     if (!G.allFinite() || !J.allFinite()) {
       return false;
     }
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(J.transpose());
-    if (qr.rank() < rows) {
+    Eigen::VectorXd dx(n);
+    if (!solve_minimum_norm_dense(J, -G, dx)) {
       return false;
     }
-    // Minimum-norm step: dx = −Q1 R⁻ᵀ Pᵀ G.
-    Eigen::VectorXd z = qr.colsPermutation().transpose() * (-G);
-    qr.matrixR().topLeftCorner(rows, rows).transpose().triangularView<Eigen::Lower>().solveInPlace(z);
-    Eigen::VectorXd padded = Eigen::VectorXd::Zero(n);
-    padded.head(rows) = z;
-    const Eigen::VectorXd dx = qr.householderQ() * padded;
     x += dx;
     if ((x - start).norm() > max_move) {
       return false;

@@ -15,6 +15,7 @@
 
 #include "tessera/core/corrector.h"
 #include "tessera/core/counted_problem.h"
+#include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
 #include "tessera/methods/common/clip_to_domain.h"
@@ -60,17 +61,6 @@ struct StopRun {
   std::string message;
 };
 
-std::string describe_point(const Eigen::Ref<const Eigen::VectorXd>& x) {
-  std::ostringstream out;
-  out.precision(4);
-  out << "(";
-  const int shown = std::min<int>(static_cast<int>(x.size()), 4);
-  for (int i = 0; i < shown; ++i) {
-    out << (i ? ", " : "") << x(i);
-  }
-  out << (x.size() > shown ? ", …)" : ")");
-  return out.str();
-}
 
 // A gap in the neighbourhood of a frontal vertex: counterclockwise from open edge (x_c, last)
 // to open edge (x_c, first), `angle` radians wide in the tangent plane.

@@ -1,0 +1,14 @@
+// SPDX-License-Identifier: MIT
+// Short text forms of points for messages ("(0.1, 0.2, …)").
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+namespace tessera {
+
+/// "(x0, x1, …)" with at most `shown` coordinates, 4 significant digits, and the count of
+/// the ones left out: points in R^100000 must still give one-line messages.
+std::string describe_point(const Eigen::Ref<const Eigen::VectorXd>& x, int shown = 4);
+
+}  // namespace tessera
