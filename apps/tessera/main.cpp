@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -76,6 +77,7 @@ struct MeshCommand {
   int max_valence = 0;
   double max_start_distance = 0.0;
   std::string order = "gap";
+  std::string obj_coordinates;
 };
 
 tessera::MeshReport make_report(const tessera::TriangleMesh& mesh,
@@ -115,6 +117,24 @@ int run_mesh(const MeshCommand& command) {
     setup.domain.intersect_with(
         tessera::Domain::box(lower, upper, setup.problem->coordinate_names()));
   }
+  // Every option is checked before the computation starts.
+  const std::string extension = std::filesystem::path(command.output).extension().string();
+  TESSERA_CHECK(extension == ".ply" || extension == ".obj" || extension == ".vtk" ||
+                    extension == ".vtu",
+                "-o " << command.output << ": unknown mesh format '" << extension
+                      << "' (use .ply, .obj, .vtk or .vtu)");
+  tessera::MeshFileOptions file_options;
+  if (!command.obj_coordinates.empty()) {
+    const auto values = parse_numbers(command.obj_coordinates, "--obj-coordinates");
+    TESSERA_CHECK(values.size() == 3, "--obj-coordinates needs three coordinate indices, got "
+                                          << values.size());
+    for (int i = 0; i < 3; ++i) {
+      TESSERA_CHECK(values[i] == std::floor(values[i]) && values[i] >= 0 && values[i] < n,
+                    "--obj-coordinates: " << values[i] << " is not a coordinate index in [0, "
+                                          << n - 1 << "]");
+      file_options.obj_coordinates[i] = static_cast<int>(values[i]);
+    }
+  }
   TESSERA_CHECK(command.method == "front",
                 "--method '" << command.method << "' is not available; methods: front");
   tessera::FrontOptions options;
@@ -144,7 +164,6 @@ int run_mesh(const MeshCommand& command) {
     std::fprintf(stderr, "\r%60s\r", "");
   }
   // Whatever happened, keep the work: write the mesh and the summary before reporting.
-  tessera::MeshFileOptions file_options;
   file_options.binary = !command.ascii;
   // PLY keeps the standard names (x, y, z or x0 … x{n−1}) that readers look for; the problem's
   // own names go into a comment, and into the arrays of VTK files.
@@ -251,6 +270,8 @@ int main(int argc, char** argv) {
       ->required();
   mesh_app->add_option("--summary", mesh.summary, "write a JSON summary to this file");
   mesh_app->add_flag("--ascii", mesh.ascii, "write ASCII instead of binary PLY");
+  mesh_app->add_option("--obj-coordinates", mesh.obj_coordinates,
+                       "the three coordinates written to an .obj file, e.g. 0,2,3 (default 0,1,2)");
   mesh_app->add_flag("--quiet,-q", mesh.quiet, "print nothing but errors");
   mesh_app->add_option("--max-vertices", mesh.max_vertices, "stop after this many vertices")
       ->check(CLI::Range(7, 100'000'000));
