@@ -121,7 +121,7 @@ int run_mesh(const MeshCommand& command) {
   const std::string extension = std::filesystem::path(command.output).extension().string();
   TESSERA_CHECK(extension == ".ply" || extension == ".obj" || extension == ".vtk" ||
                     extension == ".vtu",
-                "-o " << command.output << ": unknown mesh format '" << extension
+                "-o " << command.output << ": unknown extension '" << extension
                       << "' (use .ply, .obj, .vtk or .vtu)");
   tessera::MeshFileOptions file_options;
   if (!command.obj_coordinates.empty()) {
