@@ -5,6 +5,7 @@
 #include <Eigen/QR>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
+#include <algorithm>
 #include <random>
 
 #include "tessera/core/error.h"
@@ -94,9 +95,12 @@ class SparseBackend final : public LinearizationBackend {
     // SparseLU is not copyable; a copy refactors lazily from the stored bordered matrix.
     auto copy = std::make_unique<SparseBackend>();
     copy->bordered_ = bordered_;
-    copy->reference_ = reference_;
+    copy->last_tangent_ = last_tangent_;
     if (bordered_.rows() > 0) {
-      copy->lu_.compute(copy->bordered_);
+      copy->lu_.analyzePattern(copy->bordered_);
+      copy->lu_.factorize(copy->bordered_);
+      copy->analyzed_outer_ = analyzed_outer_;
+      copy->analyzed_inner_ = analyzed_inner_;
     }
     return copy;
   }
@@ -105,61 +109,26 @@ class SparseBackend final : public LinearizationBackend {
               const Eigen::MatrixXd* reference, Eigen::MatrixXd& tangent,
               double& reciprocal_condition) override {
     const int n = problem.ambient_dimension();
-    if (reference != nullptr) {
-      reference_ = *reference;
-    } else if (reference_.rows() != n) {
-      // A fixed pseudo-random pair is transversal to ker J with probability one, and the
-      // fixed seed keeps runs deterministic.
-      std::mt19937_64 generator(20261121);
-      std::normal_distribution<double> normal;
-      reference_.resize(n, 2);
-      for (int j = 0; j < 2; ++j) {
-        for (int i = 0; i < n; ++i) {
-          reference_(i, j) = normal(generator);
-        }
-      }
-      reference_.col(0).normalize();
-      reference_.col(1) -= reference_.col(0).dot(reference_.col(1)) * reference_.col(0);
-      reference_.col(1).normalize();
-    }
     problem.sparse_jacobian(x, jacobian_);
-    // Border J with the two reference rows: A = [J; Tᵣᵀ], square n×n.
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(jacobian_.nonZeros() + 2 * static_cast<std::size_t>(n));
-    for (int k = 0; k < jacobian_.outerSize(); ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(jacobian_, k); it; ++it) {
-        if (!std::isfinite(it.value())) {
-          return false;
-        }
-        entries.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+    for (int k = 0; k < jacobian_.nonZeros(); ++k) {
+      if (!std::isfinite(jacobian_.valuePtr()[k])) {
+        return false;
       }
     }
-    for (int j = 0; j < 2; ++j) {
-      for (int i = 0; i < n; ++i) {
-        if (reference_(i, j) != 0.0) {
-          entries.emplace_back(n - 2 + j, i, reference_(i, j));
-        }
-      }
-    }
-    bordered_.resize(n, n);
-    bordered_.setFromTriplets(entries.begin(), entries.end());
-    bordered_.makeCompressed();
-    lu_.compute(bordered_);
-    if (lu_.info() != Eigen::Success) {
+    // Border J with two coordinate rows e_iᵀ, e_jᵀ (a local parametrisation by x_i, x_j, as in
+    // PITCON): A stays as sparse as J and its LU costs O(n) for banded J. (i, j) maximises
+    // |det| of the reference tangent's rows i, j, so A is as well conditioned as the reference
+    // allows. Without any reference (the first factorisation) two dense pseudo-random rows are
+    // used instead: transversal to ker J with probability one, but they fill the LU.
+    const Eigen::MatrixXd* guide = reference != nullptr ? reference
+                                   : last_tangent_.rows() == n ? &last_tangent_
+                                                               : nullptr;
+    if (guide != nullptr && factor_bordered(n, coordinate_border(*guide), tangent)) {
+      last_tangent_ = tangent;
+    } else if (factor_bordered(n, random_border(n), tangent)) {
+      last_tangent_ = tangent;
+    } else {
       return false;
-    }
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-    rhs(n - 2, 0) = 1.0;
-    rhs(n - 1, 1) = 1.0;
-    tangent = lu_.solve(rhs);
-    if (!tangent.allFinite()) {
-      return false;
-    }
-    // Orthonormalise (modified Gram–Schmidt, twice for stability).
-    for (int pass = 0; pass < 2; ++pass) {
-      tangent.col(0).normalize();
-      tangent.col(1) -= tangent.col(0).dot(tangent.col(1)) * tangent.col(0);
-      tangent.col(1).normalize();
     }
     // Cheap conditioning proxy: residual of J·T relative to ‖J‖ (exact kernels give ~1e-16).
     const double jacobian_norm = jacobian_.norm();
@@ -181,10 +150,93 @@ class SparseBackend final : public LinearizationBackend {
   }
 
  private:
+  // Border rows as triplets (row index n−2+j, column, value).
+  using Border = std::vector<Eigen::Triplet<double>>;
+
+  static Border coordinate_border(const Eigen::MatrixXd& T) {
+    const int n = static_cast<int>(T.rows());
+    int i = 0;
+    T.rowwise().squaredNorm().maxCoeff(&i);
+    int j = i == 0 ? 1 : 0;
+    double best = -1.0;
+    for (int k = 0; k < n; ++k) {
+      const double det = std::abs(T(i, 0) * T(k, 1) - T(i, 1) * T(k, 0));
+      if (k != i && det > best) {
+        best = det;
+        j = k;
+      }
+    }
+    return {{n - 2, i, 1.0}, {n - 1, j, 1.0}};
+  }
+
+  static Border random_border(int n) {
+    // A fixed seed keeps runs deterministic.
+    std::mt19937_64 generator(20261121);
+    std::normal_distribution<double> normal;
+    Border border;
+    for (int j = 0; j < 2; ++j) {
+      for (int i = 0; i < n; ++i) {
+        border.emplace_back(n - 2 + j, i, normal(generator));
+      }
+    }
+    return border;
+  }
+
+  // Factors A = [J; border] and computes the orthonormal kernel basis of J; false if A is
+  // singular or the basis is not accurate (the border was nearly tangent-blind).
+  bool factor_bordered(int n, const Border& border, Eigen::MatrixXd& tangent) {
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(jacobian_.nonZeros() + border.size());
+    for (int k = 0; k < jacobian_.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(jacobian_, k); it; ++it) {
+        entries.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+      }
+    }
+    entries.insert(entries.end(), border.begin(), border.end());
+    bordered_.resize(n, n);
+    bordered_.setFromTriplets(entries.begin(), entries.end());
+    bordered_.makeCompressed();
+    // The symbolic analysis (ordering) is redone only when the pattern changes.
+    if (!has_same_pattern(bordered_)) {
+      lu_.analyzePattern(bordered_);
+      analyzed_outer_.assign(bordered_.outerIndexPtr(), bordered_.outerIndexPtr() + n + 1);
+      analyzed_inner_.assign(bordered_.innerIndexPtr(),
+                             bordered_.innerIndexPtr() + bordered_.nonZeros());
+    }
+    lu_.factorize(bordered_);
+    if (lu_.info() != Eigen::Success) {
+      return false;
+    }
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+    rhs(n - 2, 0) = 1.0;
+    rhs(n - 1, 1) = 1.0;
+    tangent = lu_.solve(rhs);
+    if (!tangent.allFinite()) {
+      return false;
+    }
+    // Orthonormalise (modified Gram–Schmidt, twice for stability).
+    for (int pass = 0; pass < 2; ++pass) {
+      tangent.col(0).normalize();
+      tangent.col(1) -= tangent.col(0).dot(tangent.col(1)) * tangent.col(0);
+      tangent.col(1).normalize();
+    }
+    return tangent.allFinite() &&
+           (jacobian_ * tangent).norm() <= 1e-8 * std::max(1.0, jacobian_.norm());
+  }
+
+  bool has_same_pattern(const Eigen::SparseMatrix<double>& A) const {
+    return static_cast<std::size_t>(A.outerSize()) + 1 == analyzed_outer_.size() &&
+           static_cast<std::size_t>(A.nonZeros()) == analyzed_inner_.size() &&
+           std::equal(analyzed_outer_.begin(), analyzed_outer_.end(), A.outerIndexPtr()) &&
+           std::equal(analyzed_inner_.begin(), analyzed_inner_.end(), A.innerIndexPtr());
+  }
+
   Eigen::SparseMatrix<double> jacobian_;
   Eigen::SparseMatrix<double> bordered_;
+  std::vector<int> analyzed_outer_;  // pattern of the last symbolic analysis
+  std::vector<int> analyzed_inner_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
-  Eigen::MatrixXd reference_;
+  Eigen::MatrixXd last_tangent_;  // guides the border of the next factorisation
 };
 
 }  // namespace

@@ -13,36 +13,44 @@ namespace tessera {
 namespace {
 
 // Minimum-norm Gauss–Newton on F(x) = 0 together with the linear constraints of the faces in
-// `faces` (b·(x − p) = 0). Dense QR: the constrained system is used only on the boundary.
+// `faces` (g_f(x) = b_f·(x − p_f) = 0). The step reuses the linearisation of F alone, so it
+// costs what an unconstrained step costs, dense or sparse: write dx = J⁺(−F) + T z with T the
+// tangent basis; then J dx = −F for every z, the faces require (BᵀT) z = −g − Bᵀ J⁺(−F), and
+// since J⁺(−F) ⟂ T z, the minimum-norm dx has the minimum-norm z of that c×2 system.
 bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
                         const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
                         const CorrectorOptions& options) {
   const int n = problem.ambient_dimension();
-  const int m = n - 2;
-  const int rows = m + static_cast<int>(faces.size());
-  if (rows > n) {
-    return false;
+  const int c = static_cast<int>(faces.size());
+  if (c > 2) {
+    return false;  // more faces than the surface has dimensions: no such point in general
   }
   const Eigen::VectorXd start = x;
-  Eigen::VectorXd G(rows);
-  Eigen::MatrixXd J(rows, n);
-  Eigen::VectorXd F(m);
+  Eigen::VectorXd F(n - 2);
+  Eigen::VectorXd dx(n);
+  Linearization linearization;
   for (int k = 0; k < options.max_iterations; ++k) {
     problem.evaluate(x, F);
-    G.head(m) = F;
-    problem.jacobian(x, J.topRows(m));
-    for (std::size_t f = 0; f < faces.size(); ++f) {
+    const Eigen::MatrixXd reference =
+        linearization.is_factored() ? linearization.tangent_basis() : Eigen::MatrixXd();
+    if (!F.allFinite() ||
+        !linearization.factor(problem, x, reference.size() ? &reference : nullptr)) {
+      return false;
+    }
+    linearization.solve_minimum_norm(-F, dx);
+    const Eigen::MatrixXd& T = linearization.tangent_basis();
+    Eigen::MatrixXd BT(c, 2);
+    Eigen::VectorXd rhs(c);
+    for (int f = 0; f < c; ++f) {
       const HalfSpace& h = domain.half_spaces()[faces[f]];
-      G(m + static_cast<int>(f)) = h.normal.dot(x - h.point);
-      J.row(m + static_cast<int>(f)) = h.normal.transpose();
+      BT.row(f) = h.normal.transpose() * T;
+      rhs(f) = -h.normal.dot(x - h.point) - h.normal.dot(dx);
     }
-    if (!G.allFinite() || !J.allFinite()) {
-      return false;
+    Eigen::VectorXd z(2);
+    if (!solve_minimum_norm_dense(BT, rhs, z)) {
+      return false;  // a face tangent to M: the constrained point is not isolated
     }
-    Eigen::VectorXd dx(n);
-    if (!solve_minimum_norm_dense(J, -G, dx)) {
-      return false;
-    }
+    dx += T * z;
     x += dx;
     if ((x - start).norm() > max_move) {
       return false;

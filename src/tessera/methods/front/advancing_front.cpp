@@ -106,6 +106,8 @@ class FrontBuilder {
   void refresh_priority(int v);
   /// The smallest gap angle at v, in v's own tangent plane (cached per vertex).
   double smallest_gap(int v);
+  /// The cached tangent basis of v, or else of one of its neighbours; null if none is known.
+  const Eigen::MatrixXd* cached_tangent_near(int v) const;
   /// U oriented so that v's triangles turn counterclockwise.
   Eigen::MatrixXd oriented_frame(int v, const Eigen::MatrixXd& basis,
                                  const std::vector<FanChain>& chains) const;
@@ -163,6 +165,21 @@ void FrontBuilder::refresh_priority(int v) {
   by_gap_.emplace(gap_key_[v], v);
 }
 
+const Eigen::MatrixXd* FrontBuilder::cached_tangent_near(int v) const {
+  const auto known = [&](int u) {
+    return static_cast<std::size_t>(u) < tangent_cache_.size() && tangent_cache_[u].size() > 0;
+  };
+  if (known(v)) {
+    return &tangent_cache_[v];
+  }
+  for (int u : state_.ring(v, 1)) {
+    if (known(u)) {
+      return &tangent_cache_[u];
+    }
+  }
+  return nullptr;
+}
+
 Eigen::MatrixXd FrontBuilder::oriented_frame(int v, const Eigen::MatrixXd& basis,
                                              const std::vector<FanChain>& chains) const {
   Eigen::MatrixXd U = basis;
@@ -186,7 +203,7 @@ double FrontBuilder::smallest_gap(int v) {
   }
   if (tangent_cache_[v].size() == 0) {
     Linearization frame;
-    if (!frame.factor(problem_, state_.point(v))) {
+    if (!frame.factor(problem_, state_.point(v), cached_tangent_near(v))) {
       return -1.0;  // process() will report the singular point
     }
     tangent_cache_[v] = frame.tangent_basis();
@@ -341,7 +358,9 @@ Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
 
 void FrontBuilder::process(int center) {
   Linearization frame;
-  if (!frame.factor(problem_, state_.point(center))) {
+  // A nearby tangent basis lets a sparse factorisation border J with coordinate rows.
+  const Eigen::MatrixXd* reference = cached_tangent_near(center);
+  if (!frame.factor(problem_, state_.point(center), reference)) {
     std::ostringstream message;
     message << "the Jacobian is rank deficient at frontal vertex " << center << " "
             << describe_point(state_.point(center)) << " (a singular point of M)";
