@@ -113,7 +113,25 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k,
   {
     TriangleMesh work = mesh;
     auto work_faces = on_faces;
-    // 1. Snap vertices near the face onto M ∩ face.
+    // 1. Snap vertices near the face onto M ∩ face. Where that point is a corner of M ∩ S
+    //    (two faces meet) and a vertex already sits there, the edge to it is collapsed
+    //    instead: two vertices a hair apart at a corner would make needles.
+    std::vector<std::vector<int>> vertex_triangles(vertex_count);
+    for (int t = 0; t < work.triangle_count(); ++t) {
+      for (int v : work.triangle(t)) {
+        vertex_triangles[v].push_back(t);
+      }
+    }
+    const auto are_adjacent = [&](int a, int b) {
+      for (int t : vertex_triangles[a]) {
+        const Triangle& tri = work.triangle(t);
+        if (tri[0] == b || tri[1] == b || tri[2] == b) {
+          return true;
+        }
+      }
+      return false;
+    };
+    std::vector<int> collapse_into(vertex_count, -1);
     for (int v = 0; v < vertex_count; ++v) {
       if (d[v] == 0.0 || std::abs(d[v]) >= options.snap_distance) {
         continue;
@@ -124,15 +142,34 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k,
       Eigen::VectorXd x = work.point(v);
       const bool is_corner =
           static_cast<int>(faces.size()) + problem.equation_count() == problem.ambient_dimension();
-      if (project_onto_faces(problem, domain, faces, x, 3 * options.snap_distance,
-                             options.corrector) &&
-          domain.contains(x, 1e-9) && !(is_corner && find_corner(work, work_faces, faces, x) >= 0)) {
-        work.mutable_point(v) = x;
-        work_faces[v] = faces;
-        d[v] = 0.0;
-        ++summary.snapped_vertices;
+      if (!project_onto_faces(problem, domain, faces, x, 3 * options.snap_distance,
+                              options.corrector) ||
+          !domain.contains(x, 1e-9)) {
+        continue;
+      }
+      const int occupant = is_corner ? find_corner(work, work_faces, faces, x) : -1;
+      if (occupant >= 0) {
+        if (are_adjacent(v, occupant) && collapse_into[occupant] < 0) {
+          collapse_into[v] = occupant;
+          d[v] = 0.0;
+        }
+        continue;
+      }
+      work.mutable_point(v) = x;
+      work_faces[v] = faces;
+      d[v] = 0.0;
+      ++summary.snapped_vertices;
+    }
+    std::vector<Triangle> collapsed;
+    for (Triangle t : work.triangles()) {
+      for (int& v : t) {
+        v = collapse_into[v] >= 0 ? collapse_into[v] : v;
+      }
+      if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) {
+        collapsed.push_back(t);
       }
     }
+    work.set_triangles(std::move(collapsed));
     // 2. Cut points on the edges that still cross the face.
     std::map<std::pair<int, int>, int> cut_vertex;
     for (const Triangle& t : work.triangles()) {

@@ -124,6 +124,8 @@ class FrontBuilder {
   std::set<std::pair<double, int>> by_gap_;  // (gap angle, vertex), smallest first
   std::vector<double> gap_key_;              // key of each vertex in by_gap_, NaN if absent
   std::vector<Eigen::MatrixXd> tangent_cache_;  // n×2 tangent basis per vertex, empty if unknown
+  Linearization center_frame_;  // at the vertex being processed
+  Linearization gap_frame_;     // for the gap angles of the priority order
 };
 
 std::optional<int> FrontBuilder::next_frontal() {
@@ -202,7 +204,7 @@ double FrontBuilder::smallest_gap(int v) {
     tangent_cache_.resize(v + 1);
   }
   if (tangent_cache_[v].size() == 0) {
-    Linearization frame;
+    Linearization& frame = gap_frame_;
     if (!frame.factor(problem_, state_.point(v), cached_tangent_near(v))) {
       return -1.0;  // process() will report the singular point
     }
@@ -357,7 +359,8 @@ Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
 }
 
 void FrontBuilder::process(int center) {
-  Linearization frame;
+  // Reused between vertices: a sparse LU keeps its symbolic analysis while the pattern holds.
+  Linearization& frame = center_frame_;
   // A nearby tangent basis lets a sparse factorisation border J with coordinate rows.
   const Eigen::MatrixXd* reference = cached_tangent_near(center);
   if (!frame.factor(problem_, state_.point(center), reference)) {
