@@ -197,6 +197,27 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k,
           summary.message = message.str();
           return false;
         }
+        // A cut point that lands next to an earlier face belongs at the corner where the two
+        // faces meet (left where it is, it would make a needle with that corner).
+        if (static_cast<int>(faces.size()) + problem.equation_count() < problem.ambient_dimension()) {
+          for (int j = 0; j < k; ++j) {
+            if (std::binary_search(faces.begin(), faces.end(), j) ||
+                std::abs(domain.signed_distance(j, x)) >= options.snap_distance) {
+              continue;
+            }
+            std::vector<int> corner_faces = faces;
+            corner_faces.push_back(j);
+            std::sort(corner_faces.begin(), corner_faces.end());
+            Eigen::VectorXd corner = x;
+            if (project_onto_faces(problem, domain, corner_faces, corner,
+                                   3 * options.snap_distance, options.corrector) &&
+                domain.contains(corner, 1e-9)) {
+              x = corner;
+              faces = corner_faces;
+              break;
+            }
+          }
+        }
         // Where the face meets an earlier face, M ∩ both is a point (a corner of the clipped
         // surface): reuse the corner vertex if one is already there, else the corner doubles.
         const int existing =
