@@ -123,6 +123,15 @@ int run_mesh(const MeshCommand& command) {
                     extension == ".vtu",
                 "-o " << command.output << ": unknown extension '" << extension
                       << "' (use .ply, .obj, .vtk or .vtu)");
+  for (const std::string& path : {command.output, command.summary}) {
+    if (path.empty()) {
+      continue;
+    }
+    const auto parent = std::filesystem::path(path).parent_path();
+    TESSERA_CHECK(parent.empty() || std::filesystem::is_directory(parent),
+                  "cannot write '" << path << "': the folder '" << parent.string()
+                                   << "' does not exist");
+  }
   tessera::MeshFileOptions file_options;
   if (!command.obj_coordinates.empty()) {
     const auto values = parse_numbers(command.obj_coordinates, "--obj-coordinates");
