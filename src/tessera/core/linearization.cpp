@@ -118,12 +118,17 @@ class SparseBackend final : public LinearizationBackend {
     // Border J with two coordinate rows e_iᵀ, e_jᵀ (a local parametrisation by x_i, x_j, as in
     // PITCON): A stays as sparse as J and its LU costs O(n) for banded J. (i, j) maximises
     // |det| of the reference tangent's rows i, j, so A is as well conditioned as the reference
-    // allows. Without any reference (the first factorisation) two dense pseudo-random rows are
-    // used instead: transversal to ker J with probability one, but they fill the LU.
+    // allows. The last resort is two dense pseudo-random rows: transversal to ker J with
+    // probability one, but they fill the LU (O(n²); bench/RESULTS.md).
     const Eigen::MatrixXd* guide = reference != nullptr ? reference
                                    : last_tangent_.rows() == n ? &last_tangent_
                                                                : nullptr;
+    // Without a guide, try the last two coordinates first: in parameter-dependent problems
+    // x = (u, λ, μ) the two parameters usually parametrise M locally (away from folds).
+    const Border last_two{{n - 2, n - 2, 1.0}, {n - 1, n - 1, 1.0}};
     if (guide != nullptr && factor_bordered(n, coordinate_border(*guide), tangent)) {
+      last_tangent_ = tangent;
+    } else if (guide == nullptr && factor_bordered(n, last_two, tangent)) {
       last_tangent_ = tangent;
     } else if (factor_bordered(n, random_border(n), tangent)) {
       last_tangent_ = tangent;
