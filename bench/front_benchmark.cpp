@@ -51,8 +51,10 @@ void run_front(benchmark::State& state, const std::string& problem_name) {
   state.counters["triangles"] = summary.triangle_count;
   state.counters["vertices_per_second"] = benchmark::Counter(
       vertices * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
-  state.counters["F_evals_per_vertex"] = static_cast<double>(summary.function_evaluations) / vertices;
-  state.counters["DF_evals_per_vertex"] = static_cast<double>(summary.jacobian_evaluations) / vertices;
+  state.counters["F_evals_per_vertex"] =
+      static_cast<double>(summary.function_evaluations) / vertices;
+  state.counters["DF_evals_per_vertex"] =
+      static_cast<double>(summary.jacobian_evaluations) / vertices;
   state.counters["step_reductions"] = summary.step_reductions;
   state.counters["bytes_per_vertex"] =
       (8.0 * n * vertices + 12.0 * summary.triangle_count) / vertices;

@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
 
     const tessera::CoveringSummary& summary = result.summary;
     const double vertices = summary.vertex_count;
-    const double mesh_bytes = 8.0 * setup.problem->ambient_dimension() * vertices +
-                              12.0 * summary.triangle_count;
+    const double mesh_bytes =
+        8.0 * setup.problem->ambient_dimension() * vertices + 12.0 * summary.triangle_count;
     std::printf("problem                 %s\n", problem_name.c_str());
     std::printf("step                    %g\n", step);
     std::printf("termination             %s%s%s\n", tessera::to_string(summary.termination),

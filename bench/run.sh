@@ -9,7 +9,8 @@
 # JSON file's "context"; the CV column (stddev/mean of the repetitions) shows how noisy a row was.
 #
 #     bench/run.sh                 everything (about two minutes on 2 cores)
-#     bench/run.sh --quick         one repetition, shorter minimum times (a smoke test)
+#     bench/run.sh --quick         one repetition, shorter minimum times (a smoke test; it
+#                                  overwrites bench/results too)
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -88,10 +89,11 @@ rm -rf "$corrector_parts"
 
 # Peak memory: one fresh process per (problem, step), since VmHWM never decreases.
 memory_runs=()
-for problem in sphere sphere_cut; do
-  for step in 0.05 0.025 0.0125; do
-    memory_runs+=("$("$build/bench/tessera_front_memory" "$problem" "$step")")
-  done
+# h = 0.00625 (about 4·10⁵ vertices) also shows whether the cost per vertex grows with the mesh.
+for run in "sphere 0.05" "sphere 0.025" "sphere 0.0125" "sphere 0.00625" \
+  "sphere_cut 0.05" "sphere_cut 0.025" "sphere_cut 0.0125"; do
+  read -r problem step <<<"$run"
+  memory_runs+=("$("$build/bench/tessera_front_memory" "$problem" "$step")")
 done
 printf '%s\n---\n' "${memory_runs[@]}" | python3 -c '
 import json, sys

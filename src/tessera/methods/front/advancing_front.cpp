@@ -106,6 +106,13 @@ class FrontBuilder {
   void refresh_priority(int v);
   /// The smallest gap angle at v, in v's own tangent plane (cached per vertex).
   double smallest_gap(int v);
+  /// Frees v's cached tangent basis (2n doubles) once v is finished: the cache then holds
+  /// only the front, not the whole mesh.
+  void release_tangent(int v) {
+    if (static_cast<std::size_t>(v) < tangent_cache_.size()) {
+      tangent_cache_[v] = Eigen::MatrixXd();
+    }
+  }
   /// The cached tangent basis of v, or else of one of its neighbours; null if none is known.
   const Eigen::MatrixXd* cached_tangent_near(int v) const;
   /// U oriented so that v's triangles turn counterclockwise.
@@ -375,6 +382,7 @@ void FrontBuilder::process(int center) {
     const auto chains = state_.fan_chains(center);
     if (chains.size() == 1 && chains[0].is_closed) {
       state_.set_type(center, VertexType::Interior);
+      release_tangent(center);
       return;
     }
     for (const auto& chain : chains) {
