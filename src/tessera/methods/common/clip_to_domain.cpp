@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "tessera/core/linearization.h"
+#include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
 
 namespace tessera {
@@ -308,6 +311,65 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k,
   return true;
 }
 
+// Collapses boundary edges shorter than `min_length`: the vertex on fewer faces moves into the
+// other (a corner or face vertex stays where it is, on M ∩ ∂S). A collapse is kept only if it
+// raises the smallest angle among the triangles around the moved vertex and the result is valid.
+int collapse_short_boundary_edges(TriangleMesh& mesh, const FaceSets& on_faces,
+                                  double min_length) {
+  int collapsed = 0;
+  bool changed = true;
+  std::set<std::pair<int, int>> rejected;  // each edge is judged once: O(N) per collapse
+  while (changed) {
+    changed = false;
+    const MeshTopology topology(mesh);
+    for (int e : topology.boundary_edges()) {
+      auto [a, b] = topology.edge(e);
+      if ((mesh.point(a) - mesh.point(b)).norm() >= min_length ||
+          !rejected.insert({a, b}).second) {
+        continue;
+      }
+      if (on_faces[b].size() > on_faces[a].size()) {
+        std::swap(a, b);  // keep a, the vertex on more faces
+      }
+      std::vector<Triangle> triangles;
+      double worst_before = std::numbers::pi;
+      double worst_after = std::numbers::pi;
+      for (Triangle t : mesh.triangles()) {
+        const bool has_a = t[0] == a || t[1] == a || t[2] == a;
+        const bool has_b = t[0] == b || t[1] == b || t[2] == b;
+        if (has_b) {
+          worst_before = std::min(worst_before, min_angle(mesh, t[0], t[1], t[2]));
+        }
+        if (has_a && has_b) {
+          continue;  // the triangle on the collapsed edge disappears
+        }
+        if (has_b) {
+          for (int& v : t) {
+            v = v == b ? a : v;
+          }
+          worst_after = std::min(worst_after, min_angle(mesh, t[0], t[1], t[2]));
+        }
+        triangles.push_back(t);
+      }
+      if (worst_after <= worst_before) {
+        continue;  // only collapses that improve the worst angle around b
+      }
+      // The moved-away vertex is left unreferenced until the final compaction; every other
+      // defect rejects the collapse.
+      const MeshValidation validation = validate(TriangleMesh(mesh.points(), triangles));
+      if (validation.defects.size() !=
+          static_cast<std::size_t>(validation.unreferenced_vertex_count > 0 ? 1 : 0)) {
+        continue;
+      }
+      mesh.set_triangles(std::move(triangles));
+      ++collapsed;
+      changed = true;
+      break;  // the topology changed: rebuild it
+    }
+  }
+  return collapsed;
+}
+
 }  // namespace
 
 ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
@@ -353,6 +415,24 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
                         "(try a smaller step)";
       return summary;
     }
+  }
+  if (options.min_boundary_edge > 0 && summary.half_spaces_crossed > 0) {
+    summary.collapsed_edges =
+        collapse_short_boundary_edges(mesh, on_faces, options.min_boundary_edge);
+    // Collapsing leaves the moved-away vertices unused: drop them.
+    std::vector<int> new_index(mesh.vertex_count(), -1);
+    TriangleMesh compact(mesh.ambient_dimension());
+    std::vector<Triangle> triangles = mesh.triangles();
+    for (Triangle& t : triangles) {
+      for (int& v : t) {
+        if (new_index[v] < 0) {
+          new_index[v] = compact.add_vertex(mesh.point(v));
+        }
+        v = new_index[v];
+      }
+    }
+    compact.set_triangles(std::move(triangles));
+    mesh = std::move(compact);
   }
   return summary;
 }

@@ -15,6 +15,9 @@ struct ClipOptions {
   /// Vertices closer than this to a face are moved onto M ∩ face before cutting; cut points
   /// then stay at least this far from every kept vertex, so no needle triangles appear.
   double snap_distance = 0.0;
+  /// Boundary edges shorter than this are collapsed after clipping (where two faces meet, a
+  /// cut can still leave a vertex a hair from a corner); 0 disables.
+  double min_boundary_edge = 0.0;
   CorrectorOptions corrector;
 };
 
@@ -22,6 +25,7 @@ struct ClipSummary {
   int half_spaces_crossed = 0;  ///< faces the mesh crossed and was clipped to
   int snapped_vertices = 0;
   int cut_edges = 0;
+  int collapsed_edges = 0;  ///< short boundary edges collapsed after clipping
   std::string message;  ///< non-empty if a face could not be clipped (mesh left unclipped there)
 };
 

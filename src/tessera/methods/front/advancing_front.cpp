@@ -644,6 +644,7 @@ CoveringResult triangulate_by_front(const ImplicitProblem& user_problem,
   if (!domain.is_unbounded()) {
     ClipOptions clip;
     clip.snap_distance = options.boundary_snap_fraction * result.summary.step;
+    clip.min_boundary_edge = 0.2 * result.summary.step;
     const ClipSummary clipped = clip_to_domain(problem, domain, result.mesh, clip);
     result.summary.clipped_half_spaces = clipped.half_spaces_crossed;
     if (!clipped.message.empty() && result.summary.is_complete()) {
