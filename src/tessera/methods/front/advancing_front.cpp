@@ -586,7 +586,7 @@ void FrontBuilder::add_closing_triangle(int center, int last, int first,
   state_.add_triangle(center, last, first);
 }
 
-bool FrontBuilder::try_merge(int center, int first, int last, const Linearization& frame) {
+bool FrontBuilder::try_merge(int /*center*/, int first, int last, const Linearization& frame) {
   if (first == last || state_.are_adjacent(first, last) ||
       !state_.can_identify(first, last)) {
     return false;
