@@ -116,6 +116,9 @@ int run_mesh(const MeshCommand& command) {
     }
     setup.domain.intersect_with(
         tessera::Domain::box(lower, upper, setup.problem->coordinate_names()));
+    // The catalogue's topology and area describe its own domain, not the user's box.
+    setup.expected_euler_characteristic.reset();
+    setup.exact_area.reset();
   }
   // Every option is checked before the computation starts.
   const std::string extension = std::filesystem::path(command.output).extension().string();
