@@ -2,7 +2,7 @@
 # Installs the Debian packages tessera needs, only those that are missing.
 set -euo pipefail
 packages=(cmake ninja-build g++ libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev
-          libbenchmark-dev ccache)
+          libbenchmark-dev ccache libcgal-dev)
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||
