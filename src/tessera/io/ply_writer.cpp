@@ -83,14 +83,7 @@ void write_ascii_data(io_detail::OutputFile& file, const TriangleMesh& mesh,
     }
     file.character('\n');
   }
-  for (const auto& triangle : mesh.triangles()) {
-    file.character('3');
-    for (const int v : triangle) {
-      file.character(' ');
-      file.integer(v);
-    }
-    file.character('\n');
-  }
+  write_triangle_lines(file, mesh.triangles());
 }
 
 }  // namespace

@@ -130,14 +130,7 @@ void write_vtk(const std::string& path, const TriangleMesh& mesh, const VtkOptio
   file.character(' ');
   file.integer(4 * static_cast<std::int64_t>(mesh.triangle_count()));
   file.character('\n');
-  for (const auto& triangle : mesh.triangles()) {
-    file.character('3');
-    for (const int v : triangle) {
-      file.character(' ');
-      file.integer(v);
-    }
-    file.character('\n');
-  }
+  write_triangle_lines(file, mesh.triangles());
   file.text("POINT_DATA ");
   file.integer(mesh.vertex_count());
   file.character('\n');

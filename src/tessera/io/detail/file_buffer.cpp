@@ -106,6 +106,17 @@ void OutputFile::close() {
   }
 }
 
+void write_triangle_lines(OutputFile& file, const std::vector<Triangle>& triangles) {
+  for (const auto& triangle : triangles) {
+    file.character('3');
+    for (const int v : triangle) {
+      file.character(' ');
+      file.integer(v);
+    }
+    file.character('\n');
+  }
+}
+
 bool parse_real(std::string_view token, double& value) {
   if (!token.empty() && token.front() == '+') {
     token.remove_prefix(1);

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "tessera/geometry/triangle_mesh.h"
+
 namespace tessera::io_detail {
 
 /// `value` with its bytes in reverse order (to convert between little and big endian).
@@ -101,6 +103,9 @@ bool parse_real(std::string_view token, double& value);
 bool parse_integer(std::string_view token, std::int64_t& value);
 
 /// Whitespace-separated tokens of a text, with the line number of each token.
+/// Writes one line "3 a b c" per triangle: the face list of ASCII PLY and of legacy VTK.
+void write_triangle_lines(OutputFile& file, const std::vector<Triangle>& triangles);
+
 class TextCursor {
  public:
   TextCursor(std::string_view text, std::size_t first_line) : text_(text), line_(first_line) {}
