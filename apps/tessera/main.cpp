@@ -10,6 +10,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "ddt_command.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
@@ -302,6 +303,9 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("problems", "list the built-in catalogue");
 
+  tessera::app::DdtCommand ddt;
+  tessera::app::add_ddt_command(app, ddt);
+
   std::string check_mesh;
   std::string check_problem;
   bool check_json = false;
@@ -323,6 +327,9 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("problems")) {
       return run_problems();
+    }
+    if (app.got_subcommand("ddt")) {
+      return tessera::app::run_ddt(ddt);
     }
     return run_check(check_mesh, check_problem, check_json);
   } catch (const tessera::InvalidArgument& e) {

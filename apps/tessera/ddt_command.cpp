@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: MIT
+#include "ddt_command.h"
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "tessera/core/error.h"
+#include "tessera/io/mesh_io.h"
+#include "tessera/io/scattered_data_csv.h"
+#include "tessera/methods/planar/delaunay.h"
+#include "tessera/methods/planar/equidistribution_criterion.h"
+#include "tessera/methods/planar/franke_functions.h"
+#include "tessera/methods/planar/interpolation_error.h"
+#include "tessera/methods/planar/local_optimisation.h"
+
+namespace tessera::app {
+namespace {
+
+CostOrdering parse_norm(const std::string& norm) {
+  if (norm == "l1") {
+    return CostOrdering::L1;
+  }
+  if (norm == "l2") {
+    return CostOrdering::L2;
+  }
+  return CostOrdering::Lexicographic;
+}
+
+// One row of the error table: the triangulation after LOP with `criterion_name`.
+struct Row {
+  std::string label;
+  InterpolationError error;
+  std::string swaps;
+};
+
+Row optimise_and_measure(const PlanarTriangulation& start, const std::string& criterion_name,
+                         CostOrdering ordering, SwapTest test,
+                         const std::optional<FrankeFunction>& function, int grid,
+                         PlanarTriangulation* result) {
+  PlanarTriangulation triangulation = start;
+  LocalOptimisationOptions options;
+  options.ordering = ordering;
+  options.test = test;
+  LocalOptimisationSummary summary;
+  if (criterion_name == "equid") {
+    TESSERA_CHECK(function.has_value(),
+                  "--criterion equid needs --function: it uses the function's second derivatives");
+    const FrankeFunction f = *function;
+    const EquidistributionCriterion equid(
+        [f](double x, double y) { return hessian(f, x, y); });
+    summary = optimise_locally(triangulation, equid, options);
+  } else {
+    const auto kind = parse_criterion(criterion_name);
+    TESSERA_CHECK(kind.has_value(), "--criterion '" << criterion_name
+                                                    << "' is unknown; criteria: delaunay, mwt, "
+                                                       "maxmin3d, mwt3d, abn, jnd, pf, pd, equid");
+    options.criterion = *kind;
+    summary = optimise_locally(triangulation, options);
+  }
+  Row row;
+  row.label = summary.criterion.empty() ? criterion_name : summary.criterion;
+  row.swaps = summary.brief_report();
+  if (function) {
+    const FrankeFunction f = *function;
+    InterpolationErrorOptions error_options;
+    error_options.grid_size = grid;
+    row.error = interpolation_error(
+        triangulation, [f](double x, double y) { return evaluate(f, x, y); }, error_options);
+  }
+  if (result != nullptr) {
+    *result = std::move(triangulation);
+  }
+  return row;
+}
+
+void print_row(const Row& row, bool has_function) {
+  if (has_function) {
+    std::printf("%-16s mean %.5f  rms %.5f  max %.5f   (%s)\n", row.label.c_str(), row.error.mean,
+                row.error.rms, row.error.max, row.swaps.c_str());
+  } else {
+    std::printf("%-16s (%s)\n", row.label.c_str(), row.swaps.c_str());
+  }
+}
+
+}  // namespace
+
+CLI::App* add_ddt_command(CLI::App& app, DdtCommand& command) {
+  auto* ddt = app.add_subcommand(
+      "ddt", "data-dependent triangulation of scattered data in the plane (Malcolm)");
+  ddt->add_option("points", command.points, "CSV file with columns x, y[, value]")->required();
+  ddt->add_option("--function", command.function,
+                  "sample Franke's F1, F2, F7, F8 or F9 at the points and measure the "
+                  "interpolation error against it");
+  ddt->add_option("--value-column", command.value_column, "take the values from this column");
+  ddt->add_option("--criterion", command.criterion,
+                  "delaunay, mwt, maxmin3d, mwt3d, abn, jnd, pf, pd or equid (default abn)");
+  ddt->add_option("--norm", command.norm, "cost-vector ordering: l1, l2 (default) or lex")
+      ->check(CLI::IsMember({"l1", "l2", "lex"}));
+  ddt->add_option("--test", command.test, "swap test: local or global (default)")
+      ->check(CLI::IsMember({"local", "global"}));
+  ddt->add_option("-o,--output", command.output,
+                  "write the triangulation as PLY (value as z and as property 'value')");
+  ddt->add_option("--grid", command.grid, "error grid size (default 33: 33×33 on [0,1]²)")
+      ->check(CLI::Range(2, 10000));
+  ddt->add_flag("--all-criteria", command.all_criteria,
+                "print the error of every criterion (the report's table rows)");
+  return ddt;
+}
+
+int run_ddt(const DdtCommand& command) {
+  TESSERA_CHECK(command.function.empty() || command.value_column.empty(),
+                "give either --function or --value-column, not both");
+  std::optional<FrankeFunction> function;
+  if (!command.function.empty()) {
+    function = parse_franke_function(command.function);
+    TESSERA_CHECK(function.has_value(), "--function '" << command.function
+                                                       << "' is unknown; functions: F1, F2, "
+                                                          "F7, F8, F9");
+  }
+  ScatteredDataCsvOptions csv;
+  csv.value_column = command.value_column;
+  const ScatteredData data = read_scattered_data_csv(command.points, csv);
+  Eigen::VectorXd values;
+  if (function) {
+    values = sample(*function, data.points);
+  } else {
+    TESSERA_CHECK(data.has_values(), command.points
+                                         << ": no value column; give --function F1|F2|F7|F8|F9 "
+                                            "or --value-column NAME");
+    values = data.values;
+  }
+  const PlanarTriangulation start = delaunay_triangulation(data.points, values);
+  const SwapTest test = command.test == "local" ? SwapTest::Local : SwapTest::Global;
+  if (command.all_criteria) {
+    std::printf("%d points, %s test; mean, RMS and max of |f_T − f| on a %d×%d grid of [0,1]²\n",
+                static_cast<int>(data.points.cols()), command.test.c_str(), command.grid,
+                command.grid);
+    const struct {
+      const char* criterion;
+      CostOrdering ordering;
+    } rows[] = {{"delaunay", CostOrdering::L2}, {"mwt3d", CostOrdering::L2},
+                {"abn", CostOrdering::L1},      {"abn", CostOrdering::L2},
+                {"jnd", CostOrdering::L1},      {"jnd", CostOrdering::L2},
+                {"pf", CostOrdering::L1},       {"pf", CostOrdering::L2},
+                {"pd", CostOrdering::L1},       {"pd", CostOrdering::L2},
+                {"equid", CostOrdering::L2}};
+    for (const auto& row : rows) {
+      if (std::string(row.criterion) == "equid" && !function) {
+        continue;
+      }
+      print_row(optimise_and_measure(start, row.criterion, row.ordering, test, function,
+                                     command.grid, nullptr),
+                function.has_value());
+    }
+    return 0;
+  }
+  PlanarTriangulation result;
+  const Row row = optimise_and_measure(start, command.criterion, parse_norm(command.norm), test,
+                                       function, command.grid, &result);
+  print_row(row, function.has_value());
+  if (function) {
+    std::printf("grid points inside the hull %d, outside (left out) %d\n",
+                row.error.points_inside, row.error.points_outside);
+  }
+  if (!command.output.empty()) {
+    MeshFileOptions options;
+    options.vertex_scalars.push_back(
+        {"value", std::vector<double>(result.values().data(),
+                                      result.values().data() + result.values().size())});
+    write_mesh(command.output, result.to_mesh(), options);
+    std::cout << "wrote " << command.output << "\n";
+  }
+  return 0;
+}
+
+}  // namespace tessera::app
