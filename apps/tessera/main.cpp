@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "ddt_command.h"
+#include "improve_command.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
@@ -305,6 +306,8 @@ int main(int argc, char** argv) {
 
   tessera::app::DdtCommand ddt;
   tessera::app::add_ddt_command(app, ddt);
+  tessera::app::ImproveCommand improve;
+  tessera::app::add_improve_command(app, improve);
 
   std::string check_mesh;
   std::string check_problem;
@@ -330,6 +333,9 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("ddt")) {
       return tessera::app::run_ddt(ddt);
+    }
+    if (app.got_subcommand("improve")) {
+      return tessera::app::run_improve(improve);
     }
     return run_check(check_mesh, check_problem, check_json);
   } catch (const tessera::InvalidArgument& e) {

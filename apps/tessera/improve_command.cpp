@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: MIT
+#include "improve_command.h"
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "tessera/core/error.h"
+#include "tessera/geometry/mesh_quality.h"
+#include "tessera/geometry/mesh_validation.h"
+#include "tessera/io/mesh_io.h"
+#include "tessera/methods/improvement/edge_swap.h"
+#include "tessera/methods/improvement/tangential_smoothing.h"
+#include "tessera/problems/catalogue.h"
+
+namespace tessera::app {
+namespace {
+
+nlohmann::json to_json(const MeshQuality& quality, const MeshValidation& validation) {
+  return {{"min_angle_degrees", quality.min_angle_degrees},
+          {"max_angle_degrees", quality.max_angle_degrees},
+          {"fraction_angles_below_30", quality.fraction_angles_below_30},
+          {"max_centroid_distance", quality.centroid_distance.max},
+          {"max_midpoint_distance", quality.midpoint_distance.max},
+          {"failed_projections", quality.failed_projections},
+          {"area", quality.area},
+          {"is_valid", validation.is_valid()},
+          {"euler_characteristic", validation.euler_characteristic},
+          {"boundary_edge_count", validation.boundary_edge_count}};
+}
+
+void print_line(const char* label, const MeshQuality& quality, const MeshValidation& validation) {
+  std::printf(
+      "%-7s min angle %.2f°, %.3f%% of angles below 30°, max distance to M: centroids %.4g, "
+      "edge midpoints %.4g; chi %d, %s\n",
+      label, quality.min_angle_degrees, 100.0 * quality.fraction_angles_below_30,
+      quality.centroid_distance.max, quality.midpoint_distance.max, validation.euler_characteristic,
+      validation.is_valid() ? "valid" : "NOT valid");
+}
+
+}  // namespace
+
+CLI::App* add_improve_command(CLI::App& app, ImproveCommand& command) {
+  auto* improve = app.add_subcommand(
+      "improve", "improve a mesh of M by edge swaps judged in the tangent plane of M");
+  improve->add_option("mesh", command.mesh, "mesh file (.ply or .obj)")->required();
+  improve->add_option("--problem,-p", command.problem, "catalogue name or problem file")
+      ->required();
+  improve
+      ->add_option("--criterion", command.criterion,
+                   "angle (max-min angle, Delaunay-type; default), normal (angle between "
+                   "adjacent triangles' planes) or distance (distance to M of the edge midpoint)")
+      ->check(CLI::IsMember({"angle", "normal", "distance"}));
+  improve->add_option("-o,--output", command.output, "improved mesh: .ply, .obj, .vtk or .vtu")
+      ->required();
+  improve->add_option("--summary", command.summary, "write the before/after numbers as JSON");
+  improve->add_option("--max-sweeps", command.max_sweeps, "most sweeps over the edges (default 50)")
+      ->check(CLI::Range(1, 100000));
+  improve
+      ->add_option("--smooth", command.smooth,
+                   "passes of tangential smoothing after the swaps, followed by one more round "
+                   "of swaps (default 0: vertices do not move)")
+      ->check(CLI::Range(0, 1000));
+  return improve;
+}
+
+int run_improve(const ImproveCommand& command) {
+  const ProblemSetup setup = resolve_problem(command.problem);
+  TriangleMesh mesh = read_mesh(command.mesh);
+  TESSERA_CHECK(mesh.ambient_dimension() == setup.problem->ambient_dimension(),
+                command.mesh << " has points in R^" << mesh.ambient_dimension() << " but problem '"
+                             << command.problem << "' lives in R^"
+                             << setup.problem->ambient_dimension());
+  ImprovementOptions options;
+  options.max_sweeps = command.max_sweeps;
+  options.criterion = command.criterion == "normal"     ? SwapCriterion::NormalAngle
+                      : command.criterion == "distance" ? SwapCriterion::MidpointDistance
+                                                        : SwapCriterion::MaxMinAngle;
+  const MeshValidation validation_before = validate(mesh);
+  const MeshQuality quality_before = measure_quality(mesh, *setup.problem);
+  ImprovementSummary summary = improve_by_edge_swaps(mesh, *setup.problem, options);
+  SmoothingSummary smoothing;
+  if (command.smooth > 0) {
+    SmoothingOptions smoothing_options;
+    smoothing_options.iterations = command.smooth;
+    smoothing = smooth_tangentially(mesh, *setup.problem, smoothing_options);
+    const ImprovementSummary again = improve_by_edge_swaps(mesh, *setup.problem, options);
+    summary.swaps += again.swaps;
+    summary.sweeps += again.sweeps;
+    summary.converged = again.converged;
+  }
+  const MeshValidation validation_after = validate(mesh);
+  const MeshQuality quality_after = measure_quality(mesh, *setup.problem);
+
+  MeshFileOptions file_options;
+  file_options.comments = {"tessera improve " + command.mesh + " --problem " + command.problem +
+                           " --criterion " + command.criterion};
+  write_mesh(command.output, mesh, file_options);
+
+  std::printf("criterion %s: %d swaps in %d sweeps (%s), %d interior edges\n",
+              command.criterion.c_str(), summary.swaps, summary.sweeps,
+              summary.converged ? "converged" : "stopped at the sweep cap", summary.interior_edges);
+  if (command.smooth > 0) {
+    std::printf(
+        "smoothing: %d vertex moves in %d passes (refused: %d fold, %d angle, %d projection)\n",
+        smoothing.moves, smoothing.iterations, smoothing.rejected_fold, smoothing.rejected_angle,
+        smoothing.rejected_projection);
+  }
+  print_line("before", quality_before, validation_before);
+  print_line("after", quality_after, validation_after);
+  if (!command.summary.empty()) {
+    const nlohmann::json json = {{"mesh", command.mesh},
+                                 {"problem", command.problem},
+                                 {"criterion", command.criterion},
+                                 {"swaps", summary.swaps},
+                                 {"sweeps", summary.sweeps},
+                                 {"converged", summary.converged},
+                                 {"interior_edges", summary.interior_edges},
+                                 {"smoothing_passes", smoothing.iterations},
+                                 {"smoothing_moves", smoothing.moves},
+                                 {"rejected_non_convex", summary.rejected_non_convex},
+                                 {"rejected_existing_edge", summary.rejected_existing_edge},
+                                 {"rejected_projection_failed", summary.rejected_projection_failed},
+                                 {"before", to_json(quality_before, validation_before)},
+                                 {"after", to_json(quality_after, validation_after)}};
+    std::ofstream out(command.summary);
+    TESSERA_CHECK(out.good(), "cannot write '" << command.summary << "'");
+    out << json.dump(2) << "\n";
+  }
+  std::cout << "wrote " << command.output
+            << (command.summary.empty() ? "" : " and " + command.summary) << "\n";
+  if (!validation_after.is_valid()) {
+    std::cerr << "tessera: the improved mesh is not valid:\n" << validation_after.report();
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace tessera::app

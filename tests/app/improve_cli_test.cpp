@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+// `tessera improve` as a user meets it.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/test_support.h"
+#include "tessera/geometry/mesh_validation.h"
+#include "tessera/io/mesh_io.h"
+
+namespace tessera {
+namespace {
+
+bool contains(const std::string& text, const std::string& fragment) {
+  return text.find(fragment) != std::string::npos;
+}
+
+TEST(CliImprove, EveryCriterionWritesAValidMeshAndASummary) {
+  const std::string folder = testing::temporary_directory("improve");
+  const std::string input = folder + "/sphere_cut.ply";
+  auto result = testing::run_cli("mesh sphere_cut --step 0.3 -q -o " + input);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  for (const std::string criterion : {"angle", "normal", "distance"}) {
+    const std::string output = folder + "/" + criterion + ".ply";
+    const std::string summary = folder + "/" + criterion + ".json";
+    result = testing::run_cli("improve " + input + " --problem sphere_cut --criterion " +
+                              criterion + " -o " + output + " --summary " + summary);
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_TRUE(contains(result.output, "before")) << result.output;
+    EXPECT_TRUE(contains(result.output, "after")) << result.output;
+    const MeshValidation validation = validate(read_mesh(output));
+    EXPECT_TRUE(validation.is_valid()) << validation.report();
+    EXPECT_EQ(validation.euler_characteristic, 1);  // a disk, as before
+    const nlohmann::json json = nlohmann::json::parse(std::ifstream(summary));
+    EXPECT_EQ(json["criterion"], criterion);
+    EXPECT_TRUE(json["after"]["is_valid"].get<bool>());
+    EXPECT_EQ(json["before"]["boundary_edge_count"], json["after"]["boundary_edge_count"]);
+  }
+}
+
+TEST(CliImprove, SmoothingKeepsTheMeshValidAndOnM) {
+  const std::string folder = testing::temporary_directory("improve_smooth");
+  const std::string input = folder + "/sphere_cut.ply";
+  auto result = testing::run_cli("mesh sphere_cut --step 0.3 -q -o " + input);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const std::string output = folder + "/smoothed.ply";
+  result = testing::run_cli("improve " + input + " --problem sphere_cut --smooth 3 -o " + output);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(contains(result.output, "smoothing:")) << result.output;
+  // `check` passes only if the mesh is valid, a disk, and its vertices are on M (1e-6).
+  result = testing::run_cli("check " + output + " --problem sphere_cut");
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+}
+
+TEST(CliImprove, BadInputIsAUsageError) {
+  const std::string folder = testing::temporary_directory("improve_bad");
+  auto result =
+      testing::run_cli("improve /nonexistent/mesh.ply --problem sphere -o " + folder + "/out.ply");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  result = testing::run_cli("improve x.ply --problem sphere --criterion bogus -o out.ply");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+}
+
+}  // namespace
+}  // namespace tessera
