@@ -10,7 +10,7 @@
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/io/mesh_io.h"
-#include "tessera/methods/improvement/edge_swap.h"
+#include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/methods/improvement/tangential_smoothing.h"
 #include "tessera/problems/catalogue.h"
 
@@ -79,17 +79,9 @@ int run_improve(const ImproveCommand& command) {
                                                         : SwapCriterion::MaxMinAngle;
   const MeshValidation validation_before = validate(mesh);
   const MeshQuality quality_before = measure_quality(mesh, *setup.problem);
-  ImprovementSummary summary = improve_by_edge_swaps(mesh, *setup.problem, options);
-  SmoothingSummary smoothing;
-  if (command.smooth > 0) {
-    SmoothingOptions smoothing_options;
-    smoothing_options.iterations = command.smooth;
-    smoothing = smooth_tangentially(mesh, *setup.problem, smoothing_options);
-    const ImprovementSummary again = improve_by_edge_swaps(mesh, *setup.problem, options);
-    summary.swaps += again.swaps;
-    summary.sweeps += again.sweeps;
-    summary.converged = again.converged;
-  }
+  const MeshImprovement improvement = improve_mesh(mesh, *setup.problem, options, command.smooth);
+  const ImprovementSummary& summary = improvement.swaps;
+  const SmoothingSummary& smoothing = improvement.smoothing;
   const MeshValidation validation_after = validate(mesh);
   const MeshQuality quality_after = measure_quality(mesh, *setup.problem);
 

@@ -18,6 +18,7 @@
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/summary_json.h"
 #include "tessera/methods/front/advancing_front.h"
+#include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/problems/catalogue.h"
 
 namespace {
@@ -80,6 +81,7 @@ struct MeshCommand {
   double max_start_distance = 0.0;
   std::string order = "gap";
   std::string obj_coordinates;
+  bool improve = false;
 };
 
 tessera::MeshReport make_report(const tessera::TriangleMesh& mesh,
@@ -177,6 +179,12 @@ int run_mesh(const MeshCommand& command) {
   if (show_progress) {
     std::fprintf(stderr, "\r%60s\r", "");
   }
+  tessera::CoveringResult improved = result;
+  if (command.improve && result.summary.is_complete()) {
+    // Delaunay-type swaps judged in the tangent planes, 3 passes of tangential smoothing, and
+    // swaps again (docs/algorithms/improvement.md): validity and boundary are kept.
+    tessera::improve_mesh(improved.mesh, *setup.problem, tessera::ImprovementOptions{}, 3);
+  }
   // Whatever happened, keep the work: write the mesh and the summary before reporting.
   file_options.binary = !command.ascii;
   // PLY keeps the standard names (x, y, z or x0 … x{n−1}) that readers look for; the problem's
@@ -192,8 +200,8 @@ int run_mesh(const MeshCommand& command) {
   }
   file_options.comments = {"tessera mesh " + command.problem + ", method " + command.method,
                            "coordinates:" + names};
-  tessera::write_mesh(command.output, result.mesh, file_options);
-  tessera::MeshReport report = make_report(result.mesh, setup, command.problem);
+  tessera::write_mesh(command.output, improved.mesh, file_options);
+  tessera::MeshReport report = make_report(improved.mesh, setup, command.problem);
   report.run = result.summary;
   if (!command.summary.empty()) {
     tessera::write_summary_json(command.summary, report);
@@ -284,6 +292,9 @@ int main(int argc, char** argv) {
       ->required();
   mesh_app->add_option("--summary", mesh.summary, "write a JSON summary to this file");
   mesh_app->add_flag("--ascii", mesh.ascii, "write ASCII instead of binary PLY");
+  mesh_app->add_flag("--improve", mesh.improve,
+                     "improve the mesh: edge swaps and tangential smoothing on M (as `tessera "
+                     "improve --smooth 3`)");
   mesh_app->add_option("--obj-coordinates", mesh.obj_coordinates,
                        "the three coordinates written to an .obj file, e.g. 0,2,3 (default 0,1,2)");
   mesh_app->add_flag("--quiet,-q", mesh.quiet, "print nothing but errors");
