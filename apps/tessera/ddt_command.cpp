@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "ddt_command.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <iterator>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -38,11 +40,12 @@ struct Row {
 Row optimise_and_measure(const PlanarTriangulation& start, const std::string& criterion_name,
                          CostOrdering ordering, SwapTest test,
                          const std::optional<FrankeFunction>& function, int grid,
-                         PlanarTriangulation* result) {
+                         PlanarTriangulation* result, unsigned sweep_order_seed = 0) {
   PlanarTriangulation triangulation = start;
   LocalOptimisationOptions options;
   options.ordering = ordering;
   options.test = test;
+  options.sweep_order_seed = sweep_order_seed;
   LocalOptimisationSummary summary;
   if (criterion_name == "equid") {
     TESSERA_CHECK(function.has_value(),
@@ -73,6 +76,40 @@ Row optimise_and_measure(const PlanarTriangulation& start, const std::string& cr
     *result = std::move(triangulation);
   }
   return row;
+}
+
+// Malcolm's Tables 1 (33 points) and 2 (100 points): mean pointwise error, rows in the order
+// DELAUNAY, MWT-3D, ABN-1, ABN-2, JND-1, JND-2, PF-1, PF-2, PD-1, PD-2, EQUID; columns F1, F2,
+// F7, F8, F9.
+constexpr double kTable1[11][5] = {
+    {0.04886, 0.01604, 0.06866, 0.15210, 0.05042}, {0.05813, 0.01585, 0.06019, 0.09926, 0.04826},
+    {0.04033, 0.00619, 0.04210, 0.13123, 0.04633}, {0.03964, 0.00610, 0.04096, 0.07723, 0.04702},
+    {0.04033, 0.01176, 0.04562, 0.10457, 0.04639}, {0.04532, 0.01107, 0.04922, 0.10456, 0.04635},
+    {0.04285, 0.00618, 0.04342, 0.14730, 0.04650}, {0.04661, 0.01190, 0.05737, 0.15113, 0.04683},
+    {0.05255, 0.00618, 0.04267, 0.11505, 0.04737}, {0.05379, 0.01188, 0.04790, 0.11513, 0.04750},
+    {0.04541, 0.00614, 0.06601, 0.10472, 0.04697}};
+constexpr double kTable2[11][5] = {
+    {0.01637, 0.00419, 0.02707, 0.04033, 0.01492}, {0.02002, 0.00366, 0.02869, 0.01884, 0.01249},
+    {0.01546, 0.00145, 0.02027, 0.01390, 0.01101}, {0.01550, 0.00147, 0.01727, 0.02839, 0.01075},
+    {0.01571, 0.00145, 0.02207, 0.02961, 0.01097}, {0.01533, 0.00151, 0.02099, 0.03034, 0.01079},
+    {0.01563, 0.00145, 0.01881, 0.03011, 0.01137}, {0.01634, 0.00182, 0.02000, 0.03162, 0.01115},
+    {0.01600, 0.00145, 0.02374, 0.02557, 0.01113}, {0.01670, 0.00152, 0.02576, 0.02505, 0.01079},
+    {0.02070, 0.00358, 0.02675, 0.03805, 0.01639}};
+
+int function_column(FrankeFunction f) {
+  switch (f) {
+    case FrankeFunction::F1:
+      return 0;
+    case FrankeFunction::F2:
+      return 1;
+    case FrankeFunction::F7:
+      return 2;
+    case FrankeFunction::F8:
+      return 3;
+    case FrankeFunction::F9:
+      return 4;
+  }
+  return 0;
 }
 
 void print_row(const Row& row, bool has_function) {
@@ -106,6 +143,13 @@ CLI::App* add_ddt_command(CLI::App& app, DdtCommand& command) {
       ->check(CLI::Range(2, 10000));
   ddt->add_flag("--all-criteria", command.all_criteria,
                 "print the error of every criterion (the report's table rows)");
+  ddt->add_option("--orders", command.orders,
+                  "with --all-criteria: also try this many sweep orders and print the spread")
+      ->check(CLI::Range(1, 1000));
+  ddt->add_option("--compare-report", command.compare_report,
+                  "with --all-criteria and --function: print Malcolm's Table 1 (33) or 2 (100) "
+                  "value beside each row")
+      ->check(CLI::IsMember({33, 100}));
   return ddt;
 }
 
@@ -146,13 +190,40 @@ int run_ddt(const DdtCommand& command) {
                 {"pf", CostOrdering::L1},       {"pf", CostOrdering::L2},
                 {"pd", CostOrdering::L1},       {"pd", CostOrdering::L2},
                 {"equid", CostOrdering::L2}};
-    for (const auto& row : rows) {
+    const double(*report)[5] = command.compare_report == 33    ? kTable1
+                               : command.compare_report == 100 ? kTable2
+                                                               : nullptr;
+    if (command.orders > 1) {
+      std::printf("spread over %d sweep orders (index order, then random permutations)\n",
+                  command.orders);
+    }
+    for (std::size_t r = 0; r < std::size(rows); ++r) {
+      const auto& row = rows[r];
       if (std::string(row.criterion) == "equid" && !function) {
         continue;
       }
-      print_row(optimise_and_measure(start, row.criterion, row.ordering, test, function,
-                                     command.grid, nullptr),
-                function.has_value());
+      Row measured = optimise_and_measure(start, row.criterion, row.ordering, test, function,
+                                          command.grid, nullptr);
+      if (!function) {
+        print_row(measured, false);
+        continue;
+      }
+      double lowest = measured.error.mean;
+      double highest = measured.error.mean;
+      for (int seed = 1; seed < command.orders; ++seed) {
+        const Row other = optimise_and_measure(start, row.criterion, row.ordering, test, function,
+                                               command.grid, nullptr, static_cast<unsigned>(seed));
+        lowest = std::min(lowest, other.error.mean);
+        highest = std::max(highest, other.error.mean);
+      }
+      std::printf("%-16s mean %.5f", measured.label.c_str(), measured.error.mean);
+      if (command.orders > 1) {
+        std::printf("  orders %.5f … %.5f", lowest, highest);
+      }
+      if (report != nullptr) {
+        std::printf("  report %.5f", report[r][function_column(*function)]);
+      }
+      std::printf("  rms %.5f  max %.5f\n", measured.error.rms, measured.error.max);
     }
     return 0;
   }

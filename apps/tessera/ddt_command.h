@@ -17,6 +17,8 @@ struct DdtCommand {
   std::string output;  ///< PLY with the value as z and as the vertex property "value"
   int grid = 33;
   bool all_criteria = false;
+  int orders = 1;          ///< with --all-criteria: sweep orders tried (index order + random)
+  int compare_report = 0;  ///< 33 or 100: print Malcolm's Table 1 or 2 value beside each row
 };
 
 /// Registers the subcommand and its options on `app`.

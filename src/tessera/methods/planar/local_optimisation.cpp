@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numeric>
+#include <random>
 #include <sstream>
 
 #include "tessera/core/error.h"
@@ -213,6 +215,12 @@ LocalOptimisationSummary optimise_locally(PlanarTriangulation& triangulation,
   // Swapping on equal costs (strategies i and ii) can undo itself, so it is confined: to the
   // first sweeps, until a sweep swaps only on equalities (i), or to one sweep after the
   // strict swaps have run out (ii). Every other sweep swaps on strict improvement only.
+  std::vector<int> order(triangulation.triangle_count());
+  std::iota(order.begin(), order.end(), 0);
+  if (options.sweep_order_seed != 0) {
+    std::mt19937 generator(options.sweep_order_seed);
+    std::shuffle(order.begin(), order.end(), generator);
+  }
   bool is_equal_allowed = options.strategy == SwapStrategy::EqualFirst;
   bool is_equal_sweep_done = false;
   for (;;) {
@@ -223,7 +231,7 @@ LocalOptimisationSummary optimise_locally(PlanarTriangulation& triangulation,
     ++summary.sweeps;
     int swaps_in_sweep = 0;
     int equal_swaps_in_sweep = 0;
-    for (int t = 0; t < triangulation.triangle_count(); ++t) {
+    for (const int t : order) {  // swaps keep triangle indices, so the order stays valid
       for (int k = 0; k < 3; ++k) {
         if (!triangulation.is_swap_valid(t, k)) {
           continue;

@@ -39,6 +39,10 @@ struct LocalOptimisationOptions {
   /// Hard stop. With the global test the total cost falls at every swap, so the procedure ends
   /// on its own; the local test has no such guarantee and may need the cap.
   int max_sweeps = 1000;
+  /// The order of the triangle list in each sweep: 0 is index order (the report: "going
+  /// through the list sequentially"); any other value a fixed pseudo-random permutation drawn
+  /// with that seed. The report's results depend on this order, which it does not give.
+  unsigned sweep_order_seed = 0;
   bool is_valid(std::string* why) const;
 };
 
