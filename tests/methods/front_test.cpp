@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "support/front_run.h"
 #include "support/test_support.h"
 #include "tessera/core/corrector.h"
 #include "tessera/core/error.h"
@@ -43,20 +44,8 @@ const double kOnFaceTolerance = kOnManifoldTolerance;
 // Domain::contains tolerance: a vertex on a face may lie outside it by that residual, no more.
 constexpr double kInsideTolerance = 1e-9;
 
-struct FrontRun {
-  ProblemSetup setup;
-  CoveringResult result;
-};
-
-// Covers the catalogue problem `specification` with step h (the problem's suggestion if h = 0).
-FrontRun run_front(const std::string& specification, double h = 0.0) {
-  FrontRun run;
-  run.setup = make_catalogue_problem(specification);
-  FrontOptions options;
-  options.step = h > 0.0 ? h : run.setup.suggested_step;
-  run.result = triangulate_by_front(*run.setup.problem, run.setup.start, run.setup.domain, options);
-  return run;
-}
+using testing::FrontRun;
+using testing::run_front;
 
 std::string describe_point(const Eigen::VectorXd& x) {
   std::string text = "(";

@@ -17,25 +17,14 @@
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/methods/front/advancing_front.h"
+#include "support/front_run.h"
 #include "tessera/problems/catalogue.h"
 
 namespace tessera {
 namespace {
 
-struct FrontRun {
-  ProblemSetup setup;
-  TriangleMesh mesh;
-};
-
-FrontRun run_front(const std::string& specification, double h = 0.0) {
-  FrontRun run;
-  run.setup = make_catalogue_problem(specification);
-  FrontOptions options;
-  options.step = h > 0.0 ? h : run.setup.suggested_step;
-  run.mesh =
-      triangulate_by_front(*run.setup.problem, run.setup.start, run.setup.domain, options).mesh;
-  return run;
-}
+using testing::FrontRun;
+using testing::run_front;
 
 // Boundary edges as sorted vertex pairs, sorted: the boundary is the same iff these are equal.
 std::vector<MeshTopology::Edge> boundary_edges(const TriangleMesh& mesh) {
@@ -73,22 +62,22 @@ int scramble(TriangleMesh& mesh, const ImplicitProblem& problem, int attempts, u
 TEST(EdgeSwap, DelaunaySwapsOnCutSphereDoNotLowerMinAngleAndKeepTheMesh) {
   FrontRun run = run_front("sphere_cut", 0.3);
   const ImplicitProblem& problem = *run.setup.problem;
-  const MeshValidation validation_before = validate(run.mesh);
+  const MeshValidation validation_before = validate(run.result.mesh);
   ASSERT_TRUE(validation_before.is_valid()) << validation_before.report();
-  const MeshQuality quality_before = measure_quality(run.mesh, problem);
-  const auto boundary_before = boundary_edges(run.mesh);
+  const MeshQuality quality_before = measure_quality(run.result.mesh, problem);
+  const auto boundary_before = boundary_edges(run.result.mesh);
 
   const ImprovementSummary summary =
-      improve_by_edge_swaps(run.mesh, problem, {.criterion = SwapCriterion::MaxMinAngle});
+      improve_by_edge_swaps(run.result.mesh, problem, {.criterion = SwapCriterion::MaxMinAngle});
   std::printf("sphere_cut h = 0.3, angle: %s\n", summary.brief_report().c_str());
 
-  const MeshValidation validation_after = validate(run.mesh);
+  const MeshValidation validation_after = validate(run.result.mesh);
   EXPECT_TRUE(validation_after.is_valid()) << validation_after.report();
   EXPECT_EQ(validation_after.euler_characteristic, validation_before.euler_characteristic);
-  EXPECT_EQ(boundary_edges(run.mesh), boundary_before);
-  EXPECT_TRUE(is_consistently_oriented(run.mesh));
+  EXPECT_EQ(boundary_edges(run.result.mesh), boundary_before);
+  EXPECT_TRUE(is_consistently_oriented(run.result.mesh));
   EXPECT_TRUE(summary.converged);
-  const MeshQuality quality_after = measure_quality(run.mesh, problem);
+  const MeshQuality quality_after = measure_quality(run.result.mesh, problem);
   // Each swap raises the smallest of its six angles (measured in R^n, as here) and leaves every
   // other triangle alone, so the global minimum cannot drop: exact, up to the angle rounding.
   EXPECT_GE(quality_after.min_angle_degrees, quality_before.min_angle_degrees - 1e-9);
@@ -106,11 +95,11 @@ class EdgeSwapStress : public ::testing::TestWithParam<std::string> {};
 TEST_P(EdgeSwapStress, RandomSwapsThenEveryCriterionKeepValidityTopologyAndOrientation) {
   const FrontRun run = run_front(GetParam());
   const ImplicitProblem& problem = *run.setup.problem;
-  const MeshValidation original = validate(run.mesh);
+  const MeshValidation original = validate(run.result.mesh);
   ASSERT_TRUE(original.is_valid()) << original.report();
-  const auto boundary = boundary_edges(run.mesh);
+  const auto boundary = boundary_edges(run.result.mesh);
 
-  TriangleMesh scrambled = run.mesh;
+  TriangleMesh scrambled = run.result.mesh;
   const int random_swaps = scramble(scrambled, problem, 3 * scrambled.triangle_count(), 5);
   EXPECT_GT(random_swaps, scrambled.triangle_count() / 4);  // the stress is real
   const MeshValidation after_scramble = validate(scrambled);
@@ -153,8 +142,8 @@ TEST_P(EdgeSwapStress, DelaunaySwapsUndoALightScramble) {
   // plane it would be the Delaunay triangulation; here the front's mesh is near-Delaunay).
   const FrontRun run = run_front(GetParam());
   const ImplicitProblem& problem = *run.setup.problem;
-  const double original_min_angle = measure_shape(run.mesh).min_angle_degrees;
-  TriangleMesh mesh = run.mesh;
+  const double original_min_angle = measure_shape(run.result.mesh).min_angle_degrees;
+  TriangleMesh mesh = run.result.mesh;
   scramble(mesh, problem, 3 * mesh.triangle_count() / 10, 7);
   ASSERT_LT(measure_shape(mesh).min_angle_degrees, original_min_angle - 5.0);
   const ImprovementSummary summary = improve_by_edge_swaps(mesh, problem);
@@ -165,7 +154,7 @@ TEST_P(EdgeSwapStress, DelaunaySwapsUndoALightScramble) {
 
 TEST(EdgeSwap, SweepCapIsRespected) {
   const FrontRun run = run_front("torus");
-  TriangleMesh mesh = run.mesh;
+  TriangleMesh mesh = run.result.mesh;
   scramble(mesh, *run.setup.problem, 3 * mesh.triangle_count(), 11);
   const ImprovementSummary summary =
       improve_by_edge_swaps(mesh, *run.setup.problem, {.max_sweeps = 1});
