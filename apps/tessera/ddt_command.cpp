@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "ddt_command.h"
 
+#include "output_checks.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
@@ -154,6 +156,9 @@ CLI::App* add_ddt_command(CLI::App& app, DdtCommand& command) {
 }
 
 int run_ddt(const DdtCommand& command) {
+  if (!command.output.empty()) {
+    check_mesh_output(command.output);
+  }
   TESSERA_CHECK(command.function.empty() || command.value_column.empty(),
                 "give either --function or --value-column, not both");
   std::optional<FrankeFunction> function;

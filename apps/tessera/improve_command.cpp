@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "improve_command.h"
 
+#include "output_checks.h"
+
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -66,6 +68,8 @@ CLI::App* add_improve_command(CLI::App& app, ImproveCommand& command) {
 }
 
 int run_improve(const ImproveCommand& command) {
+  check_mesh_output(command.output);
+  check_output_folder(command.summary);
   const ProblemSetup setup = resolve_problem(command.problem);
   TriangleMesh mesh = read_mesh(command.mesh);
   TESSERA_CHECK(mesh.ambient_dimension() == setup.problem->ambient_dimension(),

@@ -12,6 +12,7 @@
 
 #include "ddt_command.h"
 #include "improve_command.h"
+#include "output_checks.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
@@ -125,20 +126,8 @@ int run_mesh(const MeshCommand& command) {
     setup.exact_area.reset();
   }
   // Every option is checked before the computation starts.
-  const std::string extension = std::filesystem::path(command.output).extension().string();
-  TESSERA_CHECK(extension == ".ply" || extension == ".obj" || extension == ".vtk" ||
-                    extension == ".vtu",
-                "-o " << command.output << ": unknown extension '" << extension
-                      << "' (use .ply, .obj, .vtk or .vtu)");
-  for (const std::string& path : {command.output, command.summary}) {
-    if (path.empty()) {
-      continue;
-    }
-    const auto parent = std::filesystem::path(path).parent_path();
-    TESSERA_CHECK(parent.empty() || std::filesystem::is_directory(parent),
-                  "cannot write '" << path << "': the folder '" << parent.string()
-                                   << "' does not exist");
-  }
+  tessera::app::check_mesh_output(command.output);
+  tessera::app::check_output_folder(command.summary);
   tessera::MeshFileOptions file_options;
   if (!command.obj_coordinates.empty()) {
     const auto values = parse_numbers(command.obj_coordinates, "--obj-coordinates");
