@@ -31,6 +31,23 @@ void accumulate(Statistic& statistic, double value) {
 
 }  // namespace
 
+double corner_angle(const Eigen::Ref<const Eigen::VectorXd>& apex,
+                    const Eigen::Ref<const Eigen::VectorXd>& p,
+                    const Eigen::Ref<const Eigen::VectorXd>& q) {
+  const Eigen::VectorXd u = p - apex;
+  const Eigen::VectorXd w = q - apex;
+  // |u ∧ w|² = |u|²|w|² − (u·w)² (Lagrange's identity, valid in R^n).
+  const double dot = u.dot(w);
+  const double wedge = std::sqrt(std::max(0.0, u.squaredNorm() * w.squaredNorm() - dot * dot));
+  return std::atan2(wedge, dot);
+}
+
+double min_angle(const TriangleMesh& mesh, const Triangle& t) {
+  return std::min({corner_angle(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2])),
+                   corner_angle(mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[0])),
+                   corner_angle(mesh.point(t[2]), mesh.point(t[0]), mesh.point(t[1]))});
+}
+
 MeshQuality measure_shape(const TriangleMesh& mesh) {
   MeshQuality quality;
   double min_angle = std::numeric_limits<double>::infinity();
@@ -43,9 +60,8 @@ MeshQuality measure_shape(const TriangleMesh& mesh) {
     quality.area += triangle_area(p[0], p[1], p[2]);
     for (int r = 0; r < 3; ++r) {
       const Eigen::VectorXd u = p[(r + 1) % 3] - p[r];
-      const Eigen::VectorXd w = p[(r + 2) % 3] - p[r];
-      const double angle = std::acos(std::clamp(u.dot(w) / (u.norm() * w.norm()), -1.0, 1.0)) *
-                           180.0 / std::numbers::pi;
+      const double angle =
+          corner_angle(p[r], p[(r + 1) % 3], p[(r + 2) % 3]) * 180.0 / std::numbers::pi;
       min_angle = std::min(min_angle, angle);
       max_angle = std::max(max_angle, angle);
       below += angle < 30.0 ? 1 : 0;

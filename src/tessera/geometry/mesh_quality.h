@@ -38,6 +38,15 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& pro
 /// Angles, areas and edge lengths only (no problem needed).
 MeshQuality measure_shape(const TriangleMesh& mesh);
 
+/// Angle (radians) at `apex` of the triangle (apex, p, q) in R^n, as atan2(|u ∧ w|, u·w):
+/// accurate near 0 and π, where acos of the cosine is not.
+double corner_angle(const Eigen::Ref<const Eigen::VectorXd>& apex,
+                    const Eigen::Ref<const Eigen::VectorXd>& p,
+                    const Eigen::Ref<const Eigen::VectorXd>& q);
+
+/// Smallest angle (radians) of triangle t of `mesh`.
+double min_angle(const TriangleMesh& mesh, const Triangle& t);
+
 /// Sum of the triangle areas in R^n.
 double surface_area(const TriangleMesh& mesh);
 

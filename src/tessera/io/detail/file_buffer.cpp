@@ -117,7 +117,11 @@ void write_triangle_lines(OutputFile& file, const std::vector<Triangle>& triangl
   }
 }
 
-bool parse_real(std::string_view token, double& value) {
+namespace {
+
+// The whole token must be a number; a leading '+' is accepted (from_chars does not).
+template <class Number>
+bool parse_whole_token(std::string_view token, Number& value) {
   if (!token.empty() && token.front() == '+') {
     token.remove_prefix(1);
   }
@@ -128,15 +132,12 @@ bool parse_real(std::string_view token, double& value) {
   return error == std::errc() && end == token.data() + token.size();
 }
 
+}  // namespace
+
+bool parse_real(std::string_view token, double& value) { return parse_whole_token(token, value); }
+
 bool parse_integer(std::string_view token, std::int64_t& value) {
-  if (!token.empty() && token.front() == '+') {
-    token.remove_prefix(1);
-  }
-  if (token.empty()) {
-    return false;
-  }
-  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return error == std::errc() && end == token.data() + token.size();
+  return parse_whole_token(token, value);
 }
 
 std::string_view TextCursor::next_token() {

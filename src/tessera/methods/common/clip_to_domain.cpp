@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tessera/core/linearization.h"
+#include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
 
@@ -66,14 +67,6 @@ bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
   return false;
 }
 
-double min_angle(const TriangleMesh& mesh, int a, int b, int c) {
-  const auto angle = [&](int apex, int p, int q) {
-    const Eigen::VectorXd u = mesh.point(p) - mesh.point(apex);
-    const Eigen::VectorXd w = mesh.point(q) - mesh.point(apex);
-    return std::acos(std::clamp(u.dot(w) / (u.norm() * w.norm()), -1.0, 1.0));
-  };
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
-}
 
 // A vertex already at the corner point x of M ∩ (the faces), or −1. Two vertices snapped or cut
 // onto the same corner would make a zero-area triangle.
@@ -248,10 +241,10 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k,
       if (polygon.size() == 3) {
         kept.push_back({polygon[0], polygon[1], polygon[2]});
       } else if (polygon.size() == 4) {
-        const double diagonal_02 = std::min(min_angle(work, polygon[0], polygon[1], polygon[2]),
-                                            min_angle(work, polygon[0], polygon[2], polygon[3]));
-        const double diagonal_13 = std::min(min_angle(work, polygon[0], polygon[1], polygon[3]),
-                                            min_angle(work, polygon[1], polygon[2], polygon[3]));
+        const double diagonal_02 = std::min(min_angle(work, {polygon[0], polygon[1], polygon[2]}),
+                                            min_angle(work, {polygon[0], polygon[2], polygon[3]}));
+        const double diagonal_13 = std::min(min_angle(work, {polygon[0], polygon[1], polygon[3]}),
+                                            min_angle(work, {polygon[1], polygon[2], polygon[3]}));
         if (diagonal_02 >= diagonal_13) {
           kept.push_back({polygon[0], polygon[1], polygon[2]});
           kept.push_back({polygon[0], polygon[2], polygon[3]});
@@ -338,7 +331,7 @@ int collapse_short_boundary_edges(TriangleMesh& mesh, const FaceSets& on_faces,
         const bool has_a = t[0] == a || t[1] == a || t[2] == a;
         const bool has_b = t[0] == b || t[1] == b || t[2] == b;
         if (has_b) {
-          worst_before = std::min(worst_before, min_angle(mesh, t[0], t[1], t[2]));
+          worst_before = std::min(worst_before, min_angle(mesh, t));
         }
         if (has_a && has_b) {
           continue;  // the triangle on the collapsed edge disappears
@@ -347,7 +340,7 @@ int collapse_short_boundary_edges(TriangleMesh& mesh, const FaceSets& on_faces,
           for (int& v : t) {
             v = v == b ? a : v;
           }
-          worst_after = std::min(worst_after, min_angle(mesh, t[0], t[1], t[2]));
+          worst_after = std::min(worst_after, min_angle(mesh, t));
         }
         triangles.push_back(t);
       }

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "tessera/core/error.h"
+#include "tessera/geometry/mesh_quality.h"
 
 namespace tessera {
 namespace {
@@ -27,12 +28,6 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a(0) * b(1) - a(1) * b(0);
 }
 
-double angle_at(const Eigen::VectorXd& apex, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  const Eigen::VectorXd u = a - apex;
-  const Eigen::VectorXd w = b - apex;
-  const double c = u.dot(w) / (u.norm() * w.norm());
-  return std::acos(std::clamp(c, -1.0, 1.0));
-}
 
 }  // namespace
 
@@ -367,7 +362,7 @@ bool FrontState::triangulate_hole(const std::vector<int>& loop, const Eigen::Mat
           double score = std::numeric_limits<double>::infinity();
           for (const Triangle& t : current) {
             for (int r = 0; r < 3; ++r) {
-              score = std::min(score, angle_at(point(t[r]), point(t[(r + 1) % 3]), point(t[(r + 2) % 3])));
+              score = std::min(score, corner_angle(point(t[r]), point(t[(r + 1) % 3]), point(t[(r + 2) % 3])));
             }
           }
           if (score > best_score) {

@@ -146,20 +146,6 @@ SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& p
   return SwapCheck::Allowed;
 }
 
-// Smallest angle (radians) of the triangle (p, q, r) in R^n.
-double min_angle(const TriangleMesh& mesh, int p, int q, int r) {
-  const int v[3] = {p, q, r};
-  double smallest = std::numbers::pi;
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::VectorXd u = mesh.point(v[(k + 1) % 3]) - mesh.point(v[k]);
-    const Eigen::VectorXd w = mesh.point(v[(k + 2) % 3]) - mesh.point(v[k]);
-    // atan2(|u ∧ w|, u·w) with |u ∧ w|² = |u|²|w|² − (u·w)² (Lagrange's identity in R^n).
-    const double dot = u.dot(w);
-    const double wedge = std::sqrt(std::max(0.0, u.squaredNorm() * w.squaredNorm() - dot * dot));
-    smallest = std::min(smallest, std::atan2(wedge, dot));
-  }
-  return smallest;
-}
 
 // n×2 orthonormal basis of the oriented 2-plane of triangle (p, q, r) (Gram–Schmidt).
 Eigen::MatrixXd plane_basis(const TriangleMesh& mesh, int p, int q, int r) {
@@ -195,8 +181,8 @@ bool improves(const TriangleMesh& mesh, const ImplicitProblem& problem, const Qu
   switch (options.criterion) {
     case SwapCriterion::MaxMinAngle: {
       const double before =
-          std::min(min_angle(mesh, q.a, q.b, q.c), min_angle(mesh, q.b, q.a, q.d));
-      const double after = std::min(min_angle(mesh, q.c, q.a, q.d), min_angle(mesh, q.d, q.b, q.c));
+          std::min(min_angle(mesh, {q.a, q.b, q.c}), min_angle(mesh, {q.b, q.a, q.d}));
+      const double after = std::min(min_angle(mesh, {q.c, q.a, q.d}), min_angle(mesh, {q.d, q.b, q.c}));
       return after > before * (1.0 + tolerance);
     }
     case SwapCriterion::NormalAngle: {

@@ -18,18 +18,6 @@
 namespace tessera {
 namespace {
 
-// Smallest angle (radians) of triangle t in Rⁿ.
-double min_angle(const TriangleMesh& mesh, const Triangle& t) {
-  double smallest = std::numbers::pi;
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::VectorXd u = mesh.point(t[(k + 1) % 3]) - mesh.point(t[k]);
-    const Eigen::VectorXd w = mesh.point(t[(k + 2) % 3]) - mesh.point(t[k]);
-    const double dot = u.dot(w);
-    const double wedge = std::sqrt(std::max(0.0, u.squaredNorm() * w.squaredNorm() - dot * dot));
-    smallest = std::min(smallest, std::atan2(wedge, dot));
-  }
-  return smallest;
-}
 
 // Signed area of triangle t in the plane through `origin` with orthonormal basis T (n×2),
 // divided by the squared longest edge there (a scale-free shape measure; 0.43 is equilateral).
