@@ -163,16 +163,15 @@ int run_mesh(const MeshCommand& command) {
                    p.triangle_count, p.front_size);
     };
   }
-  const tessera::CoveringResult result =
+  tessera::CoveringResult result =
       tessera::triangulate_by_front(*setup.problem, setup.start, setup.domain, options);
   if (show_progress) {
     std::fprintf(stderr, "\r%60s\r", "");
   }
-  tessera::CoveringResult improved = result;
   if (command.improve && result.summary.is_complete()) {
     // Delaunay-type swaps judged in the tangent planes, 3 passes of tangential smoothing, and
     // swaps again (docs/algorithms/improvement.md): validity and boundary are kept.
-    tessera::improve_mesh(improved.mesh, *setup.problem, tessera::ImprovementOptions{}, 3);
+    tessera::improve_mesh(result.mesh, *setup.problem, tessera::ImprovementOptions{}, 3);
   }
   // Whatever happened, keep the work: write the mesh and the summary before reporting.
   file_options.binary = !command.ascii;
@@ -189,8 +188,8 @@ int run_mesh(const MeshCommand& command) {
   }
   file_options.comments = {"tessera mesh " + command.problem + ", method " + command.method,
                            "coordinates:" + names};
-  tessera::write_mesh(command.output, improved.mesh, file_options);
-  tessera::MeshReport report = make_report(improved.mesh, setup, command.problem);
+  tessera::write_mesh(command.output, result.mesh, file_options);
+  tessera::MeshReport report = make_report(result.mesh, setup, command.problem);
   report.run = result.summary;
   if (!command.summary.empty()) {
     tessera::write_summary_json(command.summary, report);
