@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: MIT
+#include "cli_support.h"
+
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+#include "tessera/core/error.h"
+#include "tessera/geometry/mesh_quality.h"
+#include "tessera/geometry/mesh_validation.h"
+
+namespace tessera::app {
+
+const CLI::Validator& finite_positive() {
+  static const CLI::Validator validator(
+      [](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const double value = std::stod(text, &used);
+          if (used == text.size() && std::isfinite(value) && value > 0) {
+            return {};
+          }
+        } catch (const std::exception&) {
+        }
+        return "'" + text + "' is not a finite number > 0";
+      },
+      "POSITIVE", "finite positive number");
+  return validator;
+}
+
+std::vector<double> parse_numbers(const std::string& text, const std::string& option) {
+  std::vector<double> values;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    while (used < item.size() && std::isspace(static_cast<unsigned char>(item[used]))) {
+      ++used;
+    }
+    if (item.empty() || used != item.size()) {
+      throw InvalidArgument(option + ": '" + item + "' is not a number (expected a "
+                            "comma-separated list such as 0,0,1)");
+    }
+    values.push_back(value);
+  }
+  return values;
+}
+
+void apply_start_and_box(ProblemSetup& setup, const std::string& start, const std::string& box) {
+  const int n = setup.problem->ambient_dimension();
+  if (!start.empty()) {
+    const auto values = parse_numbers(start, "--start");
+    TESSERA_CHECK(static_cast<int>(values.size()) == n,
+                  "--start has " << values.size() << " values, problem '" << setup.problem->name()
+                                 << "' has n = " << n << " coordinates");
+    setup.start = Eigen::Map<const Eigen::VectorXd>(values.data(), n);
+  }
+  if (!box.empty()) {
+    const auto values = parse_numbers(box, "--box");
+    TESSERA_CHECK(static_cast<int>(values.size()) == 2 * n,
+                  "--box has " << values.size() << " values, expected " << 2 * n
+                               << " (lower,upper for each of the " << n << " coordinates)");
+    Eigen::VectorXd lower(n);
+    Eigen::VectorXd upper(n);
+    for (int i = 0; i < n; ++i) {
+      lower(i) = values[2 * i];
+      upper(i) = values[2 * i + 1];
+    }
+    setup.domain.intersect_with(Domain::box(lower, upper, setup.problem->coordinate_names()));
+    // The catalogue's topology and area describe its own domain, not the user's box.
+    setup.expected_euler_characteristic.reset();
+    setup.exact_area.reset();
+  }
+}
+
+MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
+                       const std::string& problem_argument) {
+  MeshReport report;
+  report.problem = problem_argument;  // as the user spelled it, e.g. "torus:R=2"
+  report.ambient_dimension = setup.problem->ambient_dimension();
+  report.validation = validate(mesh);
+  report.quality = measure_quality(mesh, *setup.problem);
+  report.expected_euler_characteristic = setup.expected_euler_characteristic;
+  report.exact_area = setup.exact_area;
+  return report;
+}
+
+}  // namespace tessera::app

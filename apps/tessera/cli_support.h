@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// Small pieces shared by the subcommands: exit codes, number parsing, validators, reports.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "tessera/geometry/triangle_mesh.h"
+#include "tessera/io/summary_json.h"
+#include "tessera/problems/problem_setup.h"
+
+namespace tessera::app {
+
+constexpr int kComputationFailed = 1;
+constexpr int kUsageError = 2;
+
+/// CLI11's PositiveNumber lets NaN through; a step of NaN must be a usage error.
+const CLI::Validator& finite_positive();
+
+/// Parses "0,0,1". \throw InvalidArgument naming `option` and the item that is not a number.
+std::vector<double> parse_numbers(const std::string& text, const std::string& option);
+
+/// Sets setup.start from "--start" text and intersects setup.domain with "--box" text (either
+/// may be empty). A box makes the catalogue's expected topology and area void.
+/// \throw InvalidArgument for a wrong number of values.
+void apply_start_and_box(ProblemSetup& setup, const std::string& start, const std::string& box);
+
+/// Validation and quality of `mesh` against the problem, for printing or JSON.
+MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
+                       const std::string& problem_argument);
+
+}  // namespace tessera::app

@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: MIT
+#include "covering_methods.h"
+
+#include <cmath>
+
+#include "tessera/core/error.h"
+#include "tessera/methods/front/advancing_front.h"
+
+namespace tessera::app {
+namespace {
+
+CoveringResult run_front(const ProblemSetup& setup, const MethodSettings& settings) {
+  FrontOptions options;
+  options.step = settings.step > 0 ? settings.step : setup.suggested_step;
+  options.max_vertices = settings.max_vertices;
+  if (settings.front_min_gap_degrees > 0) {
+    options.min_gap_angle = settings.front_min_gap_degrees * M_PI / 180.0;
+  }
+  if (settings.front_max_valence > 0) {
+    options.max_valence = settings.front_max_valence;
+  }
+  options.order =
+      settings.front_order == "fifo" ? FrontOrder::Fifo : FrontOrder::SmallestGapFirst;
+  if (settings.max_start_distance > 0) {
+    options.max_start_distance_steps = settings.max_start_distance / options.step;
+  }
+  options.progress = settings.progress;
+  return triangulate_by_front(*setup.problem, setup.start, setup.domain, options);
+}
+
+}  // namespace
+
+const std::vector<CoveringMethod>& covering_methods() {
+  static const std::vector<CoveringMethod> methods = {
+      {"front", "advancing front with fixed step h (Brodzik & Rheinboldt, PITMAN)", run_front},
+  };
+  return methods;
+}
+
+std::vector<std::string> covering_method_names() {
+  std::vector<std::string> names;
+  for (const auto& method : covering_methods()) {
+    names.push_back(method.name);
+  }
+  return names;
+}
+
+const CoveringMethod& find_covering_method(const std::string& name) {
+  std::string known;
+  for (const auto& method : covering_methods()) {
+    if (method.name == name) {
+      return method;
+    }
+    known += (known.empty() ? "" : ", ") + method.name;
+  }
+  throw InvalidArgument("--method '" + name + "' is not available; methods: " + known);
+}
+
+}  // namespace tessera::app

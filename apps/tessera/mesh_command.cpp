@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: MIT
+#include "mesh_command.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "cli_support.h"
+#include "output_checks.h"
+#include "tessera/core/error.h"
+#include "tessera/geometry/mesh_validation.h"
+#include "tessera/io/mesh_io.h"
+#include "tessera/io/summary_json.h"
+#include "tessera/methods/improvement/improve_mesh.h"
+#include "tessera/problems/catalogue.h"
+
+namespace tessera::app {
+
+CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
+  auto* mesh_app = app.add_subcommand("mesh", "cover a problem's surface with a triangle mesh");
+  mesh_app->add_option("problem", mesh.problem, "catalogue name (see `tessera problems`) or problem file")
+      ->required();
+  mesh_app->add_option("--method", mesh.method,
+                       "covering method (default " + covering_methods().front().name + ")")
+      ->check(CLI::IsMember(covering_method_names()));
+  mesh_app->add_option("--step,-s", mesh.settings.step,
+                       "edge length h (default: the problem's suggestion)")
+      ->check(finite_positive());
+  mesh_app->add_option("--start", mesh.start, "start point, comma separated, e.g. 0,0,1");
+  mesh_app->add_option("--box", mesh.box,
+                       "clip to a box: lower,upper for each coordinate, e.g. -1,1,-1,1,-0.8,1");
+  mesh_app->add_option("-o,--output", mesh.output, "mesh file: .ply, .obj, .vtk or .vtu")
+      ->required();
+  mesh_app->add_option("--summary", mesh.summary, "write a JSON summary to this file");
+  mesh_app->add_flag("--ascii", mesh.ascii, "write ASCII instead of binary PLY");
+  mesh_app->add_flag("--improve", mesh.improve,
+                     "improve the mesh: edge swaps and tangential smoothing on M (as `tessera "
+                     "improve --smooth 3`)");
+  mesh_app->add_option("--obj-coordinates", mesh.obj_coordinates,
+                       "the three coordinates written to an .obj file, e.g. 0,2,3 (default 0,1,2)");
+  mesh_app->add_flag("--quiet,-q", mesh.quiet, "print nothing but errors");
+  mesh_app->add_option("--max-vertices", mesh.settings.max_vertices, "stop after this many vertices")
+      ->check(CLI::Range(7, 100'000'000));
+  mesh_app->add_option("--max-start-distance", mesh.settings.max_start_distance,
+                       "how far the start may be from M (default: 10 steps)")
+      ->check(finite_positive());
+  mesh_app->add_option("--min-gap-angle", mesh.settings.front_min_gap_degrees,
+                       "front: α_min in degrees (default 45.8)")
+      ->check(CLI::Range(1.0, 89.0));
+  mesh_app->add_option("--max-valence", mesh.settings.front_max_valence,
+                       "front: most triangles per vertex (paper: 6; default 7)")
+      ->check(CLI::Range(6, 12));
+  mesh_app->add_option("--order", mesh.settings.front_order,
+                       "front: 'gap' (smallest gap first, default) or 'fifo' (the paper's queue)")
+      ->check(CLI::IsMember({"gap", "fifo"}));
+  return mesh_app;
+}
+
+int run_mesh(const MeshCommand& command) {
+  ProblemSetup setup = resolve_problem(command.problem);
+  const int n = setup.problem->ambient_dimension();
+  apply_start_and_box(setup, command.start, command.box);
+  const CoveringMethod& method =
+      command.method.empty() ? covering_methods().front() : find_covering_method(command.method);
+  // Every option is checked before the computation starts.
+  check_mesh_output(command.output);
+  check_output_folder(command.summary);
+  MeshFileOptions file_options;
+  if (!command.obj_coordinates.empty()) {
+    const auto values = parse_numbers(command.obj_coordinates, "--obj-coordinates");
+    TESSERA_CHECK(values.size() == 3, "--obj-coordinates needs three coordinate indices, got "
+                                          << values.size());
+    for (int i = 0; i < 3; ++i) {
+      TESSERA_CHECK(values[i] == std::floor(values[i]) && values[i] >= 0 && values[i] < n,
+                    "--obj-coordinates: " << values[i] << " is not a coordinate index in [0, "
+                                          << n - 1 << "]");
+      file_options.obj_coordinates[i] = static_cast<int>(values[i]);
+    }
+  }
+  MethodSettings settings = command.settings;
+  const bool show_progress = !command.quiet && isatty(STDERR_FILENO);
+  if (show_progress) {
+    settings.progress = [](const CoveringProgress& p) {
+      std::fprintf(stderr, "\r  %d vertices, %d triangles, front %d   ", p.vertex_count,
+                   p.triangle_count, p.front_size);
+    };
+  }
+  CoveringResult result = method.run(setup, settings);
+  if (show_progress) {
+    std::fprintf(stderr, "\r%60s\r", "");
+  }
+  if (command.improve && result.summary.is_complete()) {
+    // Delaunay-type swaps judged in the tangent planes, 3 passes of tangential smoothing, and
+    // swaps again (docs/algorithms/improvement.md): validity and boundary are kept.
+    improve_mesh(result.mesh, *setup.problem, ImprovementOptions{}, 3);
+  }
+  // Whatever happened, keep the work: write the mesh and the summary before reporting.
+  file_options.binary = !command.ascii;
+  // PLY keeps the standard names (x, y, z or x0 … x{n−1}) that readers look for; the problem's
+  // own names go into a comment, and into the arrays of VTK files.
+  const bool is_ply = command.output.size() >= 4 &&
+                      command.output.compare(command.output.size() - 4, 4, ".ply") == 0;
+  std::string names;
+  for (const auto& name : setup.problem->coordinate_names()) {
+    names += " " + name;
+  }
+  if (!is_ply) {
+    file_options.coordinate_names = setup.problem->coordinate_names();
+  }
+  file_options.comments = {"tessera mesh " + command.problem + ", method " + method.name,
+                           "coordinates:" + names};
+  write_mesh(command.output, result.mesh, file_options);
+  MeshReport report = make_report(result.mesh, setup, command.problem);
+  report.run = result.summary;
+  if (!command.summary.empty()) {
+    write_summary_json(command.summary, report);
+  }
+  if (!command.quiet) {
+    std::cout << to_text(report) << "wrote          " << command.output
+              << (command.summary.empty() ? "" : " and " + command.summary) << "\n";
+  }
+  if (!result.summary.is_complete()) {
+    std::cerr << "tessera: the " << method.name << " method stopped early ("
+              << to_string(result.summary.termination) << "): " << result.summary.message << "\n"
+              << "tessera: the partial mesh was written to " << command.output << "\n";
+    return kComputationFailed;
+  }
+  if (!report.validation.is_valid()) {
+    std::cerr << "tessera: the mesh is not valid:\n" << report.validation.report();
+    return kComputationFailed;
+  }
+  return 0;
+}
+
+}  // namespace tessera::app

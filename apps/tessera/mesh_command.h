@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// `tessera mesh`: cover a problem's surface with a triangle mesh by one of the methods.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "covering_methods.h"
+
+namespace tessera::app {
+
+struct MeshCommand {
+  std::string problem;  ///< catalogue name (with parameters) or problem file
+  std::string method;   ///< one of covering_method_names(); empty: the default (the first)
+  MethodSettings settings;
+  std::string start;
+  std::string box;
+  std::string output;
+  std::string summary;
+  std::string obj_coordinates;
+  bool ascii = false;
+  bool quiet = false;
+  bool improve = false;
+};
+
+CLI::App* add_mesh_command(CLI::App& app, MeshCommand& command);
+
+/// Runs it; the mesh (even a partial one) is written before a failure is reported.
+/// \return 0, or 1 if the method stopped early or the mesh is not valid.
+/// \throw InvalidArgument for bad input, before any computation.
+int run_mesh(const MeshCommand& command);
+
+}  // namespace tessera::app
