@@ -2,12 +2,36 @@
 #include "covering_methods.h"
 
 #include <cmath>
+#include <cstdlib>
 
 #include "tessera/core/error.h"
+#include "tessera/methods/atlas/atlas.h"
 #include "tessera/methods/front/advancing_front.h"
 
 namespace tessera::app {
 namespace {
+
+// Defaults tied to the problem's suggested step h, the one length scale every catalogue entry
+// and problem file gives: charts up to 2h across flat parts, and a distance bound of h/50
+// (on the unit sphere with h = 0.3: ε = 0.006, radius 0.11, about 700 vertices).
+CoveringResult run_atlas(const ProblemSetup& setup, const MethodSettings& settings) {
+  AtlasOptions options;
+  const double h = settings.step > 0 ? settings.step : 2.0 * setup.suggested_step;
+  options.max_radius = h;
+  options.tolerance = settings.tolerance > 0 ? settings.tolerance : 0.02 * setup.suggested_step;
+  options.max_vertices = settings.max_vertices;
+  if (std::getenv("TESSERA_ATLAS_NO_SWAPS")) {
+    options.swap_edges = false;
+  }
+  if (const char* placement = std::getenv("TESSERA_ATLAS_PLACEMENT")) {
+    options.placement = std::atof(placement);
+  }
+  if (settings.max_start_distance > 0) {
+    options.max_start_distance = settings.max_start_distance;
+  }
+  options.progress = settings.progress;
+  return cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+}
 
 CoveringResult run_front(const ProblemSetup& setup, const MethodSettings& settings) {
   FrontOptions options;
@@ -32,7 +56,9 @@ CoveringResult run_front(const ProblemSetup& setup, const MethodSettings& settin
 
 const std::vector<CoveringMethod>& covering_methods() {
   static const std::vector<CoveringMethod> methods = {
-      {"front", "advancing front with fixed step h (Brodzik & Rheinboldt, PITMAN)", run_front},
+      {"atlas", "atlas of curvature-adapted charts, any topology (Henderson)", true, run_atlas},
+      {"front", "advancing front with fixed step h (Brodzik & Rheinboldt, PITMAN)", false,
+       run_front},
   };
   return methods;
 }

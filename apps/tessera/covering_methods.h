@@ -29,6 +29,7 @@ struct MethodSettings {
 struct CoveringMethod {
   std::string name;     ///< e.g. "front"
   std::string summary;  ///< one line for --help and `tessera compare`
+  bool uses_tolerance = false;  ///< --tolerance applies (adaptive step); else it is refused
   /// Covers setup's manifold from setup.start in setup.domain.
   std::function<CoveringResult(const ProblemSetup&, const MethodSettings&)> run;
 };

@@ -26,7 +26,10 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
                        "covering method (default " + covering_methods().front().name + ")")
       ->check(CLI::IsMember(covering_method_names()));
   mesh_app->add_option("--step,-s", mesh.settings.step,
-                       "edge length h (default: the problem's suggestion)")
+                       "front: edge length h (default: the problem's suggestion); atlas: largest chart radius (default 2h)")
+      ->check(finite_positive());
+  mesh_app->add_option("--tolerance,-t", mesh.settings.tolerance,
+                       "atlas: bound on the distance from the mesh to M (default: step/50)")
       ->check(finite_positive());
   mesh_app->add_option("--start", mesh.start, "start point, comma separated, e.g. 0,0,1");
   mesh_app->add_option("--box", mesh.box,
@@ -64,6 +67,9 @@ int run_mesh(const MeshCommand& command) {
   apply_start_and_box(setup, command.start, command.box);
   const CoveringMethod& method =
       command.method.empty() ? covering_methods().front() : find_covering_method(command.method);
+  TESSERA_CHECK(command.settings.tolerance == 0 || method.uses_tolerance,
+                "--tolerance does not apply to method '"
+                    << method.name << "', which uses a fixed step: give --step instead");
   // Every option is checked before the computation starts.
   check_mesh_output(command.output);
   check_output_folder(command.summary);

@@ -96,7 +96,7 @@ class CliMeshSphereCut : public ::testing::Test {
  protected:
   // One run serves every test of the suite.
   static void SetUpTestSuite() {
-    result_ = run_cli("mesh sphere_cut -o " + quoted(work_path("cut.ply")) + " --summary " +
+    result_ = run_cli("mesh sphere_cut --method front -o " + quoted(work_path("cut.ply")) + " --summary " +
                       quoted(work_path("cut.json")));
   }
   static void TearDownTestSuite() { result_.reset(); }
@@ -296,7 +296,9 @@ INSTANTIATE_TEST_SUITE_P(
         UsageCase{"unknown_parameter",
                   "mesh sphere:radius=1,colour=2 -o {out}",
                   {"no parameter 'colour'", "radius"}},
-        UsageCase{"unknown_method", "mesh sphere --method atlas -o {out}", {"--method", "atlas"}},
+        UsageCase{"unknown_method", "mesh sphere --method marching -o {out}", {"--method", "marching"}},
+        UsageCase{"tolerance_for_front", "mesh sphere --method front --tolerance 0.01 -o {out}",
+                  {"--tolerance", "front", "--step"}},
         UsageCase{"box_wrong_count",
                   "mesh sphere --box 1,2,3 -o {out}",
                   {"--box has 3 values", "expected 6"}},

@@ -37,6 +37,16 @@ std::string to_json(const MeshReport& report) {
                 {"front_connections", r.front_connections},
                 {"step_reductions", r.step_reductions},
                 {"clipped_half_spaces", r.clipped_half_spaces}};
+    if (r.charts > 0) {
+      j["run"]["atlas"] = {{"tolerance", r.tolerance},
+                           {"charts", r.charts},
+                           {"min_chart_radius", r.min_chart_radius},
+                           {"max_chart_radius", r.max_chart_radius},
+                           {"singular_crossings", r.singular_crossings},
+                           {"sheet_rejections", r.sheet_rejections},
+                           {"filled_holes", r.filled_holes}};
+    }
+    j["run"]["notes"] = r.notes;
   }
   j["counts"] = {{"vertices", v.referenced_vertex_count},
                  {"edges", v.edge_count},
@@ -91,8 +101,17 @@ std::string to_text(const MeshReport& report) {
   out << "problem        " << report.problem << " (n = " << report.ambient_dimension << ")\n";
   if (report.run) {
     const CoveringSummary& r = *report.run;
-    out << "method         " << r.method << ", step " << r.step << ", " << to_string(r.termination)
-        << (r.message.empty() ? "" : ": " + r.message) << "\n";
+    out << "method         " << r.method;
+    if (r.charts > 0) {
+      out << ", tolerance " << r.tolerance << ", " << r.charts << " charts of radius "
+          << r.min_chart_radius << " … " << r.max_chart_radius;
+    } else {
+      out << ", step " << r.step;
+    }
+    out << ", " << to_string(r.termination) << (r.message.empty() ? "" : ": " + r.message) << "\n";
+    for (const std::string& note : r.notes) {
+      out << "note           " << note << "\n";
+    }
     out << "work           " << r.wall_seconds << " s, " << r.function_evaluations
         << " evaluations of F, " << r.jacobian_evaluations << " of DF";
     if (r.vertex_count > 0) {

@@ -15,6 +15,8 @@ const char* to_string(CoveringTermination termination) {
       return "projection failed";
     case CoveringTermination::StartFailed:
       return "start point failed";
+    case CoveringTermination::TriangulationFailed:
+      return "triangulation failed";
   }
   return "unknown";
 }

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "tessera/geometry/triangle_mesh.h"
 
@@ -15,6 +16,7 @@ enum class CoveringTermination {
   FrontCollision,    ///< the front met itself in a way the method cannot close
   ProjectionFailed,  ///< the corrector failed even at the smallest step
   StartFailed,       ///< the start point could not be projected onto M inside the domain
+  TriangulationFailed,  ///< the charts were computed but no valid mesh could be made of them
 };
 
 const char* to_string(CoveringTermination termination);
@@ -34,6 +36,15 @@ struct CoveringSummary {
   int step_reductions = 0;    ///< projections that needed step halving
   int front_connections = 0;  ///< front glued to a non-adjacent part of itself (front method)
   int clipped_half_spaces = 0;  ///< domain faces the mesh was clipped to
+  // Atlas method (0 for the others).
+  double tolerance = 0.0;      ///< the distance bound the radii were chosen for
+  int charts = 0;              ///< charts computed (before clipping to the domain)
+  double min_chart_radius = 0.0;
+  double max_chart_radius = 0.0;
+  int singular_crossings = 0;  ///< continuation steps that crossed a singular curve of M
+  int sheet_rejections = 0;    ///< overlapping charts kept apart because they lie on other sheets
+  int filled_holes = 0;        ///< places where the charts' polygons disagreed, closed afterwards
+  std::vector<std::string> notes;  ///< remarks for the user, e.g. where a crossing was met
   bool is_complete() const { return termination == CoveringTermination::Completed; }
 };
 

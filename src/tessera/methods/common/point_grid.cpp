@@ -10,15 +10,14 @@
 
 namespace tessera {
 
-PointGrid::PointGrid(int ambient_dimension, double cell_size) : cell_size_(cell_size) {
-  TESSERA_CHECK(cell_size > 0, "PointGrid cell size " << cell_size << " must be > 0");
+Eigen::MatrixXd grid_projection(int ambient_dimension) {
   const int n = ambient_dimension;
-  projection_ = Eigen::MatrixXd::Zero(3, n);
+  Eigen::MatrixXd projection = Eigen::MatrixXd::Zero(3, n);
   if (n <= 3) {
     for (int i = 0; i < n; ++i) {
-      projection_(i, i) = 1.0;
+      projection(i, i) = 1.0;
     }
-    return;
+    return projection;
   }
   // A fixed pseudo-random orthonormal 3×n projection: deterministic, and it spreads points of a
   // surface in R^n over the cells far better than dropping all but three coordinates.
@@ -31,7 +30,12 @@ PointGrid::PointGrid(int ambient_dimension, double cell_size) : cell_size_(cell_
     }
   }
   Eigen::HouseholderQR<Eigen::MatrixXd> qr(random);
-  projection_ = (qr.householderQ() * Eigen::MatrixXd::Identity(n, 3)).transpose();
+  return (qr.householderQ() * Eigen::MatrixXd::Identity(n, 3)).transpose();
+}
+
+PointGrid::PointGrid(int ambient_dimension, double cell_size)
+    : projection_(grid_projection(ambient_dimension)), cell_size_(cell_size) {
+  TESSERA_CHECK(cell_size > 0, "PointGrid cell size " << cell_size << " must be > 0");
 }
 
 Eigen::Vector3d PointGrid::cell_of(const Eigen::Ref<const Eigen::VectorXd>& x) const {

@@ -9,6 +9,10 @@
 
 namespace tessera {
 
+/// The 3×n matrix with orthonormal rows that spatial grids bucket points of R^n by: the identity
+/// for n ≤ 3, a fixed pseudo-random projection otherwise. ‖P(x − y)‖ ≤ ‖x − y‖.
+Eigen::MatrixXd grid_projection(int ambient_dimension);
+
 /// Points are bucketed by a 3-D projection P·x (P has orthonormal rows; the identity when n = 3).
 /// Since ‖P(x − y)‖ ≤ ‖x − y‖, every point within `radius` of a query lies in the 27 cells
 /// around it; candidates are then checked with the true distance in R^n. Cost per query is

@@ -1,0 +1,558 @@
+// SPDX-License-Identifier: MIT
+// Method `atlas` (Henderson). The covered region is the union of the charts' polygons: chart i
+// owns P_i = {p in its tangent plane : |p|² − R_i² ≤ |p − p_j|² − R_j² for each neighbour j}
+// (the power cell of its disk, as in Henderson's later MULTIFARIO) clipped to a square slightly
+// larger than the disk. A polygon vertex outside the disk is a place the atlas does not cover
+// yet; a new chart is centred on the disk boundary towards it, which always cuts it away.
+// When no such vertex is left the atlas is complete, and its triangulation is the dual of the
+// polygon complex: every polygon vertex where the cells of i, j, k meet is the triangle ijk.
+#include "tessera/methods/atlas/atlas.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <numbers>
+#include <sstream>
+#include <unordered_map>
+
+#include "tessera/core/counted_problem.h"
+#include "tessera/core/describe.h"
+#include "tessera/core/error.h"
+#include "tessera/core/linearization.h"
+#include "tessera/geometry/mesh_topology.h"
+#include "tessera/methods/atlas/atlas_triangulation.h"
+#include "tessera/methods/atlas/chart_index.h"
+#include "tessera/methods/atlas/chart_polygon.h"
+#include "tessera/methods/common/clip_to_domain.h"
+#include "tessera/methods/improvement/edge_swap.h"
+#include "tessera/methods/start_point.h"
+
+namespace tessera {
+
+void AtlasOptions::validate() const {
+  TESSERA_CHECK(std::isfinite(tolerance) && tolerance > 0,
+                "AtlasOptions::tolerance = " << tolerance << " must be a finite number > 0");
+  TESSERA_CHECK(std::isfinite(max_radius) && max_radius > 0,
+                "AtlasOptions::max_radius = " << max_radius << " must be a finite number > 0");
+  TESSERA_CHECK(placement >= 0.25 && placement <= 1.9,
+                "AtlasOptions::placement = " << placement << " must lie in [0.25, 1.9]");
+  TESSERA_CHECK(radius_growth >= 1.0 && radius_growth <= 4.0,
+                "AtlasOptions::radius_growth = " << radius_growth << " must lie in [1, 4]");
+  TESSERA_CHECK(max_turning_angle > 0 && max_turning_angle <= 1.0,
+                "AtlasOptions::max_turning_angle = " << max_turning_angle
+                                                     << " must lie in (0, 1] radians");
+  TESSERA_CHECK(min_sheet_cosine >= 0 && min_sheet_cosine < 1,
+                "AtlasOptions::min_sheet_cosine = " << min_sheet_cosine << " must lie in [0, 1)");
+  TESSERA_CHECK(domain_margin >= 0 && domain_margin <= 4,
+                "AtlasOptions::domain_margin = " << domain_margin << " must lie in [0, 4]");
+  TESSERA_CHECK(min_radius_fraction > 0 && min_radius_fraction < 1,
+                "AtlasOptions::min_radius_fraction = " << min_radius_fraction
+                                                       << " must lie in (0, 1)");
+  TESSERA_CHECK(max_start_distance >= 0, "AtlasOptions::max_start_distance = "
+                                             << max_start_distance << " must be >= 0");
+  TESSERA_CHECK(max_vertices >= 3,
+                "AtlasOptions::max_vertices = " << max_vertices << " must be at least 3");
+}
+
+namespace {
+
+// The initial polygon is a square of this half-width (in radii): it contains the disk, and its
+// corners (at 1.7 R) are exterior until neighbours cut them.
+constexpr double kInitialHalfWidth = 1.2;
+// A chart is processed until its polygon has no exterior vertex; more children than this
+// means the cuts do not remove the vertices they should (rounding, or charts on other sheets).
+constexpr int kMaxChildrenPerChart = 64;
+// Below this dimension the orientation det([J; Tᵀ]) is cheap enough to watch for singular
+// crossings at every step (dense problems only; see docs/algorithms/atlas.md).
+constexpr int kMaxCrossingTestDimension = 200;
+
+struct Chart {
+  double radius = 0.0;
+  ChartPolygon polygon;
+  int parent = -1;
+  signed char orientation = 0;  // sign of det([J; Tᵀ]) at the centre; 0: not watched
+  bool queued = false;
+};
+
+class AtlasBuilder {
+ public:
+  AtlasBuilder(const ImplicitProblem& problem, const Domain& domain, const AtlasOptions& options)
+      : problem_(problem),
+        domain_(domain),
+        options_(options),
+        n_(problem.ambient_dimension()),
+        index_(problem.ambient_dimension()),
+        watch_crossings_(!problem.has_sparse_jacobian() &&
+                         problem.ambient_dimension() <= kMaxCrossingTestDimension) {}
+
+  void run(const Eigen::VectorXd& start, CoveringSummary& summary);
+
+  int chart_count() const { return static_cast<int>(charts_.size()); }
+  Eigen::Map<const Eigen::VectorXd> center(int c) const {
+    return {centers_.data() + static_cast<std::ptrdiff_t>(c) * n_, n_};
+  }
+  Eigen::Map<const Eigen::MatrixXd> tangent(int c) const {
+    return {tangents_.data() + static_cast<std::ptrdiff_t>(c) * 2 * n_, n_, 2};
+  }
+  const Chart& chart(int c) const { return charts_[c]; }
+  bool is_closed(int c) const {
+    const Chart& ch = charts_[c];
+    if (ch.polygon.is_empty()) {
+      return false;
+    }
+    for (const auto& v : ch.polygon.vertices()) {
+      if (v.edge_label == ChartPolygon::kNoNeighbour) {
+        return false;
+      }
+    }
+    return ch.polygon.farthest_exterior_vertex(ch.radius) < 0;
+  }
+
+ private:
+  bool choose_radius(const Linearization& at_center, double trial, double& radius);
+  int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);
+  void connect_neighbours(int k);
+  int next_open_vertex(int c) const;
+  bool is_eligible(int c) const;
+  bool same_sheet(int a, int b, const Eigen::VectorXd& offset) const;
+  signed char orientation_sign(const Eigen::VectorXd& x, const Eigen::Ref<const Eigen::MatrixXd>& T);
+  void enqueue(int c);
+  void fail(CoveringSummary& summary, CoveringTermination why, const std::string& message) {
+    summary.termination = why;
+    summary.message = message;
+    stopped_ = true;
+  }
+
+  const ImplicitProblem& problem_;
+  const Domain& domain_;
+  const AtlasOptions& options_;
+  const int n_;
+  ChartIndex index_;
+  const bool watch_crossings_;
+  std::vector<double> centers_;   // n per chart
+  std::vector<double> tangents_;  // n×2 per chart, column-major
+  std::vector<Chart> charts_;
+  std::deque<int> open_;          // charts that may have eligible exterior vertices
+  std::unordered_map<int, Linearization> factored_;  // factorisations of queued charts
+  std::vector<int> candidates_;   // scratch
+  bool stopped_ = false;
+  int singular_crossings_ = 0;
+  int sheet_rejections_ = 0;
+  std::string first_crossing_;
+  double min_radius_ = 0.0;
+};
+
+// Henderson's section 2.4: with a(s,t) the offset of M from the tangent plane,
+// R = sqrt(2ε/|a_ss|). Instead of second derivatives of F, the quadratic form of a is measured
+// where it matters: three points at distance r in directions 0°, 60°, 120° are projected onto
+// M orthogonally to the tangent plane (the chord corrector of the chart), and their normal
+// offsets a_i give q_i = 2a_i/r² = A + B cos 2θ_i + C sin 2θ_i. The largest |A + B cos 2θ +
+// C sin 2θ| over θ is the largest normal curvature κ. If a projection fails, the corrector does
+// not converge that far: r is halved (the radius is also "capped by where the corrector
+// converges").
+bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, double& radius) {
+  const Eigen::VectorXd& x = at_center.point();
+  const Eigen::MatrixXd& T = at_center.tangent_basis();
+  double r = trial;
+  bool remeasured = false;
+  Eigen::VectorXd y(n_);
+  std::array<Eigen::VectorXd, 3> q;
+  while (r >= min_radius_) {
+    bool converged = true;
+    for (int i = 0; i < 3 && converged; ++i) {
+      const double angle = i * std::numbers::pi / 3.0;
+      const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
+      const Eigen::VectorXd predicted = x + r * (T * d);
+      y = predicted;
+      converged = project_chord(problem_, at_center, y, options_.corrector).is_success();
+      q[i] = (2.0 / (r * r)) * (y - predicted);
+    }
+    if (!converged) {
+      r *= 0.5;
+      continue;
+    }
+    const Eigen::VectorXd A = (q[0] + q[1] + q[2]) / 3.0;
+    const Eigen::VectorXd B = q[0] - A;
+    const Eigen::VectorXd C = (q[1] - q[2]) / std::sqrt(3.0);
+    double curvature = 0.0;
+    for (int k = 0; k < 24; ++k) {
+      const double phi = k * std::numbers::pi / 12.0;  // 2θ over [0, 2π)
+      curvature = std::max(curvature, (A + std::cos(phi) * B + std::sin(phi) * C).norm());
+    }
+    double chosen = std::min(options_.max_radius, r);
+    if (curvature > 0) {
+      chosen = std::min({chosen, std::sqrt(2.0 * options_.tolerance / curvature),
+                         options_.max_turning_angle / curvature});
+    }
+    if (chosen < 0.5 * r && !remeasured) {
+      // Measured far beyond the radius chosen: measure again there, where the quadratic
+      // model is accurate (third-order terms shrink by the ratio of the radii).
+      remeasured = true;
+      r = chosen;
+      continue;
+    }
+    radius = chosen;
+    return true;
+  }
+  return false;
+}
+
+signed char AtlasBuilder::orientation_sign(const Eigen::VectorXd& x,
+                                           const Eigen::Ref<const Eigen::MatrixXd>& T) {
+  // sign det([J(x); Tᵀ]): along one sheet it keeps its sign as long as T stays transversal to
+  // ker J; it changes where J loses rank between two points, i.e. at a singular curve.
+  const int m = n_ - 2;
+  Eigen::MatrixXd J(m, n_);
+  problem_.jacobian(x, J);
+  double det = 0.0;
+  if (n_ == 3) {
+    const Eigen::Vector3d t0 = T.col(0);
+    const Eigen::Vector3d t1 = T.col(1);
+    det = J.row(0).transpose().dot(Eigen::Vector3d(t0.cross(t1)));
+  } else {
+    Eigen::MatrixXd bordered(n_, n_);
+    bordered.topRows(m) = J;
+    bordered.bottomRows(2) = T.transpose();
+    det = bordered.partialPivLu().determinant();
+  }
+  return det > 0 ? 1 : (det < 0 ? -1 : 0);
+}
+
+int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization) {
+  Eigen::MatrixXd parent_tangent;
+  if (parent >= 0) {
+    parent_tangent = tangent(parent);
+  }
+  if (!linearization.factor(problem_, x, parent >= 0 ? &parent_tangent : nullptr)) {
+    return -1;  // DF lost rank: a singular point; the caller moves the centre
+  }
+  const double trial =
+      parent >= 0 ? std::min(options_.max_radius, options_.radius_growth * charts_[parent].radius)
+                  : options_.max_radius;
+  double radius = 0.0;
+  if (!choose_radius(linearization, trial, radius)) {
+    return -2;
+  }
+  const int k = chart_count();
+  Chart chart;
+  chart.radius = radius;
+  chart.polygon = ChartPolygon(kInitialHalfWidth * radius);
+  chart.parent = parent;
+  if (watch_crossings_) {
+    chart.orientation = orientation_sign(x, linearization.tangent_basis());
+  }
+  charts_.push_back(std::move(chart));
+  centers_.insert(centers_.end(), x.data(), x.data() + n_);
+  const Eigen::MatrixXd& T = linearization.tangent_basis();
+  tangents_.insert(tangents_.end(), T.data(), T.data() + 2 * n_);
+  connect_neighbours(k);
+  index_.insert(k, x, radius);
+  return k;
+}
+
+bool AtlasBuilder::same_sheet(int a, int b, const Eigen::VectorXd& offset) const {
+  // Charts on one sheet have nearly parallel tangent planes and each centre lies close to the
+  // other's tangent plane; charts of two sheets that cross (section 8) fail the first test,
+  // charts of two nearby parallel sheets the second.
+  const Eigen::Matrix2d cosines = tangent(a).transpose() * tangent(b);
+  if (std::abs(cosines.determinant()) < options_.min_sheet_cosine) {
+    return false;
+  }
+  const Eigen::Vector2d along = tangent(a).transpose() * offset;
+  const double normal_part = std::sqrt(std::max(0.0, offset.squaredNorm() - along.squaredNorm()));
+  return normal_part <= 0.5 * along.norm();
+}
+
+void AtlasBuilder::connect_neighbours(int k) {
+  const Eigen::VectorXd ck = center(k);
+  const double rk = charts_[k].radius;
+  index_.candidates(ck, rk, candidates_);
+  std::sort(candidates_.begin(), candidates_.end());  // deterministic cut order
+  for (int m : candidates_) {
+    const double rm = charts_[m].radius;
+    const Eigen::VectorXd offset = center(m) - ck;
+    const double distance = offset.norm();
+    if (distance >= rk + rm || distance == 0.0) {
+      continue;
+    }
+    if (!same_sheet(k, m, offset) && m != charts_[k].parent) {
+      ++sheet_rejections_;
+      continue;
+    }
+    // Power bisector in each chart's own tangent coordinates: |p|² − R_k² ≤ |p − p_m|² − R_m².
+    const Eigen::Vector2d pk = tangent(k).transpose() * offset;
+    const Eigen::Vector2d pm = tangent(m).transpose() * (-offset);
+    if (pk.norm() > 0) {
+      charts_[k].polygon.cut(pk(0) / pk.norm(), pk(1) / pk.norm(),
+                             (pk.squaredNorm() + rk * rk - rm * rm) / (2.0 * pk.norm()), m);
+    }
+    if (pm.norm() > 0 &&
+        charts_[m].polygon.cut(pm(0) / pm.norm(), pm(1) / pm.norm(),
+                               (pm.squaredNorm() + rm * rm - rk * rk) / (2.0 * pm.norm()), k) &&
+        !charts_[m].queued && next_open_vertex(m) >= 0) {
+      // (Cuts only shrink a polygon; this re-queues a chart whose corner a cut moved, which
+      // matters only for charts that were skipped while the queue held them.)
+      enqueue(m);
+    }
+  }
+}
+
+bool AtlasBuilder::is_eligible(int c) const {
+  // Charts up to domain_margin radii outside S are completed too, so that every chart whose
+  // star can reach into S has all its triangles; the outer ones are cut away by the clipping.
+  return domain_.is_unbounded() || domain_.boundary_distance(center(c)).signed_distance >=
+                                       -options_.domain_margin * charts_[c].radius;
+}
+
+int AtlasBuilder::next_open_vertex(int c) const {
+  const Chart& ch = charts_[c];
+  if (!is_eligible(c)) {
+    return -1;
+  }
+  const double limit = ch.radius * ch.radius * (1.0 + 1e-9);
+  int best = -1;
+  double best_r2 = limit;
+  const auto& vertices = ch.polygon.vertices();
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const double r2 = vertices[i].s * vertices[i].s + vertices[i].t * vertices[i].t;
+    if (r2 > best_r2) {
+      best_r2 = r2;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+void AtlasBuilder::enqueue(int c) {
+  charts_[c].queued = true;
+  open_.push_back(c);
+}
+
+void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
+  min_radius_ = options_.max_radius * options_.min_radius_fraction;
+  {
+    Linearization linearization;
+    const int first = add_chart(start, -1, linearization);
+    if (first < 0) {
+      fail(summary, CoveringTermination::StartFailed,
+           "no chart can be centred at the start point " + describe_point(start) +
+               (first == -1 ? ": DF is singular there"
+                            : ": the corrector does not converge even at radius " +
+                                  std::to_string(min_radius_)));
+      return;
+    }
+    enqueue(first);
+    factored_.emplace(first, std::move(linearization));
+  }
+  int next_progress = 1000;
+  Eigen::VectorXd y(n_);
+  while (!open_.empty() && !stopped_) {
+    const int c = open_.front();
+    open_.pop_front();
+    charts_[c].queued = false;
+    auto found = factored_.find(c);
+    Linearization at_center;
+    if (found != factored_.end()) {
+      at_center = std::move(found->second);
+      factored_.erase(found);
+    } else {
+      Eigen::MatrixXd T = tangent(c);
+      at_center.factor(problem_, center(c), &T);
+      // The stored basis stays the chart's frame (its polygon lives in it).
+    }
+    const Eigen::MatrixXd Tc = tangent(c);
+    const Eigen::VectorXd xc = center(c);
+    int children = 0;
+    double smallest_child = charts_[c].radius;
+    for (int vertex = next_open_vertex(c); vertex >= 0 && !stopped_;
+         vertex = next_open_vertex(c)) {
+      if (chart_count() >= options_.max_vertices) {
+        fail(summary, CoveringTermination::VertexLimit,
+             "stopped at " + std::to_string(chart_count()) + " charts (max_vertices)");
+        break;
+      }
+      // A chart next to much smaller ones needs about (R/r)² of them around it.
+      if (++children > kMaxChildrenPerChart * std::max(1.0, std::pow(charts_[c].radius /
+                                                                        smallest_child, 2))) {
+        fail(summary, CoveringTermination::ProjectionFailed,
+             "the chart at " + describe_point(xc) + " could not be closed: its neighbours do not "
+             "cut away the uncovered corners of its polygon");
+        break;
+      }
+      const auto& v = charts_[c].polygon.vertices()[vertex];
+      const Eigen::Vector2d direction = Eigen::Vector2d(v.s, v.t).normalized();
+      // The new centre goes on the disk boundary towards the uncovered corner (pointOnDisk:
+      // projected orthogonally to this chart's tangent plane). Where that fails, or lands on a
+      // singular point, nearer and farther points are tried.
+      int child = -1;
+      Linearization at_child;
+      for (double fraction : {1.0, 0.85, 1.1, 0.7, 0.5, 0.35, 0.25}) {
+        const Eigen::Vector2d s =
+            std::min(fraction * options_.placement, 1.9) * charts_[c].radius * direction;
+        y = xc + Tc * s;
+        if (!project_chord(problem_, at_center, y, options_.corrector).is_success()) {
+          continue;
+        }
+        if (watch_crossings_ && charts_[c].orientation != 0) {
+          const signed char across = orientation_sign(y, Tc);
+          if (across == 0) {
+            continue;  // a singular point: never the centre of a chart
+          }
+          if (across != charts_[c].orientation) {
+            ++singular_crossings_;
+            if (first_crossing_.empty()) {
+              first_crossing_ = describe_point(0.5 * (xc + y));
+            }
+          }
+        }
+        child = add_chart(y, c, at_child);
+        if (child >= 0) {
+          break;
+        }
+      }
+      if (child < 0) {
+        fail(summary, CoveringTermination::ProjectionFailed,
+             "no chart could be centred beyond " + describe_point(xc) +
+                 " in the direction of its uncovered corner: the corrector does not converge "
+                 "or DF is singular there");
+        break;
+      }
+      smallest_child = std::min(smallest_child, charts_[child].radius);
+      enqueue(child);
+      factored_.emplace(child, std::move(at_child));
+    }
+    if (options_.progress && chart_count() >= next_progress) {
+      next_progress = chart_count() + 1000;
+      options_.progress({chart_count(), 0, static_cast<int>(open_.size())});
+    }
+  }
+  summary.charts = chart_count();
+  summary.singular_crossings = singular_crossings_;
+  summary.sheet_rejections = sheet_rejections_;
+  if (singular_crossings_ > 0) {
+    summary.notes.push_back("met a singular crossing of M (first near " + first_crossing_ +
+                            "): the atlas continued along the sheet it was on, " +
+                            std::to_string(sheet_rejections_) +
+                            " overlaps with charts of other sheets were kept apart");
+  }
+}
+
+// Post-condition of a completed run, checked rather than assumed: on a closed surface the mesh
+// has no boundary; in a bounded domain every boundary vertex lies on ∂S. Anything else is a
+// hole in the covering, reported with its place.
+void check_coverage(const Domain& domain, const TriangleMesh& mesh,
+                    CoveringSummary& summary) {
+  if (!summary.is_complete()) {
+    return;
+  }
+  const MeshTopology topology(mesh);
+  const double tolerance = 1e-6 * (1.0 + summary.max_chart_radius);
+  for (int e : topology.boundary_edges()) {
+    const int v = topology.edge(e)[0];
+    const bool on_boundary =
+        !domain.is_unbounded() &&
+        std::abs(domain.boundary_distance(mesh.point(v)).signed_distance) <= tolerance;
+    if (!on_boundary) {
+      summary.termination = CoveringTermination::TriangulationFailed;
+      summary.message = "the mesh has a hole: its boundary passes through " +
+                        describe_point(mesh.point(v)) +
+                        (domain.is_unbounded() ? ", but M is closed" : ", inside the domain");
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+CoveringResult cover_by_atlas(const ImplicitProblem& user_problem, const Eigen::VectorXd& start,
+                              const Domain& domain, const AtlasOptions& options) {
+  options.validate();
+  TESSERA_CHECK(domain.is_unbounded() ||
+                    domain.ambient_dimension() == user_problem.ambient_dimension(),
+                "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^"
+                                  << user_problem.ambient_dimension());
+  const auto clock_start = std::chrono::steady_clock::now();
+  CountedProblem problem(user_problem);
+  const double max_start_distance =
+      options.max_start_distance > 0 ? options.max_start_distance : 10.0 * options.max_radius;
+  const StartPoint start_point = project_start_point(problem, start, domain, max_start_distance);
+
+  CoveringResult result;
+  CoveringSummary& summary = result.summary;
+  summary.method = "atlas";
+  summary.tolerance = options.tolerance;
+  AtlasBuilder builder(problem, domain, options);
+  builder.run(start_point.x, summary);
+
+  // The mesh: the dual of the polygons, with the places where the charts disagree closed.
+  AtlasCells cells;
+  cells.ambient_dimension = problem.ambient_dimension();
+  cells.chart_count = builder.chart_count();
+  cells.center = [&builder](int c) { return Eigen::VectorXd(builder.center(c)); };
+  cells.tangent = [&builder](int c) { return Eigen::MatrixXd(builder.tangent(c)); };
+  cells.polygon = [&builder](int c) -> const ChartPolygon& { return builder.chart(c).polygon; };
+  cells.radius = [&builder](int c) { return builder.chart(c).radius; };
+  cells.is_closed = [&builder](int c) { return builder.is_closed(c); };
+  AtlasTriangulation triangulation = triangulate_atlas(cells);
+  result.mesh = std::move(triangulation.mesh);
+  summary.filled_holes = triangulation.filled_holes;
+  if (!triangulation.message.empty() && summary.is_complete()) {
+    summary.termination = CoveringTermination::TriangulationFailed;
+    summary.message = triangulation.message;
+  }
+  double min_radius = options.max_radius;
+  double max_radius = 0.0;
+  for (int c = 0; c < builder.chart_count(); ++c) {
+    min_radius = std::min(min_radius, builder.chart(c).radius);
+    max_radius = std::max(max_radius, builder.chart(c).radius);
+  }
+  summary.min_chart_radius = min_radius;
+  summary.max_chart_radius = max_radius;
+  summary.step = max_radius;
+
+  if (options.swap_edges && result.mesh.triangle_count() > 0) {
+    ImprovementOptions swaps;
+    improve_by_edge_swaps(result.mesh, problem, swaps);
+  }
+  if (!domain.is_unbounded() && result.mesh.triangle_count() > 0) {
+    ClipOptions clip;
+    // Snap and collapse lengths follow the charts near the boundary: the median radius of the
+    // charts outside or within one radius of ∂S.
+    std::vector<double> boundary_radii;
+    for (int c = 0; c < builder.chart_count(); ++c) {
+      if (domain.boundary_distance(builder.center(c)).signed_distance < builder.chart(c).radius) {
+        boundary_radii.push_back(builder.chart(c).radius);
+      }
+    }
+    double scale = min_radius;
+    if (!boundary_radii.empty()) {
+      std::nth_element(boundary_radii.begin(), boundary_radii.begin() + boundary_radii.size() / 2,
+                       boundary_radii.end());
+      scale = boundary_radii[boundary_radii.size() / 2];
+    }
+    clip.snap_distance = 0.35 * scale;
+    clip.min_boundary_edge = 0.2 * scale;
+    clip.corrector = options.corrector;
+    const ClipSummary clipped = clip_to_domain(problem, domain, result.mesh, clip);
+    summary.clipped_half_spaces = clipped.half_spaces_crossed;
+    if (!clipped.message.empty() && summary.is_complete()) {
+      summary.termination = CoveringTermination::ProjectionFailed;
+      summary.message = clipped.message;
+    }
+  }
+  check_coverage(domain, result.mesh, summary);
+  summary.notes.push_back("covered the component of M that contains the start point; other "
+                          "components, if any, need their own start points");
+  summary.vertex_count = result.mesh.vertex_count();
+  summary.triangle_count = result.mesh.triangle_count();
+  summary.function_evaluations = problem.function_evaluations();
+  summary.jacobian_evaluations = problem.jacobian_evaluations();
+  summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+}  // namespace tessera

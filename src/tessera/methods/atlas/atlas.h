@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// Method `atlas`: Henderson's covering of M by charts (disks in tangent planes) whose radii
+// follow the curvature, kept as polygons cut by their neighbours; the mesh is the dual of the
+// polygon complex. See docs/algorithms/atlas.md for the algorithm and where tessera differs.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "tessera/core/corrector.h"
+#include "tessera/core/domain.h"
+#include "tessera/core/implicit_problem.h"
+#include "tessera/methods/covering_result.h"
+
+namespace tessera {
+
+struct AtlasOptions {
+  /// ε: the mesh (every point of every triangle) should lie within this distance of M. Chart
+  /// radii are R = sqrt(2ε/κ) with κ the largest normal curvature at the centre (section 2.4).
+  double tolerance = 1e-3;
+  /// Largest chart radius, in ambient units: the step where M is flat.
+  double max_radius = 0.5;
+  /// New charts are centred this many radii from their parent, towards an uncovered corner of
+  /// its polygon. Henderson puts them on the disk boundary (1); farther apart means fewer
+  /// charts, up to √3, where a hexagonal packing of disks just covers the plane.
+  double placement = 1.0;
+  /// A chart's radius is at most this factor times its parent's, so that the triangles between
+  /// charts of different sizes keep good angles.
+  double radius_growth = 1.5;
+  /// κR ≤ this (radians): the tangent planes of neighbouring charts differ by at most about
+  /// twice this angle, which keeps the tangent-plane projections one-to-one.
+  double max_turning_angle = 0.5;
+  /// Overlapping charts whose tangent planes have |det(T_iᵀT_j)| below this lie on different
+  /// sheets of M (a transversal crossing, section 8) and are never glued.
+  double min_sheet_cosine = 0.35;
+  /// Where the domain is bounded, charts are continued up to this many radii outside it, so
+  /// that the mesh covers M ∩ S before it is clipped to ∂S.
+  double domain_margin = 1.0;
+  /// Radii below max_radius·this mean the corrector cannot converge: ProjectionFailed.
+  double min_radius_fraction = 1.0 / 4096.0;
+  /// The start must project onto M within this distance (0: ten times max_radius).
+  double max_start_distance = 0.0;
+  /// Delaunay-type edge swaps in the tangent planes after the mesh is assembled. Off: the dual
+  /// of the power cells is already a weighted Delaunay triangulation, and measured swaps
+  /// changed nothing on the catalogue while costing 2× the run time.
+  bool swap_edges = false;
+  int max_vertices = 2'000'000;  ///< hard stop on the number of charts; VertexLimit
+  ProgressCallback progress;     ///< called every ~1000 charts when set
+  CorrectorOptions corrector;
+
+  /// \throw InvalidArgument naming the first option out of range.
+  void validate() const;
+};
+
+/// Covers the component of M ∩ S containing (the projection of) `start` with an atlas of
+/// charts and returns its triangulation, clipped to the domain.
+///
+/// \param start n-vector near M. \param domain S; if unbounded, M must be closed and bounded
+///        (or the run ends at max_vertices).
+/// \return a valid mesh whenever summary.termination is Completed; a valid partial mesh when
+///         the run stops early (the summary says where and why).
+/// \throw InvalidArgument for bad options or sizes; ComputationFailed if the start point cannot
+///        be projected onto M inside the domain.
+CoveringResult cover_by_atlas(const ImplicitProblem& problem, const Eigen::VectorXd& start,
+                              const Domain& domain, const AtlasOptions& options);
+
+}  // namespace tessera

@@ -1,0 +1,430 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/methods/atlas/atlas_triangulation.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <vector>
+
+#include "tessera/core/describe.h"
+#include "tessera/geometry/mesh_quality.h"
+
+namespace tessera {
+namespace {
+
+// Holes of more vertices than this are not a disagreement between neighbouring polygons but a
+// gap in the atlas; they are reported, not papered over.
+constexpr int kMaxHoleVertices = 12;
+
+struct Proposal {
+  std::array<int, 3> sorted;  // the triangle's charts in increasing order
+  int proposer = 0;
+  bool even = true;  // (i, j, k) as proposed is an even permutation of `sorted`
+};
+
+std::uint64_t edge_key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+bool is_even_rotation(const std::array<int, 3>& t, const std::array<int, 3>& sorted) {
+  for (int r = 0; r < 3; ++r) {
+    if (t[r] == sorted[0] && t[(r + 1) % 3] == sorted[1] && t[(r + 2) % 3] == sorted[2]) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// A closed walk that visits a vertex twice is two loops joined there; returns the simple ones.
+std::vector<std::vector<int>> split_into_simple_loops(const std::vector<int>& walk) {
+  std::vector<std::vector<int>> loops;
+  std::vector<int> stack;
+  for (int v : walk) {
+    const auto seen = std::find(stack.begin(), stack.end(), v);
+    if (seen != stack.end()) {
+      loops.emplace_back(seen, stack.end());
+      stack.erase(seen, stack.end());
+    }
+    stack.push_back(v);
+  }
+  if (stack.size() >= 3) {
+    loops.push_back(stack);
+  }
+  std::erase_if(loops, [](const std::vector<int>& loop) { return loop.size() < 3; });
+  return loops;
+}
+
+class HoleFiller {
+ public:
+  HoleFiller(const AtlasCells& cells, std::vector<Triangle>& triangles)
+      : cells_(cells), triangles_(triangles) {}
+
+  /// Fills the holes bounded by closed charts; returns the number filled, and sets `message`
+  /// for the first hole that could not be filled.
+  int fill(std::string& message);
+
+ private:
+  void index_edges();
+  bool has_edge(int a, int b) const {
+    return std::binary_search(undirected_.begin(), undirected_.end(),
+                              edge_key(std::min(a, b), std::max(a, b)));
+  }
+  bool triangulate(const std::vector<int>& loop, std::vector<Triangle>& added) const;
+
+  const AtlasCells& cells_;
+  std::vector<Triangle>& triangles_;
+  std::vector<std::uint64_t> directed_;
+  std::vector<std::uint64_t> undirected_;
+};
+
+void HoleFiller::index_edges() {
+  directed_.clear();
+  undirected_.clear();
+  for (const Triangle& t : triangles_) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = t[e];
+      const int b = t[(e + 1) % 3];
+      directed_.push_back(edge_key(a, b));
+      undirected_.push_back(edge_key(std::min(a, b), std::max(a, b)));
+    }
+  }
+  std::sort(directed_.begin(), directed_.end());
+  std::sort(undirected_.begin(), undirected_.end());
+  undirected_.erase(std::unique(undirected_.begin(), undirected_.end()), undirected_.end());
+}
+
+int HoleFiller::fill(std::string& message) {
+  index_edges();
+  // Boundary half-edges a→b: their reverse b→a belongs to no triangle. The hole lies to the
+  // right of them, so each loop runs clockwise around its hole.
+  std::vector<std::pair<int, int>> boundary;
+  for (std::uint64_t key : directed_) {
+    const int a = static_cast<int>(key >> 32);
+    const int b = static_cast<int>(key & 0xffffffffu);
+    if (!std::binary_search(directed_.begin(), directed_.end(), edge_key(b, a))) {
+      boundary.emplace_back(a, b);
+    }
+  }
+  std::sort(boundary.begin(), boundary.end());
+  std::vector<bool> used(boundary.size(), false);
+  auto next_from = [&](int a) -> int {
+    auto it = std::lower_bound(boundary.begin(), boundary.end(), std::make_pair(a, -1));
+    for (; it != boundary.end() && it->first == a; ++it) {
+      const auto index = static_cast<std::size_t>(it - boundary.begin());
+      if (!used[index]) {
+        return static_cast<int>(index);
+      }
+    }
+    return -1;
+  };
+  int filled = 0;
+  std::vector<Triangle> added;
+  for (std::size_t first = 0; first < boundary.size(); ++first) {
+    if (used[first]) {
+      continue;
+    }
+    std::vector<int> loop;
+    int edge = static_cast<int>(first);
+    bool closed_loop = false;
+    while (edge >= 0 && static_cast<int>(loop.size()) <= 4 * kMaxHoleVertices) {
+      used[edge] = true;
+      loop.push_back(boundary[edge].first);
+      const int head = boundary[edge].second;
+      if (head == boundary[first].first) {
+        closed_loop = true;
+        break;
+      }
+      edge = next_from(head);
+    }
+    if (!closed_loop) {
+      continue;  // a loop that touches itself or is very long: the atlas boundary
+    }
+    // Where two holes touch at a vertex the walk runs through both: split it into simple loops.
+    for (std::vector<int>& simple : split_into_simple_loops(loop)) {
+      const bool all_closed =
+          std::all_of(simple.begin(), simple.end(), [&](int c) { return cells_.is_closed(c); });
+      if (!all_closed) {
+        continue;  // the boundary of the atlas (run stopped, or the margin outside the domain)
+      }
+      std::reverse(simple.begin(), simple.end());  // counter-clockwise around the hole
+      if (static_cast<int>(simple.size()) > kMaxHoleVertices || !triangulate(simple, added)) {
+        if (message.empty()) {
+          message = "the charts' polygons leave a hole of " + std::to_string(simple.size()) +
+                    " vertices near " + describe_point(cells_.center(simple.front())) +
+                    " that cannot be triangulated";
+        }
+        continue;
+      }
+      ++filled;
+    }
+  }
+  triangles_.insert(triangles_.end(), added.begin(), added.end());
+  return filled;
+}
+
+bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>& added) const {
+  const int k = static_cast<int>(loop.size());
+  std::vector<Eigen::VectorXd> x(k);
+  for (int i = 0; i < k; ++i) {
+    x[i] = cells_.center(loop[i]);
+  }
+  // Orientation is judged in the tangent plane of the first vertex; angles in R^n.
+  const Eigen::MatrixXd T = cells_.tangent(loop[0]);
+  std::vector<Eigen::Vector2d> p(k);
+  for (int i = 0; i < k; ++i) {
+    p[i] = T.transpose() * (x[i] - x[0]);
+  }
+  auto quality = [&](int a, int b, int c) {
+    const Eigen::Vector2d u = p[b] - p[a];
+    const Eigen::Vector2d v = p[c] - p[a];
+    if (u(0) * v(1) - u(1) * v(0) <= 0) {
+      return -1.0;  // not counter-clockwise: would fold over its neighbours
+    }
+    return std::min({corner_angle(x[a], x[b], x[c]), corner_angle(x[b], x[c], x[a]),
+                     corner_angle(x[c], x[a], x[b])});
+  };
+  auto diagonal_allowed = [&](int a, int b) {
+    return b - a == 1 || (a == 0 && b == k - 1) || !has_edge(loop[a], loop[b]);
+  };
+  const double kNone = -1.0;
+  std::vector<double> best(k * k, kNone);
+  std::vector<int> split(k * k, -1);
+  for (int i = 0; i + 1 < k; ++i) {
+    best[i * k + i + 1] = std::numeric_limits<double>::infinity();
+  }
+  for (int length = 2; length < k; ++length) {
+    for (int i = 0; i + length < k; ++i) {
+      const int j = i + length;
+      if (!diagonal_allowed(i, j)) {
+        continue;
+      }
+      for (int m = i + 1; m < j; ++m) {
+        const double value =
+            std::min({best[i * k + m], best[m * k + j], quality(i, m, j)});
+        if (value > best[i * k + j]) {
+          best[i * k + j] = value;
+          split[i * k + j] = m;
+        }
+      }
+    }
+  }
+  if (best[k - 1] <= 0) {
+    return false;
+  }
+  std::vector<std::pair<int, int>> stack = {{0, k - 1}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j - i < 2) {
+      continue;
+    }
+    const int m = split[i * k + j];
+    added.push_back({loop[i], loop[m], loop[j]});
+    stack.emplace_back(i, m);
+    stack.emplace_back(m, j);
+  }
+  return true;
+}
+
+// A vertex whose triangles form two or more fans that share no edge is not vertex-manifold;
+// keeps the largest fan there and drops the others, until no such vertex is left.
+// Returns the number of triangles dropped.
+int remove_pinched_fans(int vertex_count, std::vector<Triangle>& triangles) {
+  int dropped_total = 0;
+  for (int round = 0; round < 8; ++round) {
+    std::vector<int> first(vertex_count + 1, 0);
+    for (const Triangle& t : triangles) {
+      for (int v : t) {
+        ++first[v + 1];
+      }
+    }
+    for (int v = 0; v < vertex_count; ++v) {
+      first[v + 1] += first[v];
+    }
+    std::vector<int> incident(first.back());
+    std::vector<int> fill = first;
+    for (int t = 0; t < static_cast<int>(triangles.size()); ++t) {
+      for (int v : triangles[t]) {
+        incident[fill[v]++] = t;
+      }
+    }
+    std::vector<bool> drop(triangles.size(), false);
+    bool any = false;
+    std::vector<int> parent;
+    for (int v = 0; v < vertex_count; ++v) {
+      const int begin = first[v];
+      const int count = first[v + 1] - begin;
+      if (count < 2) {
+        continue;
+      }
+      parent.resize(count);
+      for (int i = 0; i < count; ++i) {
+        parent[i] = i;
+      }
+      auto root = [&](int i) {
+        while (parent[i] != i) {
+          i = parent[i] = parent[parent[i]];
+        }
+        return i;
+      };
+      for (int i = 0; i < count; ++i) {
+        for (int j = i + 1; j < count; ++j) {
+          const Triangle& a = triangles[incident[begin + i]];
+          const Triangle& b = triangles[incident[begin + j]];
+          int shared = 0;
+          for (int x : a) {
+            shared += (x != v && (x == b[0] || x == b[1] || x == b[2])) ? 1 : 0;
+          }
+          if (shared > 0) {
+            parent[root(i)] = root(j);
+          }
+        }
+      }
+      std::vector<int> size(count, 0);
+      for (int i = 0; i < count; ++i) {
+        ++size[root(i)];
+      }
+      const int largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+      if (size[largest] == count) {
+        continue;
+      }
+      for (int i = 0; i < count; ++i) {
+        if (root(i) != largest) {
+          drop[incident[begin + i]] = true;
+          any = true;
+        }
+      }
+    }
+    if (!any) {
+      break;
+    }
+    std::vector<Triangle> kept;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      if (drop[t]) {
+        ++dropped_total;
+      } else {
+        kept.push_back(triangles[t]);
+      }
+    }
+    triangles = std::move(kept);
+  }
+  return dropped_total;
+}
+
+}  // namespace
+
+AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
+  std::vector<Proposal> proposals;
+  proposals.reserve(static_cast<std::size_t>(cells.chart_count) * 6);
+  for (int c = 0; c < cells.chart_count; ++c) {
+    const auto& vertices = cells.polygon(c).vertices();
+    const double r2 = cells.radius(c) * cells.radius(c) * (1.0 + 1e-9);
+    const int m = static_cast<int>(vertices.size());
+    for (int i = 0; i < m && m >= 3; ++i) {
+      const int before = vertices[(i + m - 1) % m].edge_label;  // edge ending at vertex i
+      const int after = vertices[i].edge_label;                // edge starting at vertex i
+      if (before < 0 || after < 0 || before == after ||
+          vertices[i].s * vertices[i].s + vertices[i].t * vertices[i].t > r2) {
+        continue;
+      }
+      const std::array<int, 3> t = {c, before, after};
+      std::array<int, 3> sorted = t;
+      std::sort(sorted.begin(), sorted.end());
+      proposals.push_back({sorted, c, is_even_rotation(t, sorted)});
+    }
+  }
+  std::sort(proposals.begin(), proposals.end(), [](const Proposal& a, const Proposal& b) {
+    return a.sorted != b.sorted ? a.sorted < b.sorted : a.proposer < b.proposer;
+  });
+  std::vector<Triangle> triangles;
+  for (std::size_t first = 0; first < proposals.size();) {
+    std::size_t last = first;
+    int proposers = 0;
+    int even_votes = 0;
+    int previous = -1;
+    while (last < proposals.size() && proposals[last].sorted == proposals[first].sorted) {
+      if (proposals[last].proposer != previous) {
+        ++proposers;
+        previous = proposals[last].proposer;
+        even_votes += proposals[last].even ? 1 : 0;
+      }
+      ++last;
+    }
+    if (proposers == 3) {
+      const auto& s = proposals[first].sorted;
+      triangles.push_back(even_votes >= 2 ? Triangle{s[0], s[1], s[2]}
+                                          : Triangle{s[0], s[2], s[1]});
+    }
+    first = last;
+  }
+  AtlasTriangulation result;
+  result.consistent_triangles = static_cast<int>(triangles.size());
+
+  // An edge of more than two triangles cannot come from consistent fans; drop them all and let
+  // the hole filler triangulate the place again.
+  {
+    std::vector<std::pair<std::uint64_t, int>> edges;
+    for (int t = 0; t < static_cast<int>(triangles.size()); ++t) {
+      for (int e = 0; e < 3; ++e) {
+        const int a = triangles[t][e];
+        const int b = triangles[t][(e + 1) % 3];
+        edges.emplace_back(edge_key(std::min(a, b), std::max(a, b)), t);
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    std::vector<bool> drop(triangles.size(), false);
+    for (std::size_t i = 0; i < edges.size();) {
+      std::size_t j = i;
+      while (j < edges.size() && edges[j].first == edges[i].first) {
+        ++j;
+      }
+      if (j - i > 2) {
+        for (std::size_t q = i; q < j; ++q) {
+          drop[edges[q].second] = true;
+        }
+      }
+      i = j;
+    }
+    std::vector<Triangle> kept;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      if (!drop[t]) {
+        kept.push_back(triangles[t]);
+      }
+    }
+    triangles = std::move(kept);
+  }
+  HoleFiller filler(cells, triangles);
+  result.filled_holes = filler.fill(result.message);
+  // Pinches arise at the ragged outer edge of an unfinished atlas (outside the domain, or
+  // where a run stopped); the caller checks that none is left where M must be covered.
+  result.dropped_triangles = remove_pinched_fans(cells.chart_count, triangles);
+
+  // Vertices: the charts that carry triangles, in chart order.
+  std::vector<int> vertex_of(cells.chart_count, -1);
+  for (const Triangle& t : triangles) {
+    for (int c : t) {
+      vertex_of[c] = 0;
+    }
+  }
+  result.mesh = TriangleMesh(cells.ambient_dimension);
+  for (int c = 0; c < cells.chart_count; ++c) {
+    if (vertex_of[c] == 0) {
+      vertex_of[c] = result.mesh.add_vertex(cells.center(c));
+    }
+  }
+  for (Triangle& t : triangles) {
+    for (int& c : t) {
+      c = vertex_of[c];
+    }
+  }
+  std::sort(triangles.begin(), triangles.end());  // deterministic order
+  result.mesh.set_triangles(std::move(triangles));
+  return result;
+}
+
+}  // namespace tessera

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/methods/atlas/chart_index.h"
+
+#include <cmath>
+
+#include "tessera/methods/common/point_grid.h"
+
+namespace tessera {
+
+ChartIndex::ChartIndex(int ambient_dimension) : projection_(grid_projection(ambient_dimension)) {}
+
+std::int64_t ChartIndex::key(std::int64_t i, std::int64_t j, std::int64_t k) {
+  // 21 bits per axis: far cells may collide, which costs a distance check, never a miss.
+  const std::int64_t mask = (std::int64_t{1} << 21) - 1;
+  return ((i & mask) << 42) | ((j & mask) << 21) | (k & mask);
+}
+
+void ChartIndex::insert(int chart, const Eigen::Ref<const Eigen::VectorXd>& center,
+                        double radius) {
+  const int level_index = static_cast<int>(std::floor(std::log2(radius)));
+  Level& level = levels_[level_index];
+  level.cell_size = 2.0 * std::ldexp(1.0, level_index + 1);
+  const Eigen::Vector3d p = projection_ * center;
+  level.cells[key(static_cast<std::int64_t>(std::floor(p(0) / level.cell_size)),
+                  static_cast<std::int64_t>(std::floor(p(1) / level.cell_size)),
+                  static_cast<std::int64_t>(std::floor(p(2) / level.cell_size)))]
+      .push_back(chart);
+}
+
+void ChartIndex::candidates(const Eigen::Ref<const Eigen::VectorXd>& center, double radius,
+                            std::vector<int>& out) const {
+  out.clear();
+  const Eigen::Vector3d p = projection_ * center;
+  for (const auto& [level_index, level] : levels_) {
+    // Every disk of this level has radius < cell_size/2, so overlapping centres lie within
+    // radius + cell_size/2 of p (in the projection too, which does not increase distances).
+    const double reach = radius + 0.5 * level.cell_size;
+    std::int64_t low[3];
+    std::int64_t high[3];
+    for (int a = 0; a < 3; ++a) {
+      low[a] = static_cast<std::int64_t>(std::floor((p(a) - reach) / level.cell_size));
+      high[a] = static_cast<std::int64_t>(std::floor((p(a) + reach) / level.cell_size));
+    }
+    for (std::int64_t i = low[0]; i <= high[0]; ++i) {
+      for (std::int64_t j = low[1]; j <= high[1]; ++j) {
+        for (std::int64_t k = low[2]; k <= high[2]; ++k) {
+          const auto it = level.cells.find(key(i, j, k));
+          if (it != level.cells.end()) {
+            out.insert(out.end(), it->second.begin(), it->second.end());
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace tessera

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+// Which charts' disks may overlap a given disk: a hash grid per radius level (section 6.1's
+// quadtree replaced by hashing; O(1) per query for bounded local density, whatever N).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace tessera {
+
+/// Disks (centre in R^n, radius) bucketed by a 3-D projection of the centre, one grid per
+/// power-of-two radius level so that small disks are found in small cells even when other
+/// parts of M carry large ones.
+class ChartIndex {
+ public:
+  explicit ChartIndex(int ambient_dimension);
+
+  void insert(int chart, const Eigen::Ref<const Eigen::VectorXd>& center, double radius);
+
+  /// Charts whose disk might overlap the disk (center, radius): a superset of those with
+  /// ‖c_j − center‖ < r_j + radius. Appended to `out` (cleared first), in no fixed order.
+  void candidates(const Eigen::Ref<const Eigen::VectorXd>& center, double radius,
+                  std::vector<int>& out) const;
+
+ private:
+  struct Level {
+    double cell_size = 0.0;  ///< 2 × the largest radius of the level
+    std::unordered_map<std::int64_t, std::vector<int>> cells;
+  };
+  static std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k);
+
+  Eigen::MatrixXd projection_;  // 3×n
+  std::unordered_map<int, Level> levels_;  // by floor(log2(radius))
+};
+
+}  // namespace tessera
