@@ -35,6 +35,41 @@ Domain box3(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
 
 // --- Entries ---------------------------------------------------------------------------------
 
+// Surfaces written in the problem-file language (exact derivatives by reverse-mode AD).
+ProblemSetup make_flat_torus(const ParameterValues& /*values*/) {
+  // The Clifford torus: the product of two unit circles, a flat torus in R^4 (χ = 0,
+  // area (2π)², every normal curvature 1 in the directions of the circles).
+  return parse_problem(
+      "name flat_torus\n"
+      "description flat torus x1²+x2² = 1, x3²+x4² = 1 in R^4\n"
+      "variables x1 x2 x3 x4\n"
+      "equation x1^2 + x2^2 - 1\n"
+      "equation x3^2 + x4^2 - 1\n"
+      "start 1 0 1 0\n"
+      "step 0.3\n"
+      "euler 0\n"
+      "area 39.47841760435743\n",
+      "catalogue:flat_torus");
+}
+
+ProblemSetup make_crossing(const ParameterValues& /*values*/) {
+  // Two sheets that cross transversally along the circle x² + y² = 1, z = 0, where DF = 0:
+  // Henderson's section 8. From the start on the sphere the atlas covers the sphere (χ = 2).
+  return parse_problem(
+      "name crossing\n"
+      "description plane z = 0 through the unit sphere: z(x²+y²+z²−1) = 0\n"
+      "variables x y z\n"
+      "equation z*(x^2 + y^2 + z^2 - 1)\n"
+      "start 0.3 0.2 0.9\n"
+      "step 0.2\n"
+      "box x -1.5 1.5\n"
+      "box y -1.5 1.5\n"
+      "box z -1.5 1.5\n"
+      "euler 2\n"
+      "area 12.566370614359172\n",
+      "catalogue:crossing");
+}
+
 ProblemSetup make_plane(const ParameterValues& /*values*/) {
   ProblemSetup setup;
   setup.problem = std::make_unique<Plane>();
@@ -359,6 +394,12 @@ const std::vector<CatalogueEntry>& catalogue() {
                  "steady states of a stirred tank reactor in (x1, x2, Da, B) (Hohmann, after "
                  "Uppal, Ray & Poore)",
                  {{"beta", 0.5, "heat transfer coefficient"}}, make_cstr),
+      make_entry("flat_torus", "flat (Clifford) torus x1²+x2² = 1, x3²+x4² = 1 in R^4", {},
+                 make_flat_torus),
+      make_entry("crossing",
+                 "plane through a sphere, z(x²+y²+z²−1) = 0: two sheets crossing along a "
+                 "circle (Henderson section 8); the start lies on the sphere",
+                 {}, make_crossing),
       make_entry("bvp",
                  "Gelfand–Bratu u'' + λ exp(u/(1+εu)) = 0, u(0) = u(1) = 0 on N points, "
                  "coordinates (u1…uN, lambda, epsilon); sparse J; a fold surface with a cusp",

@@ -74,6 +74,7 @@ struct Chart {
   ChartPolygon polygon;
   int parent = -1;
   signed char orientation = 0;  // sign of det([J; Tᵀ]) at the centre; 0: not watched
+  float jacobian_scale = 0.0f;  // σ_min(J) at the centre (only where crossings are watched)
   bool queued = false;
 };
 
@@ -113,6 +114,8 @@ class AtlasBuilder {
 
  private:
   bool choose_radius(const Linearization& at_center, double trial, double& radius);
+  bool project(const Linearization& at_center, double distance, Eigen::VectorXd& y);
+  double jacobian_scale(const Eigen::VectorXd& x);
   int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);
   void connect_neighbours(int k);
   int next_open_vertex(int c) const;
@@ -138,6 +141,7 @@ class AtlasBuilder {
   std::deque<int> open_;          // charts that may have eligible exterior vertices
   std::unordered_map<int, Linearization> factored_;  // factorisations of queued charts
   std::vector<int> candidates_;   // scratch
+  Linearization scratch_;         // workspace of full Gauss–Newton
   bool stopped_ = false;
   int singular_crossings_ = 0;
   int sheet_rejections_ = 0;
@@ -167,8 +171,9 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
       const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
       const Eigen::VectorXd predicted = x + r * (T * d);
       y = predicted;
-      converged = project_chord(problem_, at_center, y, options_.corrector).is_success();
-      q[i] = (2.0 / (r * r)) * (y - predicted);
+      converged = project(at_center, r, y);
+      const Eigen::VectorXd offset = y - predicted;
+      q[i] = (2.0 / (r * r)) * (offset - T * (T.transpose() * offset));
     }
     if (!converged) {
       r *= 0.5;
@@ -200,6 +205,34 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
   return false;
 }
 
+// Henderson's pointOnDisk: F(y) = 0 with Tᵀ(y − y_predicted) = 0, by the chord iteration of
+// the chart. Across a singular curve the frozen J points the wrong way (F = z·S changes the
+// sign of its gradient with z), so a failed chord is retried with full Gauss–Newton, which
+// re-evaluates J and lands on the same sheet; its small tangential drift does not matter.
+bool AtlasBuilder::project(const Linearization& at_center, double distance, Eigen::VectorXd& y) {
+  const Eigen::VectorXd predicted = y;
+  if (project_chord(problem_, at_center, y, options_.corrector).is_success()) {
+    return true;
+  }
+  y = predicted;
+  CorrectorOptions full = options_.corrector;
+  full.max_displacement = 0.5 * distance;
+  return project_gauss_newton(problem_, y, full, scratch_).is_success();
+}
+
+// σ_min(J): how far x is from the singular points of F (for codimension 1, |∇F|).
+double AtlasBuilder::jacobian_scale(const Eigen::VectorXd& x) {
+  const int m = n_ - 2;
+  Eigen::MatrixXd J(m, n_);
+  problem_.jacobian(x, J);
+  if (m == 1) {
+    return J.norm();
+  }
+  const Eigen::MatrixXd gram = J * J.transpose();
+  return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram,
+                                     Eigen::EigenvaluesOnly).eigenvalues()(0)));
+}
+
 signed char AtlasBuilder::orientation_sign(const Eigen::VectorXd& x,
                                            const Eigen::Ref<const Eigen::MatrixXd>& T) {
   // sign det([J(x); Tᵀ]): along one sheet it keeps its sign as long as T stays transversal to
@@ -229,6 +262,11 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   if (!linearization.factor(problem_, x, parent >= 0 ? &parent_tangent : nullptr)) {
     return -1;  // DF lost rank: a singular point; the caller moves the centre
   }
+  if (parent >= 0 &&
+      std::abs((parent_tangent.transpose() * linearization.tangent_basis()).determinant()) <
+          options_.min_sheet_cosine) {
+    return -1;  // the projection jumped to another sheet; the caller tries another point
+  }
   const double trial =
       parent >= 0 ? std::min(options_.max_radius, options_.radius_growth * charts_[parent].radius)
                   : options_.max_radius;
@@ -243,6 +281,7 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   chart.parent = parent;
   if (watch_crossings_) {
     chart.orientation = orientation_sign(x, linearization.tangent_basis());
+    chart.jacobian_scale = static_cast<float>(jacobian_scale(x));
   }
   charts_.push_back(std::move(chart));
   centers_.insert(centers_.end(), x.data(), x.data() + n_);
@@ -393,13 +432,18 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
         const Eigen::Vector2d s =
             std::min(fraction * options_.placement, 1.9) * charts_[c].radius * direction;
         y = xc + Tc * s;
-        if (!project_chord(problem_, at_center, y, options_.corrector).is_success()) {
+        if (!project(at_center, s.norm(), y)) {
           continue;
         }
         if (watch_crossings_ && charts_[c].orientation != 0) {
+          // Never centre a chart at or next to a singular point: its chord iteration would
+          // not converge beyond a tiny radius. σ_min falling tenfold in one step means one.
+          if (jacobian_scale(y) < 0.1 * charts_[c].jacobian_scale) {
+            continue;
+          }
           const signed char across = orientation_sign(y, Tc);
           if (across == 0) {
-            continue;  // a singular point: never the centre of a chart
+            continue;
           }
           if (across != charts_[c].orientation) {
             ++singular_crossings_;
