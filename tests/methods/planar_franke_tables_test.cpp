@@ -17,51 +17,31 @@
 namespace tessera {
 namespace {
 
-// The 33-node set has one cocircular quadrilateral; the report used its diagonal
-// (0.8, 0.4)–(0.85, 0.25). Swaps the other diagonal to that one if needed.
-void use_reports_diagonal(PlanarTriangulation& triangulation) {
-  const auto is_at = [&](int v, double x, double y) {
-    return std::abs(triangulation.point(v).x() - x) < 1e-12 &&
-           std::abs(triangulation.point(v).y() - y) < 1e-12;
-  };
-  for (int t = 0; t < triangulation.triangle_count(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      if (!triangulation.is_interior_edge(t, k)) {
-        continue;
-      }
-      const int a = triangulation.triangle(t)[k];
-      const int b = triangulation.triangle(t)[(k + 1) % 3];
-      const bool ends_at_report_points = (is_at(a, 0.8, 0.4) || is_at(b, 0.8, 0.4)) &&
-                                         (is_at(a, 0.85, 0.25) || is_at(b, 0.85, 0.25));
-      if (ends_at_report_points) {
-        return;  // already the report's diagonal
-      }
+// True if the triangulation has the edge between the points at p and q.
+bool has_edge_between(const PlanarTriangulation& triangulation, const Eigen::Vector2d& p,
+                      const Eigen::Vector2d& q) {
+  for (const auto& [a, b] : triangulation.edges()) {
+    const Eigen::Vector2d u = triangulation.point(a);
+    const Eigen::Vector2d v = triangulation.point(b);
+    if ((u == p && v == q) || (u == q && v == p)) {
+      return true;
     }
   }
-  // Not present: find the quadrilateral whose other diagonal joins the two points and swap.
-  for (int t = 0; t < triangulation.triangle_count(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      if (!triangulation.is_interior_edge(t, k) || !triangulation.is_swap_valid(t, k)) {
-        continue;
-      }
-      PlanarTriangulation trial = triangulation;
-      trial.swap(t, k);
-      bool found = false;
-      for (int s = 0; s < trial.triangle_count() && !found; ++s) {
-        for (int r = 0; r < 3 && !found; ++r) {
-          const int a = trial.triangle(s)[r];
-          const int b = trial.triangle(s)[(r + 1) % 3];
-          found = (is_at(a, 0.8, 0.4) && is_at(b, 0.85, 0.25)) ||
-                  (is_at(a, 0.85, 0.25) && is_at(b, 0.8, 0.4));
-        }
-      }
-      if (found) {
-        triangulation = trial;
-        return;
-      }
-    }
-  }
-  FAIL() << "the report's diagonal (0.8, 0.4)–(0.85, 0.25) is not reachable by one swap";
+  return false;
+}
+
+// The 33-node set has one cocircular quadrilateral, (0.75, 0.35), (0.85, 0.25), (0.9, 0.35),
+// (0.8, 0.4) (centre (0.825, 0.325)); the report used its diagonal (0.8, 0.4)–(0.85, 0.25).
+// The library's input-order rule must choose it without help.
+TEST(MalcolmTable1, DelaunayUsesTheReportsDiagonalOfTheCocircularQuadrilateral) {
+  const ScatteredData data =
+      read_scattered_data_csv(testing::source_path("examples/data/franke33.csv"));
+  DelaunaySummary summary;
+  const PlanarTriangulation triangulation =
+      delaunay_triangulation(data.points, Eigen::VectorXd(), &summary);
+  EXPECT_EQ(summary.cocircular_edges, 1);
+  EXPECT_TRUE(has_edge_between(triangulation, {0.8, 0.4}, {0.85, 0.25}));
+  EXPECT_FALSE(has_edge_between(triangulation, {0.75, 0.35}, {0.9, 0.35}));
 }
 
 TEST(MalcolmTable1, DelaunayRowFor33PointsMatchesTheReport) {
@@ -75,9 +55,8 @@ TEST(MalcolmTable1, DelaunayRowFor33PointsMatchesTheReport) {
                                                         {FrankeFunction::F8, 0.15210},
                                                         {FrankeFunction::F9, 0.05042}};
   for (const auto& [function, value] : expected) {
-    PlanarTriangulation triangulation =
+    const PlanarTriangulation triangulation =
         delaunay_triangulation(data.points, sample(function, data.points));
-    use_reports_diagonal(triangulation);
     const InterpolationError error = interpolation_error(
         triangulation, [function](double x, double y) { return evaluate(function, x, y); });
     std::cout << to_string(function) << ": mean " << error.mean << " (report " << value << ")\n";
@@ -101,8 +80,7 @@ TEST(MalcolmTable1, ReportedDataDependentRowsForF2LieWithinTheSweepOrderSpread) 
   const ScatteredData data =
       read_scattered_data_csv(testing::source_path("examples/data/franke33.csv"));
   const FrankeFunction f = FrankeFunction::F2;
-  PlanarTriangulation start = delaunay_triangulation(data.points, sample(f, data.points));
-  use_reports_diagonal(start);
+  const PlanarTriangulation start = delaunay_triangulation(data.points, sample(f, data.points));
   const struct {
     CriterionKind kind;
     CostOrdering ordering;
