@@ -232,7 +232,13 @@ int run_ddt(const DdtCommand& command) {
         std::printf("  orders %.5f … %.5f", lowest, highest);
       }
       if (report != nullptr) {
-        std::printf("  report %.5f", report[r][function_column(*function)]);
+        const double value = report[r][function_column(*function)];
+        std::printf("  report %.5f", value);
+        if (command.orders > 1) {
+          // The report prints 5 decimals: half a unit of the last one is within reach.
+          const bool is_in_spread = value >= lowest - 0.5e-5 && value <= highest + 0.5e-5;
+          std::printf(" (%s)", is_in_spread ? "in spread" : "outside spread");
+        }
       }
       std::printf("  rms %.5f  max %.5f\n", measured.error.rms, measured.error.max);
     }
