@@ -46,10 +46,10 @@ bool is_cocircular(const PlanarTriangulation& triangulation, const EdgeQuadrilat
 DelaunaySummary apply_input_order_rule(PlanarTriangulation& triangulation) {
   DelaunaySummary summary;
   // Each swap lowers the perturbed surface, so no triangulation repeats; the cap only guards
-  // against a broken invariant.
+  // against a broken invariant (it ends the loop in release builds too).
   const int max_swaps = 10 * triangulation.triangle_count() + 10;
   bool swapped = true;
-  while (swapped) {
+  while (swapped && summary.rule_swaps <= max_swaps) {
     swapped = false;
     for (int t = 0; t < triangulation.triangle_count(); ++t) {
       for (int k = 0; k < 3; ++k) {

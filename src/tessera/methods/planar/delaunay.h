@@ -27,7 +27,9 @@ struct DelaunaySummary {
 /// circle of earlier nodes is treated as just outside it. For a cocircular quadrilateral this
 /// means: the diagonal is the one that avoids the quadrilateral's node with the largest index.
 /// On Franke's 33-node set this gives the report's diagonal (0.8, 0.4)–(0.85, 0.25). The
-/// report does not state its rule; see docs/algorithms/ddt.md.
+/// report does not state its rule; see docs/algorithms/ddt.md. Exception: a cocircular
+/// quadrilateral with a nearly flat corner (refused by PlanarTriangulation::is_swap_valid)
+/// keeps CGAL's diagonal rather than become a sliver.
 ///
 /// \param points 2×N, one point per column, N ≥ 3. \param values N values (may be empty:
 ///        then all values are 0). \param summary if not null, receives the cocircular counts.
