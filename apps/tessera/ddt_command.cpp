@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <iterator>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <optional>
 
@@ -53,8 +53,7 @@ Row optimise_and_measure(const PlanarTriangulation& start, const std::string& cr
     TESSERA_CHECK(function.has_value(),
                   "--criterion equid needs --function: it uses the function's second derivatives");
     const FrankeFunction f = *function;
-    const EquidistributionCriterion equid(
-        [f](double x, double y) { return hessian(f, x, y); });
+    const EquidistributionCriterion equid([f](double x, double y) { return hessian(f, x, y); });
     summary = optimise_locally(triangulation, equid, options);
   } else {
     const auto kind = parse_criterion(criterion_name);
@@ -180,7 +179,15 @@ int run_ddt(const DdtCommand& command) {
                                             "or --value-column NAME");
     values = data.values;
   }
-  const PlanarTriangulation start = delaunay_triangulation(data.points, values);
+  DelaunaySummary delaunay;
+  const PlanarTriangulation start = delaunay_triangulation(data.points, values, &delaunay);
+  if (delaunay.cocircular_edges > 0) {
+    // Either diagonal is Delaunay there; say which rule chose (see delaunay.h).
+    std::printf(
+        "%d cocircular quadrilateral(s): diagonal avoids the later node in input order "
+        "(%d swap(s) from CGAL's choice)\n",
+        delaunay.cocircular_edges, delaunay.rule_swaps);
+  }
   const SwapTest test = command.test == "local" ? SwapTest::Local : SwapTest::Global;
   if (command.all_criteria) {
     std::printf("%d points, %s test; mean, RMS and max of |f_T − f| on a %d×%d grid of [0,1]²\n",
@@ -189,12 +196,11 @@ int run_ddt(const DdtCommand& command) {
     const struct {
       const char* criterion;
       CostOrdering ordering;
-    } rows[] = {{"delaunay", CostOrdering::L2}, {"mwt3d", CostOrdering::L2},
-                {"abn", CostOrdering::L1},      {"abn", CostOrdering::L2},
-                {"jnd", CostOrdering::L1},      {"jnd", CostOrdering::L2},
-                {"pf", CostOrdering::L1},       {"pf", CostOrdering::L2},
-                {"pd", CostOrdering::L1},       {"pd", CostOrdering::L2},
-                {"equid", CostOrdering::L2}};
+    } rows[] = {
+        {"delaunay", CostOrdering::L2}, {"mwt3d", CostOrdering::L2}, {"abn", CostOrdering::L1},
+        {"abn", CostOrdering::L2},      {"jnd", CostOrdering::L1},   {"jnd", CostOrdering::L2},
+        {"pf", CostOrdering::L1},       {"pf", CostOrdering::L2},    {"pd", CostOrdering::L1},
+        {"pd", CostOrdering::L2},       {"equid", CostOrdering::L2}};
     const double(*report)[5] = command.compare_report == 33    ? kTable1
                                : command.compare_report == 100 ? kTable2
                                                                : nullptr;
@@ -226,7 +232,13 @@ int run_ddt(const DdtCommand& command) {
         std::printf("  orders %.5f … %.5f", lowest, highest);
       }
       if (report != nullptr) {
-        std::printf("  report %.5f", report[r][function_column(*function)]);
+        const double value = report[r][function_column(*function)];
+        std::printf("  report %.5f", value);
+        if (command.orders > 1) {
+          // The report prints 5 decimals: half a unit of the last one is within reach.
+          const bool is_in_spread = value >= lowest - 0.5e-5 && value <= highest + 0.5e-5;
+          std::printf(" (%s)", is_in_spread ? "in spread" : "outside spread");
+        }
       }
       std::printf("  rms %.5f  max %.5f\n", measured.error.rms, measured.error.max);
     }
@@ -237,8 +249,8 @@ int run_ddt(const DdtCommand& command) {
                                        function, command.grid, &result);
   print_row(row, function.has_value());
   if (function) {
-    std::printf("grid points inside the hull %d, outside (left out) %d\n",
-                row.error.points_inside, row.error.points_outside);
+    std::printf("grid points inside the hull %d, outside (left out) %d\n", row.error.points_inside,
+                row.error.points_outside);
   }
   if (!command.output.empty()) {
     MeshFileOptions options;

@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "support/front_run.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/methods/front/advancing_front.h"
-#include "support/front_run.h"
 #include "tessera/problems/catalogue.h"
 
 namespace tessera {
@@ -187,7 +187,6 @@ TEST(EdgeSwap, NonConvexQuadrilateralIsNeverSwapped) {
     const ImprovementSummary summary = improve_by_edge_swaps(
         mesh, *plane.problem, {.criterion = criterion, .relative_tolerance = 0.0});
     EXPECT_EQ(summary.swaps, 0);
-    EXPECT_EQ(summary.rejected_non_convex, 1);
     EXPECT_EQ(mesh.triangles(), triangles);
   }
   // d exactly on the line through c and b: the quadrilateral is convex but not strictly.
@@ -196,6 +195,45 @@ TEST(EdgeSwap, NonConvexQuadrilateralIsNeverSwapped) {
   // Boundary edges are never candidates.
   EXPECT_EQ(check_edge_swap(mesh, *plane.problem, 0, 2), SwapCheck::BoundaryEdge);
   EXPECT_EQ(check_edge_swap(mesh, *plane.problem, 2, 3), SwapCheck::NotAnEdge);
+}
+
+// Quadrilaterals a, d, b, c that are not convex seen from the plane z = 0 (M), each built so
+// that its criterion prefers the other diagonal: the criterion is evaluated first, and the
+// convexity check must still refuse. rejected_non_convex counts only swaps the criterion
+// wanted, so its value 1 says both: the criterion wanted the swap, the check refused it.
+TEST(EdgeSwap, NonConvexQuadrilateralIsRefusedEvenWhenTheCriterionWantsTheSwap) {
+  const ProblemSetup plane = make_catalogue_problem("plane");
+  const auto quadrilateral = [](double a_z, const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
+    Eigen::MatrixXd points(3, 4);
+    points.col(0) = Eigen::Vector3d(0, 0, a_z);  // a
+    points.col(1) = Eigen::Vector3d(2, 0, a_z);  // b
+    points.col(2) = c;
+    points.col(3) = d;
+    return TriangleMesh(points, {{0, 1, 2}, {1, 0, 3}});
+  };
+  // Seen from above, c = (1, 1), d = (4, −0.5): the diagonal cd crosses y = 0 at x = 3, beside
+  // the edge ab, so the corner at b is reflex.
+  const struct {
+    SwapCriterion criterion;
+    TriangleMesh mesh;
+    const char* why_the_criterion_wants_it;
+  } cases[] = {
+      {SwapCriterion::MaxMinAngle, quadrilateral(0, {1, 1, 0}, {4, -0.5, 0}),
+       "smallest angle 7.1° (at a in bad) before, 12.5° after (unsigned angles)"},
+      {SwapCriterion::NormalAngle, quadrilateral(0, {1, 1, 3}, {4, -0.5, 8}),
+       "angle between the normals 158° before, 143° after"},
+      {SwapCriterion::MidpointDistance, quadrilateral(0.1, {1, 1, 0}, {4, -0.5, 0}),
+       "midpoint of ab 0.1 above M, midpoint of cd on M"},
+  };
+  for (const auto& [criterion, start, why] : cases) {
+    TriangleMesh mesh = start;
+    EXPECT_EQ(check_edge_swap(mesh, *plane.problem, 0, 1), SwapCheck::NonConvex) << why;
+    const ImprovementSummary summary = improve_by_edge_swaps(
+        mesh, *plane.problem, {.criterion = criterion, .relative_tolerance = 0.0});
+    EXPECT_EQ(summary.swaps, 0) << to_string(criterion);
+    EXPECT_EQ(summary.rejected_non_convex, 1) << to_string(criterion) << ": " << why;
+    EXPECT_EQ(mesh.triangles(), start.triangles()) << to_string(criterion);
+  }
 }
 
 TEST(EdgeSwap, ConvexQuadrilateralIsSwappedWithOrientationKept) {

@@ -98,28 +98,27 @@ bool is_strictly_convex_in_plane(const TriangleMesh& mesh, const Quad& q, const 
   return true;
 }
 
+// Projects the midpoint m of u and v onto M: on success x = P(m). A projection that goes
+// farther than the edge is long has left the neighbourhood of the edge (another sheet of M);
+// what M looks like there says nothing about this edge.
+bool project_edge_midpoint(const TriangleMesh& mesh, const ImplicitProblem& problem, int u, int v,
+                           Linearization& linearization, Eigen::VectorXd& x) {
+  x = 0.5 * (mesh.point(u) + mesh.point(v));
+  CorrectorOptions corrector;
+  corrector.max_displacement = (mesh.point(u) - mesh.point(v)).norm();
+  return project_gauss_newton(problem, x, corrector, linearization).is_success();
+}
+
 // Projects the midpoint of a and b onto M, factors J there and checks that the quadrilateral
 // a, d, b, c is strictly convex in that tangent plane with the old triangles' orientation, and
 // in the tangent planes at its four corners with the same orientation.
-// On success `midpoint_distance` is ‖P(m) − m‖ for the midpoint m of a and b.
 SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& problem,
                               const Quad& q, const ImprovementOptions& options,
-                              Linearization& linearization, Linearization& corner_linearization,
-                              double* midpoint_distance) {
-  const auto a = mesh.point(q.a);
-  const auto b = mesh.point(q.b);
-  const Eigen::VectorXd midpoint = 0.5 * (a + b);
-  Eigen::VectorXd x = midpoint;
-  CorrectorOptions corrector;
-  // A projection that goes farther than the edge is long has left the neighbourhood of the edge
-  // (another sheet of M); the tangent plane there says nothing about this quadrilateral.
-  corrector.max_displacement = (b - a).norm();
-  const CorrectorSummary projection = project_gauss_newton(problem, x, corrector, linearization);
-  if (!projection.is_success() || !linearization.factor(problem, x)) {
+                              Linearization& linearization, Linearization& corner_linearization) {
+  Eigen::VectorXd x;
+  if (!project_edge_midpoint(mesh, problem, q.a, q.b, linearization, x) ||
+      !linearization.factor(problem, x)) {
     return SwapCheck::ProjectionFailed;
-  }
-  if (midpoint_distance != nullptr) {
-    *midpoint_distance = (x - midpoint).norm();
   }
   // T: n×2 orthonormal tangent basis at P(m); coordinates in the tangent plane are Tᵀ(y − P(m)).
   const Eigen::MatrixXd T = linearization.tangent_basis();
@@ -146,7 +145,6 @@ SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& p
   return SwapCheck::Allowed;
 }
 
-
 // n×2 orthonormal basis of the oriented 2-plane of triangle (p, q, r) (Gram–Schmidt).
 Eigen::MatrixXd plane_basis(const TriangleMesh& mesh, int p, int q, int r) {
   Eigen::MatrixXd Q(mesh.ambient_dimension(), 2);
@@ -172,37 +170,47 @@ double plane_angle(const TriangleMesh& mesh, const Triangle& first, const Triang
   return std::acos(std::clamp(smallest, 0.0, 1.0));
 }
 
-// True if replacing triangles (a, b, c), (b, a, d) by (c, a, d), (d, b, c) improves the
-// criterion by more than the relative tolerance. `old_midpoint_distance` is that of (a, b).
-bool improves(const TriangleMesh& mesh, const ImplicitProblem& problem, const Quad& q,
-              const ImprovementOptions& options, double old_midpoint_distance,
-              Linearization& workspace) {
+// What the criterion says of replacing triangles (a, b, c), (b, a, d) by (c, a, d), (d, b, c).
+enum class Verdict {
+  Improves,  ///< by more than the relative tolerance
+  DoesNotImprove,
+  ProjectionFailed,  ///< MidpointDistance: the old edge's midpoint could not be projected
+};
+
+// Evaluates the criterion alone (no validity check): the angle and normal criteria cost a few
+// dot products, far less than the five factorisations of the convexity check.
+Verdict judge_swap(const TriangleMesh& mesh, const ImplicitProblem& problem, const Quad& q,
+                   const ImprovementOptions& options, Linearization& workspace) {
   const double tolerance = options.relative_tolerance;
   switch (options.criterion) {
     case SwapCriterion::MaxMinAngle: {
       const double before =
           std::min(min_angle(mesh, {q.a, q.b, q.c}), min_angle(mesh, {q.b, q.a, q.d}));
-      const double after = std::min(min_angle(mesh, {q.c, q.a, q.d}), min_angle(mesh, {q.d, q.b, q.c}));
-      return after > before * (1.0 + tolerance);
+      const double after =
+          std::min(min_angle(mesh, {q.c, q.a, q.d}), min_angle(mesh, {q.d, q.b, q.c}));
+      return after > before * (1.0 + tolerance) ? Verdict::Improves : Verdict::DoesNotImprove;
     }
     case SwapCriterion::NormalAngle: {
       const double before = plane_angle(mesh, {q.a, q.b, q.c}, {q.b, q.a, q.d});
       const double after = plane_angle(mesh, {q.c, q.a, q.d}, {q.d, q.b, q.c});
-      return after < before * (1.0 - tolerance);
+      return after < before * (1.0 - tolerance) ? Verdict::Improves : Verdict::DoesNotImprove;
     }
     case SwapCriterion::MidpointDistance: {
-      const Eigen::VectorXd midpoint = 0.5 * (mesh.point(q.c) + mesh.point(q.d));
-      Eigen::VectorXd x = midpoint;
-      CorrectorOptions corrector;
-      corrector.max_displacement = (mesh.point(q.c) - mesh.point(q.d)).norm();
-      if (!project_gauss_newton(problem, x, corrector, workspace).is_success()) {
-        return false;
+      Eigen::VectorXd old_projection;
+      if (!project_edge_midpoint(mesh, problem, q.a, q.b, workspace, old_projection)) {
+        return Verdict::ProjectionFailed;
       }
-      const double after = (x - midpoint).norm();
-      return after < old_midpoint_distance * (1.0 - tolerance);
+      const double before = (old_projection - 0.5 * (mesh.point(q.a) + mesh.point(q.b))).norm();
+      Eigen::VectorXd new_projection;
+      // A new diagonal whose midpoint cannot be projected is no improvement.
+      if (!project_edge_midpoint(mesh, problem, q.c, q.d, workspace, new_projection)) {
+        return Verdict::DoesNotImprove;
+      }
+      const double after = (new_projection - 0.5 * (mesh.point(q.c) + mesh.point(q.d))).norm();
+      return after < before * (1.0 - tolerance) ? Verdict::Improves : Verdict::DoesNotImprove;
     }
   }
-  return false;
+  return Verdict::DoesNotImprove;
 }
 
 // Finds the two triangles of edge {u, v} by a linear scan (for the single-edge entry points).
@@ -310,8 +318,7 @@ SwapCheck check_edge_swap(const TriangleMesh& mesh, const ImplicitProblem& probl
   }
   Linearization linearization;
   Linearization corner_linearization;
-  return check_quad_geometry(mesh, problem, q, options, linearization, corner_linearization,
-                             nullptr);
+  return check_quad_geometry(mesh, problem, q, options, linearization, corner_linearization);
 }
 
 SwapCheck swap_edge(TriangleMesh& mesh, const ImplicitProblem& problem, int a, int b,
@@ -323,8 +330,7 @@ SwapCheck swap_edge(TriangleMesh& mesh, const ImplicitProblem& problem, int a, i
   if (check == SwapCheck::Allowed) {
     Linearization linearization;
     Linearization corner_linearization;
-    check = check_quad_geometry(mesh, problem, q, options, linearization, corner_linearization,
-                                nullptr);
+    check = check_quad_geometry(mesh, problem, q, options, linearization, corner_linearization);
   }
   if (check == SwapCheck::Allowed) {
     std::vector<Triangle> triangles = mesh.triangles();
@@ -382,18 +388,24 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
         ++summary.rejected_existing_edge;
         continue;
       }
-      double old_midpoint_distance = 0.0;
-      const SwapCheck check = check_quad_geometry(mesh, problem, q, options, linearization,
-                                                  corner_linearization, &old_midpoint_distance);
+      // The criterion first: most edges of a reasonable mesh do not want a swap, and for them
+      // the projection and the five factorisations of the validity check would be wasted.
+      const Verdict verdict = judge_swap(mesh, problem, q, options, workspace);
+      if (verdict == Verdict::ProjectionFailed) {
+        ++summary.rejected_projection_failed;
+        continue;
+      }
+      if (verdict == Verdict::DoesNotImprove) {
+        continue;
+      }
+      const SwapCheck check =
+          check_quad_geometry(mesh, problem, q, options, linearization, corner_linearization);
       if (check == SwapCheck::NonConvex) {
         ++summary.rejected_non_convex;
         continue;
       }
       if (check != SwapCheck::Allowed) {
         ++summary.rejected_projection_failed;
-        continue;
-      }
-      if (!improves(mesh, problem, q, options, old_midpoint_distance, workspace)) {
         continue;
       }
       triangles[q.t1] = {q.c, q.a, q.d};

@@ -56,9 +56,11 @@ struct ImprovementSummary {
   bool converged = false;  ///< the last sweep made no swap (false: max_sweeps was hit)
   int interior_edges = 0;
   // Refusals are summed over all sweeps (an edge refused in every sweep counts every time).
-  int rejected_non_convex = 0;            ///< candidate swaps refused: quad not strictly convex
+  // The criterion is evaluated before the geometric checks, so the two counters below count
+  // only swaps that the criterion wanted.
+  int rejected_non_convex = 0;            ///< wanted, refused: quad not strictly convex
   int rejected_existing_edge = 0;         ///< the other diagonal (c, d) is already an edge
-  int rejected_projection_failed = 0;     ///< the edge midpoint could not be projected onto M
+  int rejected_projection_failed = 0;     ///< an edge midpoint could not be projected onto M
   double min_angle_degrees_before = 0.0;  ///< in R^n, as measure_shape
   double min_angle_degrees_after = 0.0;
   double fraction_angles_below_30_before = 0.0;
@@ -100,11 +102,13 @@ SwapCheck swap_edge(TriangleMesh& mesh, const ImplicitProblem& problem, int a, i
 
 /// Lawson-style sweeps: every interior edge whose swap check_edge_swap allows and that
 /// improves options.criterion strictly is swapped, until a sweep swaps nothing or
-/// options.max_sweeps is reached. Vertices do not move; boundary edges are never swapped; the
-/// number of vertices, edges and triangles, the Euler characteristic, the boundary and the
-/// orientation are kept, so a valid mesh stays valid.
-/// \pre mesh.ambient_dimension() == problem.ambient_dimension() (else InvalidArgument).
-/// \see Malcolm, "Data dependent triangulation" (docs/papers), sections on swap criteria;
+/// options.max_sweeps is reached. The criterion is evaluated first and the geometric checks
+/// (a projection and five factorisations of J) only for swaps it wants; the swaps made are the
+/// same as with the checks first, since a swap needs both. Vertices do not move; boundary edges are
+/// never swapped; the number of vertices, edges and triangles, the Euler characteristic, the
+/// boundary and the orientation are kept, so a valid mesh stays valid. \pre
+/// mesh.ambient_dimension() == problem.ambient_dimension() (else InvalidArgument). \see Malcolm,
+/// "Data dependent triangulation" (docs/papers), sections on swap criteria;
 ///      Lawson's local optimisation procedure.
 ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProblem& problem,
                                          const ImprovementOptions& options = {});
