@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli_support.h"
+#include "compare_command.h"
 #include "ddt_command.h"
 #include "improve_command.h"
 #include "mesh_command.h"
@@ -80,6 +81,8 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("problems", "list the built-in catalogue");
 
+  tessera::app::CompareCommand compare;
+  tessera::app::add_compare_command(app, compare);
   tessera::app::DdtCommand ddt;
   tessera::app::add_ddt_command(app, ddt);
   tessera::app::ImproveCommand improve;
@@ -106,6 +109,9 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("problems")) {
       return run_problems();
+    }
+    if (app.got_subcommand("compare")) {
+      return tessera::app::run_compare(compare);
     }
     if (app.got_subcommand("ddt")) {
       return tessera::app::run_ddt(ddt);

@@ -318,3 +318,32 @@ TEST(CliCheck, MissingMeshFileIsNamed) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+TEST(CliAtlas, IsTheDefaultMethodAndTakesATolerance) {
+  const std::string out = work_path("atlas_default.ply");
+  const testing::CommandResult result = testing::run_cli("mesh sphere --tolerance 0.01 -o " + quoted(out));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("atlas, tolerance 0.01"), std::string::npos) << result.output;
+  const MeshValidation validation = validate(read_mesh(out));
+  EXPECT_TRUE(validation.is_valid());
+  EXPECT_EQ(validation.euler_characteristic, 2);
+}
+
+TEST(CliCompare, PrintsOneRowPerMethodWithValidityAndTopology) {
+  const testing::CommandResult result = testing::run_cli("compare sphere");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  for (const std::string method : {"atlas", "front"}) {
+    const auto row = result.output.find("\n" + method + " ");
+    ASSERT_NE(row, std::string::npos) << result.output;
+    const std::string line = result.output.substr(row + 1, result.output.find('\n', row + 1) - row - 1);
+    EXPECT_NE(line.find(" 2 yes"), std::string::npos) << line;  // χ = 2, valid
+    EXPECT_NE(line.find("completed"), std::string::npos) << line;
+  }
+  EXPECT_NE(result.output.find("expected Euler characteristic: 2"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tessera

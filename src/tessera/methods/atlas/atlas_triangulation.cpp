@@ -74,7 +74,8 @@ class HoleFiller {
     return std::binary_search(undirected_.begin(), undirected_.end(),
                               edge_key(std::min(a, b), std::max(a, b)));
   }
-  bool triangulate(const std::vector<int>& loop, std::vector<Triangle>& added) const;
+  bool triangulate(const std::vector<int>& loop, std::vector<Triangle>& added,
+                   bool require_counter_clockwise) const;
 
   const AtlasCells& cells_;
   std::vector<Triangle>& triangles_;
@@ -152,7 +153,10 @@ int HoleFiller::fill(std::string& message) {
         continue;  // the boundary of the atlas (run stopped, or the margin outside the domain)
       }
       std::reverse(simple.begin(), simple.end());  // counter-clockwise around the hole
-      if (static_cast<int>(simple.size()) > kMaxHoleVertices || !triangulate(simple, added)) {
+      // Where M turns fast the one tangent plane can misjudge orientation; the loop's own
+      // orientation (from its neighbours) then decides, with the best angles.
+      if (static_cast<int>(simple.size()) > kMaxHoleVertices ||
+          (!triangulate(simple, added, true) && !triangulate(simple, added, false))) {
         if (message.empty()) {
           message = "the charts' polygons leave a hole of " + std::to_string(simple.size()) +
                     " vertices near " + describe_point(cells_.center(simple.front())) +
@@ -167,7 +171,8 @@ int HoleFiller::fill(std::string& message) {
   return filled;
 }
 
-bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>& added) const {
+bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>& added,
+                             bool require_counter_clockwise) const {
   const int k = static_cast<int>(loop.size());
   std::vector<Eigen::VectorXd> x(k);
   for (int i = 0; i < k; ++i) {
@@ -182,11 +187,12 @@ bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>
   auto quality = [&](int a, int b, int c) {
     const Eigen::Vector2d u = p[b] - p[a];
     const Eigen::Vector2d v = p[c] - p[a];
-    if (u(0) * v(1) - u(1) * v(0) <= 0) {
+    if (require_counter_clockwise && u(0) * v(1) - u(1) * v(0) <= 0) {
       return -1.0;  // not counter-clockwise: would fold over its neighbours
     }
-    return std::min({corner_angle(x[a], x[b], x[c]), corner_angle(x[b], x[c], x[a]),
+    const double smallest = std::min({corner_angle(x[a], x[b], x[c]), corner_angle(x[b], x[c], x[a]),
                      corner_angle(x[c], x[a], x[b])});
+    return smallest > 0 ? smallest : -1.0;
   };
   auto diagonal_allowed = [&](int a, int b) {
     return b - a == 1 || (a == 0 && b == k - 1) || !has_edge(loop[a], loop[b]);

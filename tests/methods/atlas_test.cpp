@@ -1,0 +1,260 @@
+// SPDX-License-Identifier: MIT
+// Method `atlas`: invariants on the catalogue, the distance bound measured independently of the
+// method, closed topologies, curvature adaptation, convergence, singular crossings.
+#include "tessera/methods/atlas/atlas.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/test_support.h"
+#include "tessera/core/corrector.h"
+#include "tessera/core/error.h"
+#include "tessera/core/linearization.h"
+#include "tessera/geometry/mesh_quality.h"
+#include "tessera/geometry/mesh_topology.h"
+#include "tessera/geometry/mesh_validation.h"
+#include "tessera/problems/catalogue.h"
+
+namespace tessera {
+namespace {
+
+struct AtlasRun {
+  ProblemSetup setup;
+  CoveringResult result;
+};
+
+// The command line's defaults: charts up to 2h, distance bound h/50.
+AtlasRun run_atlas(const std::string& specification, double tolerance = 0.0,
+                   const Eigen::VectorXd* start = nullptr) {
+  AtlasRun run;
+  run.setup = make_catalogue_problem(specification);
+  AtlasOptions options;
+  options.max_radius = 2.0 * run.setup.suggested_step;
+  options.tolerance = tolerance > 0 ? tolerance : 0.02 * run.setup.suggested_step;
+  run.result = cover_by_atlas(*run.setup.problem, start ? *start : run.setup.start,
+                              run.setup.domain, options);
+  return run;
+}
+
+// Largest distance to M of points the method did not produce: 12 points inside every triangle
+// (barycentric grid of order 5 without the vertices), projected with full Gauss–Newton.
+double max_distance_inside_triangles(const TriangleMesh& mesh, const ImplicitProblem& problem) {
+  Linearization workspace;
+  CorrectorOptions options;
+  double largest = 0.0;
+  Eigen::VectorXd x(mesh.ambient_dimension());
+  for (const Triangle& t : mesh.triangles()) {
+    for (int i = 0; i <= 5; ++i) {
+      for (int j = 0; i + j <= 5; ++j) {
+        const int k = 5 - i - j;
+        if (i == 5 || j == 5 || k == 5) {
+          continue;
+        }
+        x = (i * mesh.point(t[0]) + j * mesh.point(t[1]) + k * mesh.point(t[2])) / 5.0;
+        const Eigen::VectorXd before = x;
+        EXPECT_TRUE(project_gauss_newton(problem, x, options, workspace).is_success());
+        largest = std::max(largest, (x - before).norm());
+      }
+    }
+  }
+  return largest;
+}
+
+class AtlasCoversExample : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(AtlasCoversExample, WithAValidMeshOfMIntersectS) {
+  const AtlasRun run = run_atlas(GetParam());
+  const CoveringSummary& summary = run.result.summary;
+  ASSERT_TRUE(summary.is_complete()) << summary.message;
+  const TriangleMesh& mesh = run.result.mesh;
+  const MeshValidation validation = validate(mesh);
+  ASSERT_TRUE(validation.is_valid()) << validation.report();
+  ASSERT_TRUE(run.setup.expected_euler_characteristic.has_value());
+  EXPECT_EQ(validation.euler_characteristic, *run.setup.expected_euler_characteristic);
+  EXPECT_TRUE(validation.is_orientable);
+  EXPECT_EQ(validation.component_count, 1);
+  // Every vertex on M and in S; on a closed surface no boundary, otherwise the boundary on ∂S.
+  const MeshQuality quality = measure_quality(mesh, *run.setup.problem);
+  EXPECT_LT(quality.vertex_distance.max, 1e-8);
+  const MeshTopology topology(mesh);
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    EXPECT_TRUE(run.setup.domain.contains(mesh.point(v), 1e-8)) << "vertex " << v;
+  }
+  if (run.setup.domain.is_unbounded()) {
+    EXPECT_TRUE(validation.is_closed());
+  }
+  for (int e : topology.boundary_edges()) {
+    for (int v : topology.edge(e)) {
+      EXPECT_NEAR(run.setup.domain.boundary_distance(mesh.point(v)).signed_distance, 0.0, 1e-8)
+          << "boundary vertex " << v << " is not on the domain's boundary";
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, AtlasCoversExample,
+                         ::testing::Values("sphere", "sphere_cut", "torus", "equipotential",
+                                           "whitney_pleat", "cstr", "plane",
+                                           "flat_torus", "crossing", "torus:R=2,r=0.5",
+                                           "bvp:points=8"),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           for (char& c : name) {
+                             if (!std::isalnum(static_cast<unsigned char>(c))) {
+                               c = '_';
+                             }
+                           }
+                           return name;
+                         });
+
+TEST(Atlas, CoversTheGenusTwoSurfaceWithEulerCharacteristicMinusTwo) {
+  const ProblemSetup setup = resolve_problem(testing::source_path("examples/problems/genus2.tsr"));
+  AtlasOptions options;
+  options.max_radius = 2 * setup.suggested_step;
+  options.tolerance = 0.002;
+  const CoveringResult result = cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  const MeshValidation validation = validate(result.mesh);
+  ASSERT_TRUE(validation.is_valid()) << validation.report();
+  EXPECT_EQ(validation.euler_characteristic, -2);
+  EXPECT_TRUE(validation.is_closed());
+}
+
+// The knob: every point of every triangle within ε of M, measured by projecting points the
+// method never produced. Closed surfaces: the bound holds as asked.
+class AtlasTolerance : public ::testing::TestWithParam<std::pair<std::string, double>> {};
+
+TEST_P(AtlasTolerance, BoundsTheDistanceOfEveryTriangleToM) {
+  const auto& [name, tolerance] = GetParam();
+  const AtlasRun run = run_atlas(name, tolerance);
+  ASSERT_TRUE(run.result.summary.is_complete()) << run.result.summary.message;
+  const double distance = max_distance_inside_triangles(run.result.mesh, *run.setup.problem);
+  EXPECT_LE(distance, tolerance) << name << ": " << run.result.mesh.vertex_count() << " vertices";
+  // ... and the bound is used, not wasted on needlessly small triangles.
+  EXPECT_GT(distance, 0.5 * tolerance);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ClosedSurfaces, AtlasTolerance,
+    ::testing::Values(std::pair<std::string, double>{"sphere", 1e-2},
+                      std::pair<std::string, double>{"sphere", 1e-3},
+                      std::pair<std::string, double>{"torus", 2e-3},
+                      std::pair<std::string, double>{"equipotential", 2e-3},
+                      std::pair<std::string, double>{"flat_torus", 3e-3},
+                      std::pair<std::string, double>{"crossing", 3e-3}));
+
+// Surfaces cut by a domain: the bound is exceeded near the clipped boundary and where the
+// radius varies fast (measured up to 1.5ε; docs/algorithms/atlas.md). This pins the known
+// weakness so that it cannot grow unnoticed.
+TEST(AtlasTolerance, StaysWithinOneAndAHalfTimesTheBoundOnClippedSurfaces) {
+  for (const std::string name : {"whitney_pleat", "cstr", "sphere_cut"}) {
+    const AtlasRun run = run_atlas(name);
+    ASSERT_TRUE(run.result.summary.is_complete()) << name << ": " << run.result.summary.message;
+    const double distance = max_distance_inside_triangles(run.result.mesh, *run.setup.problem);
+    EXPECT_LE(distance, 1.5 * run.result.summary.tolerance) << name;
+  }
+}
+
+TEST(Atlas, SpendsVerticesWhereMCurvesAndSavesThemWhereItIsFlat) {
+  // Sphere: N ∝ 1/ε (radius ∝ sqrt(ε)); plane: curvature 0, so ε does not matter.
+  const int sphere_coarse = run_atlas("sphere", 4e-3).result.mesh.vertex_count();
+  const int sphere_fine = run_atlas("sphere", 1e-3).result.mesh.vertex_count();
+  EXPECT_NEAR(static_cast<double>(sphere_fine) / sphere_coarse, 4.0, 0.6);
+  const int plane_coarse = run_atlas("plane", 4e-3).result.mesh.vertex_count();
+  const int plane_fine = run_atlas("plane", 1e-3).result.mesh.vertex_count();
+  EXPECT_EQ(plane_coarse, plane_fine);
+  // Equipotential: where the surface curves more, the charts are smaller.
+  const AtlasRun blob = run_atlas("equipotential", 2e-3);
+  EXPECT_GT(blob.result.summary.max_chart_radius, 1.8 * blob.result.summary.min_chart_radius);
+}
+
+TEST(Atlas, SphereAreaConvergesAtOrderOneInTheTolerance) {
+  // Radius ∝ sqrt(ε) and the area error of an inscribed mesh ∝ radius², so ∝ ε.
+  std::vector<double> tolerances = {4e-3, 1e-3, 2.5e-4};
+  std::vector<double> errors;
+  for (double tolerance : tolerances) {
+    const AtlasRun run = run_atlas("sphere", tolerance);
+    errors.push_back(std::abs(surface_area(run.result.mesh) - 4 * M_PI));
+  }
+  const double order = testing::observed_order(tolerances, errors);
+  EXPECT_NEAR(order, 1.0, 0.15) << errors[0] << " " << errors[1] << " " << errors[2];
+}
+
+TEST(Atlas, KeepsTheTwoSheetsOfACrossingApart) {
+  // From the sphere: the atlas crosses the singular circle on the sphere and closes it.
+  const AtlasRun sphere = run_atlas("crossing");
+  ASSERT_TRUE(sphere.result.summary.is_complete()) << sphere.result.summary.message;
+  EXPECT_GT(sphere.result.summary.singular_crossings, 0);
+  const MeshValidation on_sphere = validate(sphere.result.mesh);
+  EXPECT_TRUE(on_sphere.is_valid()) << on_sphere.report();
+  EXPECT_EQ(on_sphere.euler_characteristic, 2);
+  for (int v = 0; v < sphere.result.mesh.vertex_count(); ++v) {
+    EXPECT_NEAR(sphere.result.mesh.point(v).norm(), 1.0, 1e-8) << "vertex " << v << " left the sphere";
+  }
+  // From the plane: the square of the box, through the circle, with no vertex on the sphere
+  // away from the crossing.
+  const Eigen::Vector3d on_plane(0.5, 0.5, 0.0);
+  const Eigen::VectorXd start = on_plane;
+  const AtlasRun plane = run_atlas("crossing", 0.0, &start);
+  ASSERT_TRUE(plane.result.summary.is_complete()) << plane.result.summary.message;
+  EXPECT_GT(plane.result.summary.singular_crossings, 0);
+  const MeshValidation on_plane_mesh = validate(plane.result.mesh);
+  EXPECT_TRUE(on_plane_mesh.is_valid()) << on_plane_mesh.report();
+  EXPECT_EQ(on_plane_mesh.euler_characteristic, 1);
+  for (int v = 0; v < plane.result.mesh.vertex_count(); ++v) {
+    EXPECT_NEAR(plane.result.mesh.point(v)(2), 0.0, 1e-10) << "vertex " << v << " left the plane";
+  }
+  EXPECT_NEAR(surface_area(plane.result.mesh), 9.0, 1e-9);
+}
+
+TEST(Atlas, SaysWhereItFailsOnTheTroughAndKeepsAValidMesh) {
+  // The trough's two sheets come within 5e-5 of each other at its opening; the charts' polygons
+  // there disagree by more than a small hole (a known weakness, docs/algorithms/atlas.md). The
+  // run must say so, with a place, and still return a valid mesh.
+  const AtlasRun run = run_atlas("trough");
+  const MeshValidation validation = validate(run.result.mesh);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+  if (!run.result.summary.is_complete()) {
+    EXPECT_EQ(run.result.summary.termination, CoveringTermination::TriangulationFailed);
+    EXPECT_NE(run.result.summary.message.find("near ("), std::string::npos)
+        << run.result.summary.message;
+  } else {
+    EXPECT_EQ(validation.euler_characteristic, 1);
+  }
+}
+
+TEST(Atlas, StopsAtTheVertexLimitWithAValidPartialMesh) {
+  const ProblemSetup setup = make_catalogue_problem("torus");
+  AtlasOptions options;
+  options.max_radius = 0.2;
+  options.tolerance = 1e-3;
+  options.max_vertices = 300;
+  const CoveringResult result = cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  EXPECT_EQ(result.summary.termination, CoveringTermination::VertexLimit);
+  EXPECT_GT(result.mesh.triangle_count(), 100);
+  const MeshValidation validation = validate(result.mesh);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+}
+
+TEST(Atlas, RejectsOptionsOutOfRange) {
+  const ProblemSetup setup = make_catalogue_problem("sphere");
+  AtlasOptions options;
+  options.tolerance = -1;
+  EXPECT_THROW(cover_by_atlas(*setup.problem, setup.start, setup.domain, options),
+               InvalidArgument);
+  options = AtlasOptions{};
+  options.max_radius = std::nan("");
+  EXPECT_THROW(cover_by_atlas(*setup.problem, setup.start, setup.domain, options),
+               InvalidArgument);
+}
+
+TEST(Atlas, IsDeterministic) {
+  const AtlasRun a = run_atlas("equipotential");
+  const AtlasRun b = run_atlas("equipotential");
+  ASSERT_EQ(a.result.mesh.vertex_count(), b.result.mesh.vertex_count());
+  EXPECT_EQ(a.result.mesh.triangles(), b.result.mesh.triangles());
+  EXPECT_EQ((a.result.mesh.points() - b.result.mesh.points()).norm(), 0.0);
+}
+
+}  // namespace
+}  // namespace tessera
