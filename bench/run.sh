@@ -27,7 +27,7 @@ fi
 
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DTESSERA_BUILD_BENCHMARKS=ON -DTESSERA_BUILD_TESTS=OFF >/dev/null
-cmake --build "$build" --target tessera_bench tessera_front_memory
+cmake --build "$build" --target tessera_bench tessera_front_memory tessera_atlas_scaling
 mkdir -p "$results"
 
 echo "== machine: $(nproc) cores; $(uptime)"
@@ -179,3 +179,11 @@ for r in load("memory.json")["runs"]:
           f"{float(r['vertices_per_second']):,.0f} | {r['peak_bytes_per_vertex']} | "
           f"{r['mesh_bytes_per_vertex']} |")
 PYTHON
+
+echo
+echo "== atlas scaling (one process per row): problem | tolerance | vertices | termination | s | vertices/s | µs/vertex | peak B/vertex"
+for problem in sphere torus; do
+  for tolerance in 1e-2 1e-3 1e-4 1e-5 2.5e-6; do
+    "$build/bench/tessera_atlas_scaling" "$problem" "$tolerance" | tee -a "$results/atlas_scaling.md"
+  done
+done
