@@ -141,6 +141,11 @@ class AtlasBuilder {
   std::deque<int> open_;          // charts that may have eligible exterior vertices
   std::unordered_map<int, Linearization> factored_;  // factorisations of queued charts
   std::vector<int> candidates_;   // scratch
+  Eigen::VectorXd offset_;        // scratch
+  Eigen::VectorXd predicted_;     // scratch
+  Eigen::VectorXd probe_;         // scratch
+  Eigen::MatrixXd quadratic_;     // scratch: n×3, q_i of choose_radius
+  Eigen::MatrixXd parent_tangent_;  // scratch
   Linearization scratch_;         // workspace of full Gauss–Newton
   bool stopped_ = false;
   int singular_crossings_ = 0;
@@ -162,30 +167,36 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
   const Eigen::MatrixXd& T = at_center.tangent_basis();
   double r = trial;
   bool remeasured = false;
-  Eigen::VectorXd y(n_);
-  std::array<Eigen::VectorXd, 3> q;
+  Eigen::VectorXd& y = probe_;
+  Eigen::VectorXd& predicted = predicted_;
+  Eigen::MatrixXd& q = quadratic_;
+  q.resize(n_, 3);
   while (r >= min_radius_) {
     bool converged = true;
     for (int i = 0; i < 3 && converged; ++i) {
       const double angle = i * std::numbers::pi / 3.0;
       const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
-      const Eigen::VectorXd predicted = x + r * (T * d);
+      predicted = x + r * (T * d);
       y = predicted;
       converged = project(at_center, r, y);
-      const Eigen::VectorXd offset = y - predicted;
-      q[i] = (2.0 / (r * r)) * (offset - T * (T.transpose() * offset));
+      y -= predicted;  // the offset; its tangential part is zero for the chord, not for GN
+      const Eigen::Vector2d along = T.transpose() * y;
+      q.col(i) = (2.0 / (r * r)) * (y - T * along);
     }
     if (!converged) {
       r *= 0.5;
       continue;
     }
-    const Eigen::VectorXd A = (q[0] + q[1] + q[2]) / 3.0;
-    const Eigen::VectorXd B = q[0] - A;
-    const Eigen::VectorXd C = (q[1] - q[2]) / std::sqrt(3.0);
+    // q_i = A + B cos 2θ_i + C sin 2θ_i at θ = 0°, 60°, 120°.
     double curvature = 0.0;
     for (int k = 0; k < 24; ++k) {
       const double phi = k * std::numbers::pi / 12.0;  // 2θ over [0, 2π)
-      curvature = std::max(curvature, (A + std::cos(phi) * B + std::sin(phi) * C).norm());
+      // A + cos φ B + sin φ C with A = mean q, B = q0 − A, C = (q1 − q2)/√3.
+      const double a = (1.0 - std::cos(phi)) / 3.0;
+      const double w0 = a + std::cos(phi);
+      const double w1 = a + std::sin(phi) / std::sqrt(3.0);
+      const double w2 = a - std::sin(phi) / std::sqrt(3.0);
+      curvature = std::max(curvature, (w0 * q.col(0) + w1 * q.col(1) + w2 * q.col(2)).norm());
     }
     double chosen = std::min(options_.max_radius, r);
     if (curvature > 0) {
@@ -255,7 +266,7 @@ signed char AtlasBuilder::orientation_sign(const Eigen::VectorXd& x,
 }
 
 int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization) {
-  Eigen::MatrixXd parent_tangent;
+  Eigen::MatrixXd& parent_tangent = parent_tangent_;
   if (parent >= 0) {
     parent_tangent = tangent(parent);
   }
@@ -306,13 +317,14 @@ bool AtlasBuilder::same_sheet(int a, int b, const Eigen::VectorXd& offset) const
 }
 
 void AtlasBuilder::connect_neighbours(int k) {
-  const Eigen::VectorXd ck = center(k);
+  const auto ck = center(k);
   const double rk = charts_[k].radius;
   index_.candidates(ck, rk, candidates_);
+  Eigen::VectorXd& offset = offset_;
   std::sort(candidates_.begin(), candidates_.end());  // deterministic cut order
   for (int m : candidates_) {
     const double rm = charts_[m].radius;
-    const Eigen::VectorXd offset = center(m) - ck;
+    offset = center(m) - ck;
     const double distance = offset.norm();
     if (distance >= rk + rm || distance == 0.0) {
       continue;

@@ -21,7 +21,8 @@ namespace {
 constexpr int kMaxHoleVertices = 12;
 
 struct Proposal {
-  std::array<int, 3> sorted;  // the triangle's charts in increasing order
+  unsigned __int128 key = 0;  // the triangle's charts in increasing order, packed
+  std::array<int, 3> sorted;  // the same, unpacked
   int proposer = 0;
   bool even = true;  // (i, j, k) as proposed is an even permutation of `sorted`
 };
@@ -61,8 +62,11 @@ std::vector<std::vector<int>> split_into_simple_loops(const std::vector<int>& wa
 
 class HoleFiller {
  public:
-  HoleFiller(const AtlasCells& cells, std::vector<Triangle>& triangles)
-      : cells_(cells), triangles_(triangles) {}
+  /// `triangles`: every triangle at a suspect chart (and maybe others); boundary edges are
+  /// looked for only at suspect charts, where all triangles are present.
+  HoleFiller(const AtlasCells& cells, std::vector<Triangle>& triangles,
+             const std::vector<bool>& suspect)
+      : cells_(cells), triangles_(triangles), suspect_(suspect) {}
 
   /// Fills the holes bounded by closed charts; returns the number filled, and sets `message`
   /// for the first hole that could not be filled.
@@ -79,6 +83,7 @@ class HoleFiller {
 
   const AtlasCells& cells_;
   std::vector<Triangle>& triangles_;
+  const std::vector<bool>& suspect_;
   std::vector<std::uint64_t> directed_;
   std::vector<std::uint64_t> undirected_;
 };
@@ -107,7 +112,8 @@ int HoleFiller::fill(std::string& message) {
   for (std::uint64_t key : directed_) {
     const int a = static_cast<int>(key >> 32);
     const int b = static_cast<int>(key & 0xffffffffu);
-    if (!std::binary_search(directed_.begin(), directed_.end(), edge_key(b, a))) {
+    if ((suspect_[a] || suspect_[b]) &&
+        !std::binary_search(directed_.begin(), directed_.end(), edge_key(b, a))) {
       boundary.emplace_back(a, b);
     }
   }
@@ -327,6 +333,8 @@ int remove_pinched_fans(int vertex_count, std::vector<Triangle>& triangles) {
 AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
   std::vector<Proposal> proposals;
   proposals.reserve(static_cast<std::size_t>(cells.chart_count) * 6);
+  std::vector<int> proposed(cells.chart_count, 0);
+  std::vector<int> accepted(cells.chart_count, 0);
   for (int c = 0; c < cells.chart_count; ++c) {
     const auto& vertices = cells.polygon(c).vertices();
     const double r2 = cells.radius(c) * cells.radius(c) * (1.0 + 1e-9);
@@ -341,11 +349,16 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
       const std::array<int, 3> t = {c, before, after};
       std::array<int, 3> sorted = t;
       std::sort(sorted.begin(), sorted.end());
-      proposals.push_back({sorted, c, is_even_rotation(t, sorted)});
+      const unsigned __int128 key =
+          (static_cast<unsigned __int128>(static_cast<std::uint32_t>(sorted[0])) << 64) |
+          (static_cast<unsigned __int128>(static_cast<std::uint32_t>(sorted[1])) << 32) |
+          static_cast<std::uint32_t>(sorted[2]);
+      proposals.push_back({key, sorted, c, is_even_rotation(t, sorted)});
+      ++proposed[c];
     }
   }
   std::sort(proposals.begin(), proposals.end(), [](const Proposal& a, const Proposal& b) {
-    return a.sorted != b.sorted ? a.sorted < b.sorted : a.proposer < b.proposer;
+    return a.key != b.key ? a.key < b.key : a.proposer < b.proposer;
   });
   std::vector<Triangle> triangles;
   for (std::size_t first = 0; first < proposals.size();) {
@@ -353,7 +366,7 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
     int proposers = 0;
     int even_votes = 0;
     int previous = -1;
-    while (last < proposals.size() && proposals[last].sorted == proposals[first].sorted) {
+    while (last < proposals.size() && proposals[last].key == proposals[first].key) {
       if (proposals[last].proposer != previous) {
         ++proposers;
         previous = proposals[last].proposer;
@@ -363,6 +376,9 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
     }
     if (proposers == 3) {
       const auto& s = proposals[first].sorted;
+      for (int c : s) {
+        ++accepted[c];
+      }
       triangles.push_back(even_votes >= 2 ? Triangle{s[0], s[1], s[2]}
                                           : Triangle{s[0], s[2], s[1]});
     }
@@ -370,6 +386,23 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
   }
   AtlasTriangulation result;
   result.consistent_triangles = static_cast<int>(triangles.size());
+
+  // A closed chart all of whose proposals were accepted has its whole fan: every triangle at
+  // it is one it proposed. Only triangles at the other ("suspect") charts can have a third
+  // triangle on an edge or a boundary edge, so the repairs below look at those alone, which
+  // keeps the assembly linear in the number of charts.
+  std::vector<bool> suspect(cells.chart_count, false);
+  for (int c = 0; c < cells.chart_count; ++c) {
+    suspect[c] = accepted[c] < proposed[c] || !cells.is_closed(c);
+  }
+  std::vector<Triangle> settled;
+  {
+    std::vector<Triangle> near_suspects;
+    for (const Triangle& t : triangles) {
+      (suspect[t[0]] || suspect[t[1]] || suspect[t[2]] ? near_suspects : settled).push_back(t);
+    }
+    triangles = std::move(near_suspects);
+  }
 
   // An edge of more than two triangles cannot come from consistent fans; drop them all and let
   // the hole filler triangulate the place again.
@@ -404,8 +437,9 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
     }
     triangles = std::move(kept);
   }
-  HoleFiller filler(cells, triangles);
+  HoleFiller filler(cells, triangles, suspect);
   result.filled_holes = filler.fill(result.message);
+  triangles.insert(triangles.end(), settled.begin(), settled.end());
   // Pinches arise at the ragged outer edge of an unfinished atlas (outside the domain, or
   // where a run stopped); the caller checks that none is left where M must be covered.
   result.dropped_triangles = remove_pinched_fans(cells.chart_count, triangles);

@@ -20,7 +20,10 @@ bool ChartPolygon::cut(double normal_s, double normal_t, double offset, int labe
   // Signed excess over the line; a vertex within rounding of it counts as inside, so that a
   // neighbour's line through an existing vertex does not create a zero-length edge.
   const double scale = std::abs(offset) + 1e-300;
-  std::vector<double> excess(m);
+  // Scratch reused across calls: cutting runs ~15 times per chart, allocation would dominate.
+  thread_local std::vector<double> excess;
+  thread_local std::vector<Vertex> kept;
+  excess.resize(m);
   bool any_outside = false;
   for (std::size_t i = 0; i < m; ++i) {
     excess[i] = normal_s * vertices_[i].s + normal_t * vertices_[i].t - offset;
@@ -34,8 +37,7 @@ bool ChartPolygon::cut(double normal_s, double normal_t, double offset, int labe
     return false;
   }
   // Sutherland–Hodgman against one line, carrying the edge labels along.
-  std::vector<Vertex> kept;
-  kept.reserve(m + 1);
+  kept.clear();
   for (std::size_t i = 0; i < m; ++i) {
     const Vertex& a = vertices_[i];
     const Vertex& b = vertices_[(i + 1) % m];
@@ -61,7 +63,7 @@ bool ChartPolygon::cut(double normal_s, double normal_t, double offset, int labe
       kept.push_back({a.s + w * (b.s - a.s), a.t + w * (b.t - a.t), a.edge_label});
     }
   }
-  vertices_ = std::move(kept);
+  vertices_.assign(kept.begin(), kept.end());
   return true;
 }
 
