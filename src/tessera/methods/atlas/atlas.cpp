@@ -115,13 +115,14 @@ class AtlasBuilder {
  private:
   bool choose_radius(const Linearization& at_center, double trial, double& radius);
   bool project(const Linearization& at_center, double distance, Eigen::VectorXd& y);
-  double jacobian_scale(const Eigen::VectorXd& x);
+  void evaluate_jacobian(const Eigen::VectorXd& x);
+  double jacobian_scale() const;
   int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);
   void connect_neighbours(int k);
   int next_open_vertex(int c) const;
   bool is_eligible(int c) const;
   bool same_sheet(int a, int b, const Eigen::VectorXd& offset) const;
-  signed char orientation_sign(const Eigen::VectorXd& x, const Eigen::Ref<const Eigen::MatrixXd>& T);
+  signed char orientation_sign(const Eigen::Ref<const Eigen::MatrixXd>& T) const;
   void enqueue(int c);
   void fail(CoveringSummary& summary, CoveringTermination why, const std::string& message) {
     summary.termination = why;
@@ -143,6 +144,7 @@ class AtlasBuilder {
   std::vector<int> candidates_;   // scratch
   Eigen::VectorXd offset_;        // scratch
   Eigen::VectorXd predicted_;     // scratch
+  Eigen::MatrixXd jacobian_;      // J at the last point checked for singularity
   Eigen::VectorXd probe_;         // scratch
   Eigen::MatrixXd quadratic_;     // scratch: n×3, q_i of choose_radius
   Eigen::MatrixXd parent_tangent_;  // scratch
@@ -231,11 +233,16 @@ bool AtlasBuilder::project(const Linearization& at_center, double distance, Eige
   return project_gauss_newton(problem_, y, full, scratch_).is_success();
 }
 
-// σ_min(J): how far x is from the singular points of F (for codimension 1, |∇F|).
-double AtlasBuilder::jacobian_scale(const Eigen::VectorXd& x) {
+void AtlasBuilder::evaluate_jacobian(const Eigen::VectorXd& x) {
+  jacobian_.resize(n_ - 2, n_);
+  problem_.jacobian(x, jacobian_);
+}
+
+// σ_min(J) of the last evaluate_jacobian: how far the point is from the singular points of F
+// (for codimension 1, |∇F|).
+double AtlasBuilder::jacobian_scale() const {
   const int m = n_ - 2;
-  Eigen::MatrixXd J(m, n_);
-  problem_.jacobian(x, J);
+  const Eigen::MatrixXd& J = jacobian_;
   if (m == 1) {
     return J.norm();
   }
@@ -244,13 +251,12 @@ double AtlasBuilder::jacobian_scale(const Eigen::VectorXd& x) {
                                      Eigen::EigenvaluesOnly).eigenvalues()(0)));
 }
 
-signed char AtlasBuilder::orientation_sign(const Eigen::VectorXd& x,
-                                           const Eigen::Ref<const Eigen::MatrixXd>& T) {
-  // sign det([J(x); Tᵀ]): along one sheet it keeps its sign as long as T stays transversal to
-  // ker J; it changes where J loses rank between two points, i.e. at a singular curve.
+signed char AtlasBuilder::orientation_sign(const Eigen::Ref<const Eigen::MatrixXd>& T) const {
+  // sign det([J; Tᵀ]) with J of the last evaluate_jacobian: along one sheet it keeps its sign
+  // as long as T stays transversal to ker J; it changes where J loses rank between two
+  // points, i.e. at a singular curve.
   const int m = n_ - 2;
-  Eigen::MatrixXd J(m, n_);
-  problem_.jacobian(x, J);
+  const Eigen::MatrixXd& J = jacobian_;
   double det = 0.0;
   if (n_ == 3) {
     const Eigen::Vector3d t0 = T.col(0);
@@ -291,8 +297,12 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   chart.polygon = ChartPolygon(kInitialHalfWidth * radius);
   chart.parent = parent;
   if (watch_crossings_) {
-    chart.orientation = orientation_sign(x, linearization.tangent_basis());
-    chart.jacobian_scale = static_cast<float>(jacobian_scale(x));
+    // J at x was evaluated by the caller (the crossing checks); the first chart's here.
+    if (parent < 0) {
+      evaluate_jacobian(x);
+    }
+    chart.orientation = orientation_sign(linearization.tangent_basis());
+    chart.jacobian_scale = static_cast<float>(jacobian_scale());
   }
   charts_.push_back(std::move(chart));
   centers_.insert(centers_.end(), x.data(), x.data() + n_);
@@ -447,13 +457,16 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
         if (!project(at_center, s.norm(), y)) {
           continue;
         }
+        if (watch_crossings_) {
+          evaluate_jacobian(y);  // also used by add_chart for the new chart's orientation
+        }
         if (watch_crossings_ && charts_[c].orientation != 0) {
           // Never centre a chart at or next to a singular point: its chord iteration would
           // not converge beyond a tiny radius. σ_min falling tenfold in one step means one.
-          if (jacobian_scale(y) < 0.1 * charts_[c].jacobian_scale) {
+          if (jacobian_scale() < 0.1 * charts_[c].jacobian_scale) {
             continue;
           }
-          const signed char across = orientation_sign(y, Tc);
+          const signed char across = orientation_sign(Tc);
           if (across == 0) {
             continue;
           }
