@@ -2,7 +2,6 @@
 #include "covering_methods.h"
 
 #include <cmath>
-#include <cstdlib>
 
 #include "tessera/core/error.h"
 #include "tessera/methods/atlas/atlas.h"
@@ -20,12 +19,6 @@ CoveringResult run_atlas(const ProblemSetup& setup, const MethodSettings& settin
   options.max_radius = h;
   options.tolerance = settings.tolerance > 0 ? settings.tolerance : 0.02 * setup.suggested_step;
   options.max_vertices = settings.max_vertices;
-  if (std::getenv("TESSERA_ATLAS_NO_SWAPS")) {
-    options.swap_edges = false;
-  }
-  if (const char* placement = std::getenv("TESSERA_ATLAS_PLACEMENT")) {
-    options.placement = std::atof(placement);
-  }
   if (settings.max_start_distance > 0) {
     options.max_start_distance = settings.max_start_distance;
   }

@@ -44,7 +44,8 @@ std::string to_json(const MeshReport& report) {
                            {"max_chart_radius", r.max_chart_radius},
                            {"singular_crossings", r.singular_crossings},
                            {"sheet_rejections", r.sheet_rejections},
-                           {"filled_holes", r.filled_holes}};
+                           {"filled_holes", r.filled_holes},
+                           {"refined_edges", r.refined_edges}};
     }
     j["run"]["notes"] = r.notes;
   }

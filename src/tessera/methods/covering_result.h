@@ -44,6 +44,7 @@ struct CoveringSummary {
   int singular_crossings = 0;  ///< continuation steps that crossed a singular curve of M
   int sheet_rejections = 0;    ///< overlapping charts kept apart because they lie on other sheets
   int filled_holes = 0;        ///< places where the charts' polygons disagreed, closed afterwards
+  int refined_edges = 0;       ///< edges bisected at the domain boundary to keep the distance bound
   std::vector<std::string> notes;  ///< remarks for the user, e.g. where a crossing was met
   bool is_complete() const { return termination == CoveringTermination::Completed; }
 };

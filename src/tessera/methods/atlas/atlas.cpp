@@ -27,6 +27,7 @@
 #include "tessera/methods/atlas/chart_index.h"
 #include "tessera/methods/atlas/chart_polygon.h"
 #include "tessera/methods/common/clip_to_domain.h"
+#include "tessera/methods/common/refine_to_tolerance.h"
 #include "tessera/methods/improvement/edge_swap.h"
 #include "tessera/methods/start_point.h"
 
@@ -120,6 +121,7 @@ class AtlasBuilder {
   int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);
   void connect_neighbours(int k);
   int next_open_vertex(int c) const;
+  void snap_to_domain_boundary(Eigen::VectorXd& y, double radius);
   bool is_eligible(int c) const;
   bool same_sheet(int a, int b, const Eigen::VectorXd& offset) const;
   signed char orientation_sign(const Eigen::Ref<const Eigen::MatrixXd>& T) const;
@@ -387,6 +389,38 @@ int AtlasBuilder::next_open_vertex(int c) const {
   return best;
 }
 
+// Centres that fall near a face of the domain are moved onto M ∩ face (onto M ∩ both faces
+// near a corner), so that the atlas carries a row of charts exactly on ∂S and clipping finds
+// the boundary already there instead of cutting slivers. A point already taken by a chart
+// (a corner reached twice) is left where it was.
+void AtlasBuilder::snap_to_domain_boundary(Eigen::VectorXd& y, double radius) {
+  if (domain_.is_unbounded() || options_.boundary_snap <= 0) {
+    return;
+  }
+  std::vector<int> faces;
+  for (int k = 0; k < static_cast<int>(domain_.half_spaces().size()); ++k) {
+    if (std::abs(domain_.signed_distance(k, y)) < options_.boundary_snap * radius) {
+      faces.push_back(k);
+    }
+  }
+  if (faces.empty() || static_cast<int>(faces.size()) > 2 ||
+      static_cast<int>(faces.size()) + n_ - 2 > n_) {
+    return;
+  }
+  Eigen::VectorXd snapped = y;
+  if (!project_onto_faces(problem_, domain_, faces, snapped, options_.boundary_snap * radius * 2,
+                          options_.corrector)) {
+    return;
+  }
+  index_.candidates(snapped, 0.1 * radius, candidates_);
+  for (int m : candidates_) {
+    if ((center(m) - snapped).norm() < 0.2 * radius) {
+      return;
+    }
+  }
+  y = snapped;
+}
+
 void AtlasBuilder::enqueue(int c) {
   charts_[c].queued = true;
   open_.push_back(c);
@@ -427,6 +461,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     const Eigen::MatrixXd Tc = tangent(c);
     const Eigen::VectorXd xc = center(c);
     int children = 0;
+    Eigen::Vector2d last_target(std::nan(""), std::nan(""));
     double smallest_child = charts_[c].radius;
     for (int vertex = next_open_vertex(c); vertex >= 0 && !stopped_;
          vertex = next_open_vertex(c)) {
@@ -445,6 +480,10 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       }
       const auto& v = charts_[c].polygon.vertices()[vertex];
       const Eigen::Vector2d direction = Eigen::Vector2d(v.s, v.t).normalized();
+      // If the last child did not remove its corner (snapping moved it away), the next one is
+      // placed where the corner asks, unsnapped.
+      const bool target_repeated = Eigen::Vector2d(v.s, v.t).isApprox(last_target, 1e-12);
+      last_target = Eigen::Vector2d(v.s, v.t);
       // The new centre goes on the disk boundary towards the uncovered corner (pointOnDisk:
       // projected orthogonally to this chart's tangent plane). Where that fails, or lands on a
       // singular point, nearer and farther points are tried.
@@ -476,6 +515,9 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
               first_crossing_ = describe_point(0.5 * (xc + y));
             }
           }
+        }
+        if (!target_repeated) {
+          snap_to_domain_boundary(y, charts_[c].radius);
         }
         child = add_chart(y, c, at_child);
         if (child >= 0) {
@@ -534,21 +576,9 @@ void check_coverage(const Domain& domain, const TriangleMesh& mesh,
   }
 }
 
-}  // namespace
-
-CoveringResult cover_by_atlas(const ImplicitProblem& user_problem, const Eigen::VectorXd& start,
-                              const Domain& domain, const AtlasOptions& options) {
-  options.validate();
-  TESSERA_CHECK(domain.is_unbounded() ||
-                    domain.ambient_dimension() == user_problem.ambient_dimension(),
-                "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^"
-                                  << user_problem.ambient_dimension());
-  const auto clock_start = std::chrono::steady_clock::now();
-  CountedProblem problem(user_problem);
-  const double max_start_distance =
-      options.max_start_distance > 0 ? options.max_start_distance : 10.0 * options.max_radius;
-  const StartPoint start_point = project_start_point(problem, start, domain, max_start_distance);
-
+CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point,
+                          const Domain& domain, const AtlasOptions& options,
+                          bool& clipping_failed) {
   CoveringResult result;
   CoveringSummary& summary = result.summary;
   summary.method = "atlas";
@@ -607,14 +637,63 @@ CoveringResult cover_by_atlas(const ImplicitProblem& user_problem, const Eigen::
     clip.corrector = options.corrector;
     const ClipSummary clipped = clip_to_domain(problem, domain, result.mesh, clip);
     summary.clipped_half_spaces = clipped.half_spaces_crossed;
+    clipping_failed = !clipped.message.empty();
     if (!clipped.message.empty() && summary.is_complete()) {
       summary.termination = CoveringTermination::ProjectionFailed;
       summary.message = clipped.message;
+    }
+    // Snapping and cutting reshape the triangles at ∂S, some beyond the distance bound: those
+    // are bisected until their sampled points are within ε of M again.
+    std::vector<int> at_boundary;
+    for (int t = 0; t < result.mesh.triangle_count(); ++t) {
+      for (int v : result.mesh.triangle(t)) {
+        if (std::abs(domain.boundary_distance(result.mesh.point(v)).signed_distance) <= 1e-8) {
+          at_boundary.push_back(t);
+          break;
+        }
+      }
+    }
+    if (!at_boundary.empty()) {
+      ToleranceRefinementOptions refine;
+      refine.tolerance = options.tolerance;
+      refine.corrector = options.corrector;
+      const ToleranceRefinement refined =
+          refine_to_tolerance(problem, domain, result.mesh, at_boundary, refine);
+      summary.refined_edges = refined.split_edges;
     }
   }
   check_coverage(domain, result.mesh, summary);
   summary.notes.push_back("covered the component of M that contains the start point; other "
                           "components, if any, need their own start points");
+  return result;
+}
+
+}  // namespace
+
+CoveringResult cover_by_atlas(const ImplicitProblem& user_problem, const Eigen::VectorXd& start,
+                              const Domain& domain, const AtlasOptions& options) {
+  options.validate();
+  TESSERA_CHECK(domain.is_unbounded() ||
+                    domain.ambient_dimension() == user_problem.ambient_dimension(),
+                "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^"
+                                  << user_problem.ambient_dimension());
+  const auto clock_start = std::chrono::steady_clock::now();
+  CountedProblem problem(user_problem);
+  const double max_start_distance =
+      options.max_start_distance > 0 ? options.max_start_distance : 10.0 * options.max_radius;
+  const StartPoint start_point = project_start_point(problem, start, domain, max_start_distance);
+  bool clipping_failed = false;
+  CoveringResult result = cover_once(problem, start_point, domain, options, clipping_failed);
+  if (clipping_failed && options.boundary_snap > 0) {
+    // Charts snapped onto ∂S can leave the clipping a configuration it refuses (seen where M
+    // meets a face at a shallow angle); the atlas is then computed again without snapping.
+    AtlasOptions unsnapped = options;
+    unsnapped.boundary_snap = 0.0;
+    result = cover_once(problem, start_point, domain, unsnapped, clipping_failed);
+    result.summary.notes.push_back("charts snapped onto the domain boundary left a mesh the "
+                                   "clipping refused; computed again without snapping");
+  }
+  CoveringSummary& summary = result.summary;
   summary.vertex_count = result.mesh.vertex_count();
   summary.triangle_count = result.mesh.triangle_count();
   summary.function_evaluations = problem.function_evaluations();

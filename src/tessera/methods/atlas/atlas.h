@@ -35,6 +35,9 @@ struct AtlasOptions {
   /// Where the domain is bounded, charts are continued up to this many radii outside it, so
   /// that the mesh covers M ∩ S before it is clipped to ∂S.
   double domain_margin = 1.0;
+  /// Chart centres closer than this many radii to a face of the domain are moved onto
+  /// M ∩ face, giving a row of charts on ∂S (0 disables; clipping then does all the work).
+  double boundary_snap = 0.45;
   /// Radii below max_radius·this mean the corrector cannot converge: ProjectionFailed.
   double min_radius_fraction = 1.0 / 4096.0;
   /// The start must project onto M within this distance (0: ten times max_radius).

@@ -14,7 +14,6 @@
 #include "tessera/geometry/mesh_validation.h"
 
 namespace tessera {
-namespace {
 
 // Minimum-norm Gauss–Newton on F(x) = 0 together with the linear constraints of the faces in
 // `faces` (g_f(x) = b_f·(x − p_f) = 0). The step reuses the linearisation of F alone, so it
@@ -67,6 +66,7 @@ bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
   return false;
 }
 
+namespace {
 
 // A vertex already at the corner point x of M ∩ (the faces), or −1. Two vertices snapped or cut
 // onto the same corner would make a zero-area triangle.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "tessera/core/corrector.h"
 #include "tessera/core/domain.h"
@@ -28,6 +29,13 @@ struct ClipSummary {
   int collapsed_edges = 0;  ///< short boundary edges collapsed after clipping
   std::string message;  ///< non-empty if a face could not be clipped (mesh left unclipped there)
 };
+
+/// Projects x onto M ∩ {the bounding hyperplanes of `faces`} (at most two of them) by
+/// minimum-norm Gauss–Newton. \return false if it does not converge, moves farther than
+/// max_move, or a face is tangent to M there (x is then unspecified).
+bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
+                        const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
+                        const CorrectorOptions& options);
 
 /// Clips `mesh` (vertices on M) to S = ∩ half-spaces, one face at a time ("snap, then cut"):
 ///  1. vertices within snap_distance of the face are projected onto M ∩ face (Gauss–Newton on

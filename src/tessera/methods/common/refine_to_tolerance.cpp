@@ -1,0 +1,190 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/methods/common/refine_to_tolerance.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <unordered_map>
+
+#include "tessera/core/linearization.h"
+#include "tessera/geometry/mesh_quality.h"
+#include "tessera/methods/common/clip_to_domain.h"
+
+namespace tessera {
+namespace {
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) {
+    std::swap(a, b);
+  }
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+// The faces of the domain both endpoints lie on: the edge runs along their intersection.
+std::vector<int> shared_faces(const Domain& domain, const Eigen::VectorXd& a,
+                              const Eigen::VectorXd& b, double tolerance) {
+  std::vector<int> faces;
+  for (int k = 0; k < static_cast<int>(domain.half_spaces().size()); ++k) {
+    if (std::abs(domain.signed_distance(k, a)) <= tolerance &&
+        std::abs(domain.signed_distance(k, b)) <= tolerance) {
+      faces.push_back(k);
+    }
+  }
+  return faces;
+}
+
+}  // namespace
+
+ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Domain& domain,
+                                        TriangleMesh& mesh, std::vector<int> candidates,
+                                        const ToleranceRefinementOptions& options) {
+  ToleranceRefinement summary;
+  if (candidates.empty()) {
+    for (int t = 0; t < mesh.triangle_count(); ++t) {
+      candidates.push_back(t);
+    }
+  }
+  Linearization workspace;
+  const double threshold = options.tolerance * options.sample_safety;
+  auto distance_to_m = [&](const Eigen::VectorXd& point) {
+    Eigen::VectorXd x = point;
+    if (!project_gauss_newton(problem, x, options.corrector, workspace).is_success()) {
+      return std::numeric_limits<double>::infinity();
+    }
+    return (x - point).norm();
+  };
+  for (summary.rounds = 0; summary.rounds < options.max_rounds && !candidates.empty();
+       ++summary.rounds) {
+    // 1. Which edges to split: the longest edge of every candidate that is too far from M.
+    std::unordered_map<std::uint64_t, int> midpoint_of;  // edge → new vertex
+    std::vector<std::pair<int, int>> to_split;
+    for (int t : candidates) {
+      const Triangle tri = mesh.triangle(t);
+      const Eigen::VectorXd a = mesh.point(tri[0]);
+      const Eigen::VectorXd b = mesh.point(tri[1]);
+      const Eigen::VectorXd c = mesh.point(tri[2]);
+      const double worst = std::max({distance_to_m((a + b + c) / 3.0), distance_to_m(0.5 * (a + b)),
+                                     distance_to_m(0.5 * (b + c)), distance_to_m(0.5 * (c + a))});
+      if (worst <= threshold) {
+        continue;
+      }
+      int longest = 0;
+      double length = -1.0;
+      for (int e = 0; e < 3; ++e) {
+        const double l = (mesh.point(tri[e]) - mesh.point(tri[(e + 1) % 3])).norm();
+        if (l > length) {
+          length = l;
+          longest = e;
+        }
+      }
+      const int u = tri[longest];
+      const int v = tri[(longest + 1) % 3];
+      if (midpoint_of.emplace(edge_key(u, v), -1).second) {
+        to_split.emplace_back(u, v);
+      }
+    }
+    if (to_split.empty()) {
+      candidates.clear();
+      break;
+    }
+    // 2. The new vertices: midpoints projected onto M (∩ the faces the edge lies on).
+    int made = 0;
+    for (const auto& [u, v] : to_split) {
+      const Eigen::VectorXd a = mesh.point(u);
+      const Eigen::VectorXd b = mesh.point(v);
+      Eigen::VectorXd x = 0.5 * (a + b);
+      const double length = (a - b).norm();
+      const std::vector<int> faces = shared_faces(domain, a, b, options.face_tolerance);
+      bool projected = false;
+      if (faces.empty()) {
+        const Eigen::VectorXd start = x;
+        projected = project_gauss_newton(problem, x, options.corrector, workspace).is_success() &&
+                    (x - start).norm() <= length;
+      } else {
+        projected = faces.size() <= 2 &&
+                    project_onto_faces(problem, domain, faces, x, length, options.corrector);
+      }
+      if (projected) {
+        midpoint_of[edge_key(u, v)] = mesh.add_vertex(x);
+        ++made;
+      }
+    }
+    summary.split_edges += made;
+    if (made == 0) {
+      break;
+    }
+    // 3. Every triangle with split edges is subdivided; the new triangles are the next
+    //    round's candidates.
+    std::vector<Triangle> triangles = mesh.triangles();
+    std::vector<Triangle> result;
+    result.reserve(triangles.size() + 3 * to_split.size());
+    candidates.clear();
+    for (const Triangle& tri : triangles) {
+      int mid[3];
+      int count = 0;
+      for (int e = 0; e < 3; ++e) {
+        const auto it = midpoint_of.find(edge_key(tri[e], tri[(e + 1) % 3]));
+        mid[e] = it == midpoint_of.end() ? -1 : it->second;
+        count += mid[e] >= 0 ? 1 : 0;
+      }
+      if (count == 0) {
+        result.push_back(tri);
+        continue;
+      }
+      const std::size_t first = result.size();
+      if (count == 3) {
+        result.push_back({tri[0], mid[0], mid[2]});
+        result.push_back({mid[0], tri[1], mid[1]});
+        result.push_back({mid[2], mid[1], tri[2]});
+        result.push_back({mid[0], mid[1], mid[2]});
+      } else {
+        // Rotate so that edge 0 (tri[0]→tri[1]) is split; bisect it, then the rest.
+        int r = 0;
+        while (mid[r] < 0) {
+          ++r;
+        }
+        const int a = tri[r];
+        const int b = tri[(r + 1) % 3];
+        const int c = tri[(r + 2) % 3];
+        const int m = mid[r];
+        const int m_bc = mid[(r + 1) % 3];
+        const int m_ca = mid[(r + 2) % 3];
+        if (count == 1) {
+          result.push_back({a, m, c});
+          result.push_back({m, b, c});
+        } else if (m_bc >= 0) {
+          result.push_back({m, b, m_bc});
+          // The quadrilateral a, m, m_bc, c by its diagonal of larger smallest angle.
+          const double via_a = std::min(min_angle(mesh, {a, m, m_bc}), min_angle(mesh, {a, m_bc, c}));
+          const double via_m = std::min(min_angle(mesh, {a, m, c}), min_angle(mesh, {m, m_bc, c}));
+          if (via_a >= via_m) {
+            result.push_back({a, m, m_bc});
+            result.push_back({a, m_bc, c});
+          } else {
+            result.push_back({a, m, c});
+            result.push_back({m, m_bc, c});
+          }
+        } else {
+          result.push_back({a, m, m_ca});
+          const double via_b = std::min(min_angle(mesh, {m, b, c}), min_angle(mesh, {m, c, m_ca}));
+          const double via_m = std::min(min_angle(mesh, {m, b, m_ca}), min_angle(mesh, {b, c, m_ca}));
+          if (via_b >= via_m) {
+            result.push_back({m, b, c});
+            result.push_back({m, c, m_ca});
+          } else {
+            result.push_back({m, b, m_ca});
+            result.push_back({b, c, m_ca});
+          }
+        }
+      }
+      for (std::size_t t = first; t < result.size(); ++t) {
+        candidates.push_back(static_cast<int>(t));
+      }
+    }
+    mesh.set_triangles(std::move(result));
+  }
+  summary.remaining = static_cast<int>(candidates.size());
+  return summary;
+}
+
+}  // namespace tessera

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// Edge bisection on M until sampled points of the chosen triangles lie within a distance of M.
+#pragma once
+
+#include <vector>
+
+#include "tessera/core/corrector.h"
+#include "tessera/core/domain.h"
+#include "tessera/core/implicit_problem.h"
+#include "tessera/geometry/triangle_mesh.h"
+
+namespace tessera {
+
+struct ToleranceRefinementOptions {
+  /// A triangle is split if its centroid or an edge midpoint lies farther than this from M.
+  double tolerance = 1e-3;
+  /// The four sampled points can miss the farthest point of a triangle (its circumcentre):
+  /// triangles are split above tolerance·sample_safety.
+  double sample_safety = 0.9;
+  int max_rounds = 6;
+  /// Points within this of a domain face count as lying on it (boundary edges stay on ∂S).
+  double face_tolerance = 1e-8;
+  CorrectorOptions corrector;
+};
+
+struct ToleranceRefinement {
+  int rounds = 0;
+  int split_edges = 0;
+  int remaining = 0;  ///< triangles still above the threshold after max_rounds
+};
+
+/// For the triangles whose index is in `candidates` (all if empty), and for the triangles made
+/// by splitting them: samples the centroid and the edge midpoints, projects them onto M, and
+/// bisects the longest edge of every triangle that is too far from M. The new vertex is the
+/// midpoint projected onto M, or onto M ∩ face for an edge lying on a domain face, so the
+/// boundary stays on ∂S. Neighbours across a split edge are split with it (the mesh stays
+/// conforming, valid and oriented as it was).
+ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Domain& domain,
+                                        TriangleMesh& mesh, std::vector<int> candidates,
+                                        const ToleranceRefinementOptions& options);
+
+}  // namespace tessera
