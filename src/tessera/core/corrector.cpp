@@ -40,9 +40,15 @@ CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vecto
                          bool refactor) {
   const int n = problem.ambient_dimension();
   CorrectorSummary summary;
-  const Eigen::VectorXd start = x;
-  Eigen::VectorXd F(n - 2);
-  Eigen::VectorXd dx(n);
+  // Scratch kept between calls (a covering projects millions of points; at small n the
+  // allocations would cost more than the arithmetic). iterate never calls itself.
+  thread_local Eigen::VectorXd start;
+  thread_local Eigen::VectorXd F;
+  thread_local Eigen::VectorXd minus_F;
+  thread_local Eigen::VectorXd dx;
+  start = x;
+  F.resize(n - 2);
+  dx.resize(n);
   double previous_correction = 0.0;
   for (int k = 0; k < options.max_iterations; ++k) {
     problem.evaluate(x, F);
@@ -59,7 +65,8 @@ CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vecto
         return summary;
       }
     }
-    linearization.solve_minimum_norm(-F, dx);
+    minus_F = -F;
+    linearization.solve_minimum_norm(minus_F, dx);
     x += dx;
     summary.iterations = k + 1;
     summary.correction_norm = dx.norm();

@@ -36,11 +36,15 @@ void minimum_norm_from_qr(const Eigen::ColPivHouseholderQR<Eigen::MatrixXd>& qr,
                           Eigen::Ref<Eigen::VectorXd> dx) {
   const int m = static_cast<int>(rhs.size());
   const int n = static_cast<int>(dx.size());
-  Eigen::VectorXd z = qr.colsPermutation().transpose() * rhs;
+  // Scratch kept between calls: the chord corrector solves here at every iteration, and at
+  // small n the allocations would cost more than the arithmetic.
+  thread_local Eigen::VectorXd z;
+  thread_local Eigen::VectorXd padded;
+  z = qr.colsPermutation().transpose() * rhs;
   qr.matrixR().topLeftCorner(m, m).transpose().triangularView<Eigen::Lower>().solveInPlace(z);
-  Eigen::VectorXd padded = Eigen::VectorXd::Zero(n);
+  padded.setZero(n);
   padded.head(m) = z;
-  dx = qr.householderQ() * padded;
+  dx.noalias() = qr.householderQ() * padded;
 }
 
 class DenseBackend final : public LinearizationBackend {

@@ -143,6 +143,15 @@ class AtlasBuilder {
   std::vector<Chart> charts_;
   std::deque<int> open_;          // charts that may have eligible exterior vertices
   std::unordered_map<int, Linearization> factored_;  // factorisations of queued charts
+  std::vector<Linearization> spare_;  // factorisations of processed charts, reused (no allocation)
+  Linearization take_spare() {
+    if (spare_.empty()) {
+      return Linearization();
+    }
+    Linearization spare = std::move(spare_.back());
+    spare_.pop_back();
+    return spare;
+  }
   std::vector<int> candidates_;   // scratch
   Eigen::VectorXd offset_;        // scratch
   Eigen::VectorXd predicted_;     // scratch
@@ -488,7 +497,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       // projected orthogonally to this chart's tangent plane). Where that fails, or lands on a
       // singular point, nearer and farther points are tried.
       int child = -1;
-      Linearization at_child;
+      Linearization at_child = take_spare();
       for (double fraction : {1.0, 0.85, 1.1, 0.7, 0.5, 0.35, 0.25}) {
         const Eigen::Vector2d s =
             std::min(fraction * options_.placement, 1.9) * charts_[c].radius * direction;
@@ -535,6 +544,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       enqueue(child);
       factored_.emplace(child, std::move(at_child));
     }
+    spare_.push_back(std::move(at_center));
     if (options_.progress && chart_count() >= next_progress) {
       next_progress = chart_count() + 1000;
       options_.progress({chart_count(), 0, static_cast<int>(open_.size())});
