@@ -19,12 +19,13 @@ void ChartIndex::insert(int chart, const Eigen::Ref<const Eigen::VectorXd>& cent
                         double radius) {
   const int level_index = static_cast<int>(std::floor(std::log2(radius)));
   Level& level = levels_[level_index];
-  level.cell_size = 2.0 * std::ldexp(1.0, level_index + 1);
+  level.max_radius = std::ldexp(1.0, level_index + 1);
+  level.cell_size = 2.0 * level.max_radius;
   const Eigen::Vector3d p = projection_ * center;
   level.cells[key(static_cast<std::int64_t>(std::floor(p(0) / level.cell_size)),
                   static_cast<std::int64_t>(std::floor(p(1) / level.cell_size)),
                   static_cast<std::int64_t>(std::floor(p(2) / level.cell_size)))]
-      .push_back(chart);
+      .push_back({chart, p(0), p(1), p(2)});
 }
 
 void ChartIndex::candidates(const Eigen::Ref<const Eigen::VectorXd>& center, double radius,
@@ -34,7 +35,9 @@ void ChartIndex::candidates(const Eigen::Ref<const Eigen::VectorXd>& center, dou
   for (const auto& [level_index, level] : levels_) {
     // Every disk of this level has radius < cell_size/2, so overlapping centres lie within
     // radius + cell_size/2 of p (in the projection too, which does not increase distances).
-    const double reach = radius + 0.5 * level.cell_size;
+    const double reach = radius + level.max_radius;
+    // Widened a little so that rounding never drops a neighbour (the caller tests exactly).
+    const double reach_squared = reach * reach * (1.0 + 1e-9);
     std::int64_t low[3];
     std::int64_t high[3];
     for (int a = 0; a < 3; ++a) {
@@ -45,8 +48,16 @@ void ChartIndex::candidates(const Eigen::Ref<const Eigen::VectorXd>& center, dou
       for (std::int64_t j = low[1]; j <= high[1]; ++j) {
         for (std::int64_t k = low[2]; k <= high[2]; ++k) {
           const auto it = level.cells.find(key(i, j, k));
-          if (it != level.cells.end()) {
-            out.insert(out.end(), it->second.begin(), it->second.end());
+          if (it == level.cells.end()) {
+            continue;
+          }
+          for (const Entry& e : it->second) {
+            const double dx = e.x - p(0);
+            const double dy = e.y - p(1);
+            const double dz = e.z - p(2);
+            if (dx * dx + dy * dy + dz * dz <= reach_squared) {
+              out.push_back(e.chart);
+            }
           }
         }
       }

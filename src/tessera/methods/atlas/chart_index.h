@@ -25,9 +25,14 @@ class ChartIndex {
                   std::vector<int>& out) const;
 
  private:
+  struct Entry {
+    int chart;
+    double x, y, z;  ///< projected centre, to discard far candidates before the n-D test
+  };
   struct Level {
-    double cell_size = 0.0;  ///< 2 × the largest radius of the level
-    std::unordered_map<std::int64_t, std::vector<int>> cells;
+    double cell_size = 0.0;   ///< 2 × the largest radius of the level
+    double max_radius = 0.0;  ///< 2^(level+1): no disk of the level is larger
+    std::unordered_map<std::int64_t, std::vector<Entry>> cells;
   };
   static std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k);
 
