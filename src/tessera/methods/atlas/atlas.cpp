@@ -186,9 +186,11 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
   q.resize(n_, 3);
   while (r >= min_radius_) {
     bool converged = true;
+    static const std::array<Eigen::Vector2d, 3> directions = {
+        Eigen::Vector2d(1.0, 0.0), Eigen::Vector2d(0.5, std::sqrt(3.0) / 2),
+        Eigen::Vector2d(-0.5, std::sqrt(3.0) / 2)};  // θ = 0°, 60°, 120°
     for (int i = 0; i < 3 && converged; ++i) {
-      const double angle = i * std::numbers::pi / 3.0;
-      const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
+      const Eigen::Vector2d& d = directions[i];
       predicted = x + r * (T * d);
       y = predicted;
       converged = project(at_center, r, y);
@@ -201,15 +203,21 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
       continue;
     }
     // q_i = A + B cos 2θ_i + C sin 2θ_i at θ = 0°, 60°, 120°.
+    // |A + cos φ B + sin φ C| over φ = 2θ in [0, 2π), with A = mean q, B = q0 − A,
+    // C = (q1 − q2)/√3, written as weights of q0, q1, q2 (tabulated once).
+    static const std::array<std::array<double, 3>, 24> weights = [] {
+      std::array<std::array<double, 3>, 24> w{};
+      for (int k = 0; k < 24; ++k) {
+        const double phi = k * std::numbers::pi / 12.0;
+        const double a = (1.0 - std::cos(phi)) / 3.0;
+        w[k] = {a + std::cos(phi), a + std::sin(phi) / std::sqrt(3.0),
+                a - std::sin(phi) / std::sqrt(3.0)};
+      }
+      return w;
+    }();
     double curvature = 0.0;
-    for (int k = 0; k < 24; ++k) {
-      const double phi = k * std::numbers::pi / 12.0;  // 2θ over [0, 2π)
-      // A + cos φ B + sin φ C with A = mean q, B = q0 − A, C = (q1 − q2)/√3.
-      const double a = (1.0 - std::cos(phi)) / 3.0;
-      const double w0 = a + std::cos(phi);
-      const double w1 = a + std::sin(phi) / std::sqrt(3.0);
-      const double w2 = a - std::sin(phi) / std::sqrt(3.0);
-      curvature = std::max(curvature, (w0 * q.col(0) + w1 * q.col(1) + w2 * q.col(2)).norm());
+    for (const auto& w : weights) {
+      curvature = std::max(curvature, (w[0] * q.col(0) + w[1] * q.col(1) + w[2] * q.col(2)).norm());
     }
     double chosen = std::min(options_.max_radius, r);
     if (curvature > 0) {
