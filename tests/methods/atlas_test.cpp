@@ -15,6 +15,7 @@
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/problems/catalogue.h"
+#include "tessera/problems/problem_file.h"
 
 namespace tessera {
 namespace {
@@ -152,6 +153,53 @@ TEST(AtlasTolerance, HoldsOnClippedSurfacesToo) {
     const double distance = max_distance_inside_triangles(run.result.mesh, *run.setup.problem);
     EXPECT_LE(distance, run.result.summary.tolerance) << name;
   }
+}
+
+TEST(Atlas, CoversATorusInR5) {
+  // The flat torus lifted into R^5 by x5 = x1·x3: three equations, a closed surface, χ = 0.
+  const ProblemSetup setup = parse_problem(
+      "variables x1 x2 x3 x4 x5\n"
+      "equation x1^2 + x2^2 - 1\n"
+      "equation x3^2 + x4^2 - 1\n"
+      "equation x5 - x1*x3\n"
+      "start 1 0 1 0 1\n"
+      "step 0.3\n");
+  AtlasOptions options;
+  options.max_radius = 0.6;
+  options.tolerance = 5e-3;
+  const CoveringResult result = cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  const MeshValidation validation = validate(result.mesh);
+  ASSERT_TRUE(validation.is_valid()) << validation.report();
+  EXPECT_TRUE(validation.is_closed());
+  EXPECT_EQ(validation.euler_characteristic, 0);
+  EXPECT_LE(max_distance_inside_triangles(result.mesh, *setup.problem), options.tolerance);
+}
+
+TEST(Atlas, CoversTheComponentOfTheStartAndSaysSo) {
+  // Two disjoint unit spheres: the atlas closes the one it starts on.
+  const ProblemSetup setup = parse_problem(
+      "variables x y z\n"
+      "equation ((x-2)^2 + y^2 + z^2 - 1) * ((x+2)^2 + y^2 + z^2 - 1)\n"
+      "start 2 0 1\n"
+      "step 0.3\n");
+  AtlasOptions options;
+  options.max_radius = 0.6;
+  options.tolerance = 5e-3;
+  const CoveringResult result = cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  const MeshValidation validation = validate(result.mesh);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+  EXPECT_EQ(validation.euler_characteristic, 2);
+  EXPECT_EQ(validation.component_count, 1);
+  for (int v = 0; v < result.mesh.vertex_count(); ++v) {
+    EXPECT_GT(result.mesh.point(v)(0), 0.9);  // all on the sphere about (2, 0, 0)
+  }
+  bool says_so = false;
+  for (const std::string& note : result.summary.notes) {
+    says_so = says_so || note.find("component") != std::string::npos;
+  }
+  EXPECT_TRUE(says_so);
 }
 
 TEST(Atlas, SpendsVerticesWhereMCurvesAndSavesThemWhereItIsFlat) {
