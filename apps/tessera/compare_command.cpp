@@ -22,6 +22,10 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommand& command) {
   compare->add_option("--tolerance,-t", command.settings.tolerance,
                       "distance bound for the adaptive methods (default: step/50)")
       ->check(finite_positive());
+  compare->add_option("--placement", command.settings.atlas_placement,
+                       "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
+                       "vertices, then smoothed; slower)")
+      ->check(CLI::IsMember({"disk", "hexagonal"}));
   compare->add_option("--start", command.start, "start point, comma separated");
   compare->add_option("--box", command.box, "clip to a box: lower,upper for each coordinate");
   compare->add_option("--max-vertices", command.settings.max_vertices,

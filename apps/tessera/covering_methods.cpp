@@ -19,6 +19,8 @@ CoveringResult run_atlas(const ProblemSetup& setup, const MethodSettings& settin
   options.max_radius = h;
   options.tolerance = settings.tolerance > 0 ? settings.tolerance : 0.02 * setup.suggested_step;
   options.max_vertices = settings.max_vertices;
+  options.placement =
+      settings.atlas_placement == "hexagonal" ? AtlasPlacement::Hexagonal : AtlasPlacement::Disk;
   if (settings.max_start_distance > 0) {
     options.max_start_distance = settings.max_start_distance;
   }

@@ -20,6 +20,8 @@ struct MethodSettings {
   int max_vertices = 2'000'000;
   double max_start_distance = 0.0;  ///< in ambient units; 0: the method's default
   ProgressCallback progress;
+  // atlas
+  std::string atlas_placement = "disk";
   // front
   double front_min_gap_degrees = 0.0;
   int front_max_valence = 0;

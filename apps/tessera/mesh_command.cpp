@@ -31,6 +31,10 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_option("--tolerance,-t", mesh.settings.tolerance,
                        "atlas: bound on the distance from the mesh to M (default: step/50)")
       ->check(finite_positive());
+  mesh_app->add_option("--placement", mesh.settings.atlas_placement,
+                       "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
+                       "vertices, then smoothed; slower)")
+      ->check(CLI::IsMember({"disk", "hexagonal"}));
   mesh_app->add_option("--start", mesh.start, "start point, comma separated, e.g. 0,0,1");
   mesh_app->add_option("--box", mesh.box,
                        "clip to a box: lower,upper for each coordinate, e.g. -1,1,-1,1,-0.8,1");

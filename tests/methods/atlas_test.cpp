@@ -202,6 +202,44 @@ TEST(Atlas, CoversTheComponentOfTheStartAndSaysSo) {
   EXPECT_TRUE(says_so);
 }
 
+TEST(AtlasHexagonal, UsesFewerVerticesWithTheSameBoundAndGoodAngles) {
+  const ProblemSetup setup = make_catalogue_problem("sphere");
+  AtlasOptions options;
+  options.max_radius = 0.6;
+  options.tolerance = 1e-3;
+  const CoveringResult disk = cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  options.placement = AtlasPlacement::Hexagonal;
+  const CoveringResult hexagonal =
+      cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  ASSERT_TRUE(hexagonal.summary.is_complete()) << hexagonal.summary.message;
+  const MeshValidation validation = validate(hexagonal.mesh);
+  ASSERT_TRUE(validation.is_valid()) << validation.report();
+  EXPECT_EQ(validation.euler_characteristic, 2);
+  EXPECT_LT(hexagonal.mesh.vertex_count(), 0.75 * disk.mesh.vertex_count());
+  EXPECT_LE(max_distance_inside_triangles(hexagonal.mesh, *setup.problem), options.tolerance);
+  EXPECT_GT(measure_shape(hexagonal.mesh).min_angle_degrees, 25.0);
+}
+
+class AtlasHexagonalCovers : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(AtlasHexagonalCovers, WithAValidMeshWithinTheBound) {
+  ProblemSetup setup = make_catalogue_problem(GetParam());
+  AtlasOptions options;
+  options.max_radius = 2 * setup.suggested_step;
+  options.tolerance = 0.02 * setup.suggested_step;
+  options.placement = AtlasPlacement::Hexagonal;
+  const CoveringResult result = cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  const MeshValidation validation = validate(result.mesh);
+  ASSERT_TRUE(validation.is_valid()) << validation.report();
+  EXPECT_EQ(validation.euler_characteristic, *setup.expected_euler_characteristic);
+  EXPECT_LE(max_distance_inside_triangles(result.mesh, *setup.problem), options.tolerance);
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, AtlasHexagonalCovers,
+                         ::testing::Values("torus", "equipotential", "sphere_cut", "cstr",
+                                           "flat_torus", "crossing"));
+
 TEST(Atlas, SpendsVerticesWhereMCurvesAndSavesThemWhereItIsFlat) {
   // Sphere: N ∝ 1/ε (radius ∝ sqrt(ε)); plane: curvature 0, so ε does not matter.
   const int sphere_coarse = run_atlas("sphere", 4e-3).result.mesh.vertex_count();

@@ -29,6 +29,7 @@
 #include "tessera/methods/common/clip_to_domain.h"
 #include "tessera/methods/common/refine_to_tolerance.h"
 #include "tessera/methods/improvement/edge_swap.h"
+#include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/methods/start_point.h"
 
 namespace tessera {
@@ -38,8 +39,8 @@ void AtlasOptions::validate() const {
                 "AtlasOptions::tolerance = " << tolerance << " must be a finite number > 0");
   TESSERA_CHECK(std::isfinite(max_radius) && max_radius > 0,
                 "AtlasOptions::max_radius = " << max_radius << " must be a finite number > 0");
-  TESSERA_CHECK(placement >= 0.25 && placement <= 1.9,
-                "AtlasOptions::placement = " << placement << " must lie in [0.25, 1.9]");
+  TESSERA_CHECK(hexagonal_side >= 1.0 && hexagonal_side <= 1.9,
+                "AtlasOptions::hexagonal_side = " << hexagonal_side << " must lie in [1, 1.9]");
   TESSERA_CHECK(radius_growth >= 1.0 && radius_growth <= 4.0,
                 "AtlasOptions::radius_growth = " << radius_growth << " must lie in [1, 4]");
   TESSERA_CHECK(max_turning_angle > 0 && max_turning_angle <= 1.0,
@@ -121,6 +122,7 @@ class AtlasBuilder {
   int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);
   void connect_neighbours(int k);
   int next_open_vertex(int c) const;
+  Eigen::Vector2d child_position(int c, int vertex) const;
   void snap_to_domain_boundary(Eigen::VectorXd& y, double radius);
   bool is_eligible(int c) const;
   bool same_sheet(int a, int b, const Eigen::VectorXd& offset) const;
@@ -438,6 +440,54 @@ void AtlasBuilder::snap_to_domain_boundary(Eigen::VectorXd& y, double radius) {
   y = snapped;
 }
 
+// Where to centre the chart that covers the uncovered polygon vertex v of chart c, in c's
+// tangent coordinates.
+//  - Disk (Henderson): on the disk boundary towards v. Neighbouring centres end up R to 2R
+//    apart, the triangles' circumradii are mostly well below R, all angles near or above 30°.
+//  - Hexagonal: towards the packing in which every polygon vertex lies on three disk
+//    boundaries (centres √3·R apart). Next to a neighbour a, the new centre is the apex of the
+//    isosceles triangle on c–a with sides hexagonal_side·R; in a gap between two neighbours,
+//    at v itself; from a chart with no neighbour yet, hexagonal_side·R towards v.
+Eigen::Vector2d AtlasBuilder::child_position(int c, int vertex) const {
+  const auto& vertices = charts_[c].polygon.vertices();
+  const int m = static_cast<int>(vertices.size());
+  const auto& v = vertices[vertex];
+  const Eigen::Vector2d at(v.s, v.t);
+  const double R = charts_[c].radius;
+  if (options_.placement == AtlasPlacement::Disk) {
+    return R * at.normalized();
+  }
+  const double side = options_.hexagonal_side * R;
+  const int before = vertices[(vertex + m - 1) % m].edge_label;
+  const int after = v.edge_label;
+  Eigen::Vector2d p;
+  if (before >= 0 && after >= 0) {
+    p = at;
+  } else if (before >= 0 || after >= 0) {
+    const int a = before >= 0 ? before : after;
+    const Eigen::Vector2d pa = tangent(c).transpose() * (center(a) - center(c));
+    const double spacing = pa.norm();
+    const Eigen::Vector2d middle = 0.5 * pa;
+    Eigen::Vector2d normal = Eigen::Vector2d(-pa(1), pa(0)).normalized();
+    if (normal.dot(at - middle) < 0) {
+      normal = -normal;
+    }
+    const double height =
+        spacing < 2 * side ? std::sqrt(side * side - 0.25 * spacing * spacing) : 0.0;
+    p = middle + height * normal;
+  } else {
+    p = side * at.normalized();
+  }
+  // Disks must overlap their parent's (distance < 2R) and the step must make progress.
+  const double distance = p.norm();
+  if (distance > 1.9 * R) {
+    p *= 1.9 * R / distance;
+  } else if (distance < 0.5 * R) {
+    p = 0.5 * R * at.normalized();
+  }
+  return p;
+}
+
 void AtlasBuilder::enqueue(int c) {
   charts_[c].queued = true;
   open_.push_back(c);
@@ -506,9 +556,11 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       // singular point, nearer and farther points are tried.
       int child = -1;
       Linearization at_child = take_spare();
+      // A corner the last child did not remove gets Henderson's placement, which always does.
+      const Eigen::Vector2d target =
+          target_repeated ? charts_[c].radius * direction : child_position(c, vertex);
       for (double fraction : {1.0, 0.85, 1.1, 0.7, 0.5, 0.35, 0.25}) {
-        const Eigen::Vector2d s =
-            std::min(fraction * options_.placement, 1.9) * charts_[c].radius * direction;
+        const Eigen::Vector2d s = fraction * target;
         y = xc + Tc * s;
         if (!project(at_center, s.norm(), y)) {
           continue;
@@ -630,7 +682,9 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
   summary.max_chart_radius = max_radius;
   summary.step = max_radius;
 
-  if (options.swap_edges && result.mesh.triangle_count() > 0) {
+  if (options.placement == AtlasPlacement::Hexagonal && result.mesh.triangle_count() > 0) {
+    improve_mesh(result.mesh, problem, ImprovementOptions{}, 3);
+  } else if (options.swap_edges && result.mesh.triangle_count() > 0) {
     ImprovementOptions swaps;
     improve_by_edge_swaps(result.mesh, problem, swaps);
   }
@@ -660,25 +714,30 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
       summary.termination = CoveringTermination::ProjectionFailed;
       summary.message = clipped.message;
     }
-    // Snapping and cutting reshape the triangles at ∂S, some beyond the distance bound: those
-    // are bisected until their sampled points are within ε of M again.
-    std::vector<int> at_boundary;
-    for (int t = 0; t < result.mesh.triangle_count(); ++t) {
-      for (int v : result.mesh.triangle(t)) {
-        if (std::abs(domain.boundary_distance(result.mesh.point(v)).signed_distance) <= 1e-8) {
-          at_boundary.push_back(t);
-          break;
-        }
-      }
+  }
+  // Snapping and cutting reshape the triangles at ∂S, and smoothing (hexagonal placement) moves
+  // vertices, so some triangles may end beyond the distance bound: those are bisected until
+  // their sampled points are within ε of M again. Only the triangles at ∂S need the check
+  // after plain disk placement; all of them after smoothing.
+  std::vector<int> to_check;
+  for (int t = 0; t < result.mesh.triangle_count(); ++t) {
+    bool check = options.placement == AtlasPlacement::Hexagonal;
+    for (int v : result.mesh.triangle(t)) {
+      check = check || (!domain.is_unbounded() &&
+                        std::abs(domain.boundary_distance(result.mesh.point(v)).signed_distance) <=
+                            1e-8);
     }
-    if (!at_boundary.empty()) {
-      ToleranceRefinementOptions refine;
-      refine.tolerance = options.tolerance;
-      refine.corrector = options.corrector;
-      const ToleranceRefinement refined =
-          refine_to_tolerance(problem, domain, result.mesh, at_boundary, refine);
-      summary.refined_edges = refined.split_edges;
+    if (check) {
+      to_check.push_back(t);
     }
+  }
+  if (!to_check.empty()) {
+    ToleranceRefinementOptions refine;
+    refine.tolerance = options.tolerance;
+    refine.corrector = options.corrector;
+    const ToleranceRefinement refined =
+        refine_to_tolerance(problem, domain, result.mesh, to_check, refine);
+    summary.refined_edges = refined.split_edges;
   }
   check_coverage(domain, result.mesh, summary);
   summary.notes.push_back("covered the component of M that contains the start point; other "
