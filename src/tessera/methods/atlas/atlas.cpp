@@ -621,6 +621,18 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
   }
 }
 
+// Bisects the listed triangles (and their offspring) until sampled points lie within ε of M.
+int refine_where(const ImplicitProblem& problem, const Domain& domain, TriangleMesh& mesh,
+                 const std::vector<int>& triangles, const AtlasOptions& options) {
+  if (triangles.empty()) {
+    return 0;
+  }
+  ToleranceRefinementOptions refine;
+  refine.tolerance = options.tolerance;
+  refine.corrector = options.corrector;
+  return refine_to_tolerance(problem, domain, mesh, triangles, refine).split_edges;
+}
+
 // Post-condition of a completed run, checked rather than assumed: on a closed surface the mesh
 // has no boundary; in a bounded domain every boundary vertex lies on ∂S. Anything else is a
 // hole in the covering, reported with its place.
@@ -688,6 +700,23 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
     ImprovementOptions swaps;
     improve_by_edge_swaps(result.mesh, problem, swaps);
   }
+  {
+    // The radius follows the curvature at the chart's centre; where the curvature changes
+    // across a triangle (its charts' radii differ) or vertices were moved by smoothing, the
+    // quadratic model behind the radius no longer bounds the triangle: check and bisect there.
+    std::vector<int> to_check;
+    for (int t = 0; t < result.mesh.triangle_count(); ++t) {
+      const Triangle& tri = result.mesh.triangle(t);
+      const double small = std::min({triangulation.radius[tri[0]], triangulation.radius[tri[1]],
+                                     triangulation.radius[tri[2]]});
+      const double large = std::max({triangulation.radius[tri[0]], triangulation.radius[tri[1]],
+                                     triangulation.radius[tri[2]]});
+      if (options.placement == AtlasPlacement::Hexagonal || large > 1.05 * small) {
+        to_check.push_back(t);
+      }
+    }
+    summary.refined_edges += refine_where(problem, domain, result.mesh, to_check, options);
+  }
   if (!domain.is_unbounded() && result.mesh.triangle_count() > 0) {
     ClipOptions clip;
     // Snap and collapse lengths follow the charts near the boundary: the median radius of the
@@ -715,29 +744,19 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
       summary.message = clipped.message;
     }
   }
-  // Snapping and cutting reshape the triangles at ∂S, and smoothing (hexagonal placement) moves
-  // vertices, so some triangles may end beyond the distance bound: those are bisected until
-  // their sampled points are within ε of M again. Only the triangles at ∂S need the check
-  // after plain disk placement; all of them after smoothing.
-  std::vector<int> to_check;
-  for (int t = 0; t < result.mesh.triangle_count(); ++t) {
-    bool check = options.placement == AtlasPlacement::Hexagonal;
-    for (int v : result.mesh.triangle(t)) {
-      check = check || (!domain.is_unbounded() &&
-                        std::abs(domain.boundary_distance(result.mesh.point(v)).signed_distance) <=
-                            1e-8);
+  // Snapping and cutting reshape the triangles at ∂S: those are bisected until their sampled
+  // points are within ε of M again.
+  if (!domain.is_unbounded()) {
+    std::vector<int> at_boundary;
+    for (int t = 0; t < result.mesh.triangle_count(); ++t) {
+      for (int v : result.mesh.triangle(t)) {
+        if (std::abs(domain.boundary_distance(result.mesh.point(v)).signed_distance) <= 1e-8) {
+          at_boundary.push_back(t);
+          break;
+        }
+      }
     }
-    if (check) {
-      to_check.push_back(t);
-    }
-  }
-  if (!to_check.empty()) {
-    ToleranceRefinementOptions refine;
-    refine.tolerance = options.tolerance;
-    refine.corrector = options.corrector;
-    const ToleranceRefinement refined =
-        refine_to_tolerance(problem, domain, result.mesh, to_check, refine);
-    summary.refined_edges = refined.split_edges;
+    summary.refined_edges += refine_where(problem, domain, result.mesh, at_boundary, options);
   }
   check_coverage(domain, result.mesh, summary);
   summary.notes.push_back("covered the component of M that contains the start point; other "

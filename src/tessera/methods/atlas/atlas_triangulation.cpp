@@ -455,6 +455,7 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
   for (int c = 0; c < cells.chart_count; ++c) {
     if (vertex_of[c] == 0) {
       vertex_of[c] = result.mesh.add_vertex(cells.center(c));
+      result.radius.push_back(cells.radius(c));
     }
   }
   for (Triangle& t : triangles) {

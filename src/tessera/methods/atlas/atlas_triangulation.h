@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "tessera/geometry/triangle_mesh.h"
 #include "tessera/methods/atlas/chart_polygon.h"
@@ -28,6 +29,7 @@ struct AtlasCells {
 
 struct AtlasTriangulation {
   TriangleMesh mesh;       ///< vertices: the centres of the charts that carry triangles
+  std::vector<double> radius;  ///< per mesh vertex: the radius of its chart
   int consistent_triangles = 0;  ///< emitted by all three of their charts
   int filled_holes = 0;    ///< places where the charts disagreed, triangulated afterwards
   int dropped_triangles = 0;  ///< removed so that every vertex has one fan (vertex-manifold)
