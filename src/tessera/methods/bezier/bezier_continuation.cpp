@@ -12,6 +12,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -289,6 +291,7 @@ class BezierBuilder {
   std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<>> queue_;
   int connections_ = 0;
   int step_reductions_ = 0;
+  double longest_edge_ = 0.0;  // of the whole mesh, for the radius of the overlap search
   int next_progress_ = 1000;
 };
 
@@ -357,11 +360,28 @@ void BezierBuilder::update_front_membership(int v) {
 
 void BezierBuilder::add_triangle(int i, int j, int k) {
   const int t = static_cast<int>(triangles_.size());
+  if (std::getenv("TESSERA_BEZIER_DEBUG")) {
+    const PlaneFrame plane(vertices_[i].x, vertices_[j].x, vertices_[k].x);
+    const std::array<Eigen::Vector2d, 3> P{plane.project(vertices_[i].x), plane.project(vertices_[j].x), plane.project(vertices_[k].x)};
+    for (int q = 0; q < t; ++q) {
+      const Triangle& tri = triangles_[q];
+      const Eigen::VectorXd c = (vertices_[tri[0]].x + vertices_[tri[1]].x + vertices_[tri[2]].x) / 3.0;
+      if (plane.offset(c) > 0.2) continue;
+      const std::array<Eigen::Vector2d, 3> Q{plane.project(vertices_[tri[0]].x), plane.project(vertices_[tri[1]].x), plane.project(vertices_[tri[2]].x)};
+      if (triangles_overlap(P, Q)) {
+        setenv("TESSERA_BEZIER_DEBUG2", "1", 1);
+        fprintf(stderr, "om=%d offset=%g ", (int)overlaps_mesh(j, i, -1, vertices_[k].x), plane.offset(c));
+        unsetenv("TESSERA_BEZIER_DEBUG2");
+        fprintf(stderr, "OVERLAP new (%d %d %d) with %d (%d %d %d); front(i)=%d front(j)=%d front(k)=%d; tri front %d %d %d\n", i, j, k, q, tri[0], tri[1], tri[2], (int)is_front_vertex(i), (int)is_front_vertex(j), (int)is_front_vertex(k), (int)is_front_vertex(tri[0]), (int)is_front_vertex(tri[1]), (int)is_front_vertex(tri[2]));
+      }
+    }
+  }
   triangles_.push_back({i, j, k});
   Eigen::MatrixXd corners(n_, 3);
   std::array<Eigen::MatrixXd, 3> bases;
   const std::array<int, 3> ids{i, j, k};
   for (int c = 0; c < 3; ++c) {
+    longest_edge_ = std::max(longest_edge_, (vertices_[ids[c]].x - vertices_[ids[(c + 1) % 3]].x).norm());
     corners.col(c) = vertices_[ids[c]].x;
     bases[c] = vertices_[ids[c]].T;
   }
@@ -595,11 +615,26 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
   point.vertex.step = s;
   if (!domain_.is_unbounded()) {
     const double snap = options_.boundary_snap_fraction * s;
-    const BoundaryDistance nearest = domain_.boundary_distance(y);
-    if (nearest.signed_distance < snap) {
-      std::vector<int> faces{nearest.nearest_half_space};
+    // All faces nearer than the snap distance, nearest first (at most n − 1 constraints in all,
+    // so that M ∩ faces is not overdetermined).
+    std::vector<std::pair<double, int>> near_faces;
+    for (int k = 0; k < static_cast<int>(domain_.half_spaces().size()); ++k) {
+      const double distance = domain_.signed_distance(k, y);
+      if (distance < snap) {
+        near_faces.emplace_back(distance, k);
+      }
+    }
+    std::sort(near_faces.begin(), near_faces.end());
+    if (static_cast<int>(near_faces.size()) > 2) {
+      near_faces.resize(2);
+    }
+    if (!near_faces.empty()) {
+      std::vector<int> faces;
+      for (const auto& [distance, k] : near_faces) {
+        faces.push_back(k);
+      }
       bool projected = false;
-      for (int round = 0; round < n_ - 2 && !projected; ++round) {
+      for (int round = 0; round < 3 && !projected; ++round) {
         Eigen::VectorXd z = y;
         double face_theta = 0.0;
         if (!project_onto_faces(z, faces, face_theta)) {
@@ -607,7 +642,7 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
         }
         // Another face may now be violated (near an edge of the box): add it and redo.
         const BoundaryDistance other = domain_.boundary_distance(z);
-        if (other.signed_distance < -1e-9 * (1.0 + z.norm()) &&
+        if (other.signed_distance < -1e-9 * (1.0 + z.norm()) && faces.size() < 2 &&
             std::find(faces.begin(), faces.end(), other.nearest_half_space) == faces.end()) {
           faces.push_back(other.nearest_half_space);
           continue;
@@ -666,7 +701,9 @@ bool BezierBuilder::overlaps_mesh(int a, int b, int v, const Eigen::VectorXd& y)
   const double size = std::max({(vertices_[a].x - vertices_[b].x).norm(),
                                 (vertices_[a].x - y).norm(), (vertices_[b].x - y).norm()});
   const Eigen::VectorXd centroid = (vertices_[a].x + vertices_[b].x + y) / 3.0;
-  std::vector<int> nearby = front_vertices_near(centroid, 1.5 * size);
+  // Every triangle that overlaps the new one has a vertex within size + (longest edge) of its
+  // centroid, and one that overlaps it without crossing the front cannot exist.
+  std::vector<int> nearby = front_vertices_near(centroid, size + longest_edge_);
   nearby.push_back(a);
   nearby.push_back(b);
   if (v >= 0) {
@@ -682,7 +719,10 @@ bool BezierBuilder::overlaps_mesh(int a, int b, int v, const Eigen::VectorXd& y)
       const Triangle& tri = triangles_[t];
       const Eigen::VectorXd c =
           (vertices_[tri[0]].x + vertices_[tri[1]].x + vertices_[tri[2]].x) / 3.0;
-      if (plane.offset(c) > 0.5 * size) {
+      const double size_q = std::max({(vertices_[tri[0]].x - vertices_[tri[1]].x).norm(),
+                                      (vertices_[tri[1]].x - vertices_[tri[2]].x).norm(),
+                                      (vertices_[tri[2]].x - vertices_[tri[0]].x).norm()});
+      if (plane.offset(c) > 0.5 * std::max(size, size_q)) {
         continue;
       }
       const std::array<Eigen::Vector2d, 3> Q{plane.project(vertices_[tri[0]].x),
@@ -745,6 +785,9 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
   const double beta = options_.connection_sector;
   double s = predicted_step(a, b);
   int overlap_reductions = 0;
+  // The front neighbours of the edge are always candidates for a close overlap (figure 2).
+  const std::optional<int> previous = previous_on_front(a, b, c);
+  const std::optional<int> next = next_on_front(a, b, c);
   for (int attempt = 0; s >= min_step_ * (1.0 - 1e-12); ++attempt) {
     if (attempt > 0) {
       ++step_reductions_;
@@ -812,7 +855,8 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
       const bool close = (yv - predicted).norm() < options_.close_vertex_fraction * s;
       overlap = overlap || inside || close;
       const bool in_sector = l(0) >= 0 && l(2) >= beta * (l(1) - 1) && l(1) >= beta * (l(2) - 1);
-      if (in_sector && l(0) > 0) {
+      const bool neighbour = v == previous || v == next;
+      if ((in_sector || neighbour) && l(0) > 0) {
         connectable.emplace_back((pv - Y).norm(), v);
       }
     }
@@ -829,7 +873,9 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
           if (!other_plane.valid) {
             continue;
           }
-          const double size = (vertices_[other[1]].x - vertices_[other[0]].x).norm();
+          const double size = std::max({(vertices_[other[1]].x - vertices_[other[0]].x).norm(),
+                                        (vertices_[other[2]].x - vertices_[other[1]].x).norm(),
+                                        (vertices_[other[0]].x - vertices_[other[2]].x).norm()});
           if (other_plane.offset(predicted) > 0.5 * std::max(size, s)) {
             continue;
           }
