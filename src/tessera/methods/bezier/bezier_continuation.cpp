@@ -287,6 +287,7 @@ class BezierBuilder {
   std::vector<std::vector<int>> vertex_triangles_;
   std::vector<std::vector<int>> front_out_, front_in_;  // free directed edges at each vertex
   std::unordered_map<EdgeKey, int> failures_;
+  std::vector<std::pair<EdgeKey, std::string>> failure_messages_;  // first failure of each edge
   PointGrid grid_;  // front vertices only: the paper's "boundary vertices" (section 4)
   std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<>> queue_;
   int connections_ = 0;
@@ -629,6 +630,7 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
       near_faces.resize(2);
     }
     if (!near_faces.empty()) {
+      const Eigen::VectorXd unconstrained = y;
       std::vector<int> faces;
       for (const auto& [distance, k] : near_faces) {
         faces.push_back(k);
@@ -650,6 +652,9 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
         y = z;
         projected = true;
       }
+      // Moving onto the faces must keep the point inside all the others, and near the edge.
+      projected = projected && domain_.contains(y, 1e-9 * (1.0 + y.norm())) &&
+                  (y - unconstrained).norm() <= s;
       if (!projected) {
         failure = {"the point " + describe_point(y) +
                        " near the domain boundary could not be moved onto M ∩ boundary",
@@ -828,7 +833,14 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
     bool overlap = false;
     std::vector<std::pair<double, int>> connectable;  // (distance to ŷ, vertex)
     const double radius = 1.2 * (s + 0.5 * base);
-    for (int v : front_vertices_near(midpoint, radius)) {
+    std::vector<int> candidates = front_vertices_near(midpoint, radius);
+    for (const std::optional<int>& neighbour : {previous, next}) {
+      if (neighbour && std::find(candidates.begin(), candidates.end(), *neighbour) ==
+                           candidates.end()) {
+        candidates.push_back(*neighbour);
+      }
+    }
+    for (int v : candidates) {
       if (v == a || v == b) {
         continue;
       }
@@ -838,25 +850,36 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
       if (plane.offset(yv) > 0.5 * std::max((pv - 0.5 * (A + B)).norm(), base)) {
         continue;
       }
-      // Connecting v must respect α_min on the edges (a, v) and (b, v).
+      // Connecting v must respect α_min on the edges (a, v) and (b, v) that are new. For a front
+      // neighbour (close overlap, figure 2) the new edge spans two edges that each satisfy
+      // it, so the angle bound is doubled: otherwise a last hole of four vertices on a curved
+      // region could not be closed at all (tessera's relaxation; the paper is silent).
+      const bool is_neighbour = v == previous || v == next;
+      const double min_cosine =
+          is_neighbour ? std::cos(2.0 * std::acos(options_.min_tangent_cosine))
+                       : options_.min_tangent_cosine;
       bool compatible = true;
       for (int end : {a, b}) {
+        if (has_edge(v, end) || has_edge(end, v)) {
+          continue;
+        }
         const Eigen::VectorXd t1 = edge_tangent(vertices_[end].T, vertices_[end].x, yv);
         const Eigen::VectorXd t2 = edge_tangent(vertices_[v].T, yv, vertices_[end].x);
-        compatible = compatible && std::abs(t1.dot(t2)) >= options_.min_tangent_cosine;
+        compatible = compatible && std::abs(t1.dot(t2)) >= min_cosine;
       }
+      if (std::getenv("TESSERA_BEZIER_DEBUG3")) fprintf(stderr, "edge %d %d v %d compatible %d offset %g\n", a, b, v, (int)compatible, plane.offset(yv));
       if (!compatible) {
         continue;
       }
       const Eigen::Vector3d l = barycentric(pv, Y, A, B);
+      if (std::getenv("TESSERA_BEZIER_DEBUG3")) fprintf(stderr, "edge %d %d v %d l %g %g %g prev %d next %d adm %d\n", a, b, v, l(0), l(1), l(2), previous ? *previous : -1, next ? *next : -1, (int)is_admissible(a, b, c, v, yv));
       // Softened containment (section 5, ρ) on the sides through ŷ; on the base line the
       // crisp test, since a vertex behind the edge can neither overlap T̂ nor be connected.
       const bool inside = l(0) > 0 && l(1) >= -rho && l(2) >= -rho;
       const bool close = (yv - predicted).norm() < options_.close_vertex_fraction * s;
       overlap = overlap || inside || close;
       const bool in_sector = l(0) >= 0 && l(2) >= beta * (l(1) - 1) && l(1) >= beta * (l(2) - 1);
-      const bool neighbour = v == previous || v == next;
-      if ((in_sector || neighbour) && l(0) > 0) {
+      if ((in_sector || is_neighbour) && l(0) > 0) {
         connectable.emplace_back((pv - Y).norm(), v);
       }
     }
@@ -1046,11 +1069,23 @@ void BezierBuilder::run() {
     if (realize(entry.a, entry.b, why)) {
       continue;
     }
+    // Retry later: the triangles added at the other edges may resolve the conflict, and an
+    // edge is pushed again whenever a triangle is added at one of its ends.
     int& failures = failures_[edge_key(entry.a, entry.b)];
-    if (++failures >= kMaxEdgeFailures) {
-      throw StopRun{CoveringTermination::FrontCollision, why};
+    if (failures == 0) {
+      failure_messages_.emplace_back(edge_key(entry.a, entry.b), why);
     }
-    queue_.push({front_angle(entry.a, entry.b), entry.a, entry.b});
+    if (++failures < kMaxEdgeFailures) {
+      queue_.push({front_angle(entry.a, entry.b), entry.a, entry.b});
+    }
+  }
+  // Edges that are still free (and not on the domain boundary) could not be realised.
+  for (const auto& [key, message] : failure_messages_) {
+    const int a = static_cast<int>(key >> 32);
+    const int b = static_cast<int>(key & 0xffffffffu);
+    if (is_free(a, b) && !is_boundary_edge(a, b)) {
+      throw StopRun{CoveringTermination::FrontCollision, message};
+    }
   }
 }
 
