@@ -766,13 +766,24 @@ bool BezierBuilder::is_admissible(int a, int b, int c, int v, const Eigen::Vecto
 bool BezierBuilder::realize(int a, int b, std::string& why) {
   const int t = edge_triangle_.at(edge_key(a, b));
   const int c = third_vertex(t, a, b);
-  const Triangle& tri = triangles_[t];
-  const CubicBezierPatch& patch = patches_[t];
+  // The front neighbours of the edge are always candidates for a close overlap (figure 2).
+  const std::optional<int> previous = previous_on_front(a, b, c);
+  const std::optional<int> next = next_on_front(a, b, c);
+  const Triangle tri = triangles_[t];
+  const CubicBezierPatch patch = patches_[t];
   int la = 0, lb = 0, lc = 0;
   for (int i = 0; i < 3; ++i) {
     la = tri[i] == a ? i : la;
     lb = tri[i] == b ? i : lb;
     lc = tri[i] == c ? i : lc;
+  }
+  // A front loop of three edges is a hole that only one triangle can close; it is closed
+  // whatever its shape (a needle is better than a hole, and the topology requires it).
+  if (previous && previous == next && *previous != c && !has_edge(a, *previous) &&
+      !has_edge(*previous, b)) {
+    add_triangle(b, a, *previous);
+    ++connections_;
+    return true;
   }
   const Eigen::VectorXd& ya = vertices_[a].x;
   const Eigen::VectorXd& yb = vertices_[b].x;
@@ -790,9 +801,6 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
   const double beta = options_.connection_sector;
   double s = predicted_step(a, b);
   int overlap_reductions = 0;
-  // The front neighbours of the edge are always candidates for a close overlap (figure 2).
-  const std::optional<int> previous = previous_on_front(a, b, c);
-  const std::optional<int> next = next_on_front(a, b, c);
   for (int attempt = 0; s >= min_step_ * (1.0 - 1e-12); ++attempt) {
     if (attempt > 0) {
       ++step_reductions_;
