@@ -11,6 +11,8 @@
 #include "output_checks.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_validation.h"
+#include "tessera/geometry/bezier_surface.h"
+#include "tessera/io/bezier_patches.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/summary_json.h"
 #include "tessera/methods/improvement/improve_mesh.h"
@@ -87,6 +89,14 @@ int run_mesh(const MeshCommand& command) {
   // Every option is checked before the computation starts.
   check_mesh_output(command.output);
   check_output_folder(command.summary);
+  check_output_folder(command.patches);
+  const bool wants_patches = command.refine > 0 || !command.patches.empty();
+  TESSERA_CHECK(!wants_patches || method.name == "bezier",
+                "--refine and --patches need the cubic surface of --method bezier, not '"
+                    << method.name << "'");
+  TESSERA_CHECK(!(wants_patches && command.improve),
+                "--improve changes the triangles, so it cannot be combined with --refine or "
+                "--patches (the patches belong to the unimproved triangles)");
   MeshFileOptions file_options;
   if (!command.obj_coordinates.empty()) {
     const auto values = parse_numbers(command.obj_coordinates, "--obj-coordinates");
@@ -115,6 +125,15 @@ int run_mesh(const MeshCommand& command) {
     // Delaunay-type swaps judged in the tangent planes, 3 passes of tangential smoothing, and
     // swaps again (docs/algorithms/improvement.md): validity and boundary are kept.
     improve_mesh(result.mesh, *setup.problem, ImprovementOptions{}, 3);
+  }
+  if (!command.patches.empty()) {
+    write_bezier_patches(command.patches,
+                         {result.mesh, result.patches, setup.problem->coordinate_names()});
+  }
+  if (command.refine > 0 && result.mesh.triangle_count() > 0) {
+    // The cubic surface sampled on a K×K subdivision of each triangle; the report below then
+    // measures the cubic surface (its centroids and edge midpoints) instead of the flat mesh.
+    result.mesh = refine_bezier_surface(result.mesh, result.patches, command.refine);
   }
   // Whatever happened, keep the work: write the mesh and the summary before reporting.
   file_options.binary = !command.ascii;

@@ -12,8 +12,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -361,22 +359,6 @@ void BezierBuilder::update_front_membership(int v) {
 
 void BezierBuilder::add_triangle(int i, int j, int k) {
   const int t = static_cast<int>(triangles_.size());
-  if (std::getenv("TESSERA_BEZIER_DEBUG")) {
-    const PlaneFrame plane(vertices_[i].x, vertices_[j].x, vertices_[k].x);
-    const std::array<Eigen::Vector2d, 3> P{plane.project(vertices_[i].x), plane.project(vertices_[j].x), plane.project(vertices_[k].x)};
-    for (int q = 0; q < t; ++q) {
-      const Triangle& tri = triangles_[q];
-      const Eigen::VectorXd c = (vertices_[tri[0]].x + vertices_[tri[1]].x + vertices_[tri[2]].x) / 3.0;
-      if (plane.offset(c) > 0.2) continue;
-      const std::array<Eigen::Vector2d, 3> Q{plane.project(vertices_[tri[0]].x), plane.project(vertices_[tri[1]].x), plane.project(vertices_[tri[2]].x)};
-      if (triangles_overlap(P, Q)) {
-        setenv("TESSERA_BEZIER_DEBUG2", "1", 1);
-        fprintf(stderr, "om=%d offset=%g ", (int)overlaps_mesh(j, i, -1, vertices_[k].x), plane.offset(c));
-        unsetenv("TESSERA_BEZIER_DEBUG2");
-        fprintf(stderr, "OVERLAP new (%d %d %d) with %d (%d %d %d); front(i)=%d front(j)=%d front(k)=%d; tri front %d %d %d\n", i, j, k, q, tri[0], tri[1], tri[2], (int)is_front_vertex(i), (int)is_front_vertex(j), (int)is_front_vertex(k), (int)is_front_vertex(tri[0]), (int)is_front_vertex(tri[1]), (int)is_front_vertex(tri[2]));
-      }
-    }
-  }
   triangles_.push_back({i, j, k});
   Eigen::MatrixXd corners(n_, 3);
   std::array<Eigen::MatrixXd, 3> bases;
@@ -875,12 +857,10 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
         const Eigen::VectorXd t2 = edge_tangent(vertices_[v].T, yv, vertices_[end].x);
         compatible = compatible && std::abs(t1.dot(t2)) >= min_cosine;
       }
-      if (std::getenv("TESSERA_BEZIER_DEBUG3")) fprintf(stderr, "edge %d %d v %d compatible %d offset %g\n", a, b, v, (int)compatible, plane.offset(yv));
       if (!compatible) {
         continue;
       }
       const Eigen::Vector3d l = barycentric(pv, Y, A, B);
-      if (std::getenv("TESSERA_BEZIER_DEBUG3")) fprintf(stderr, "edge %d %d v %d l %g %g %g prev %d next %d adm %d\n", a, b, v, l(0), l(1), l(2), previous ? *previous : -1, next ? *next : -1, (int)is_admissible(a, b, c, v, yv));
       // Softened containment (section 5, ρ) on the sides through ŷ; on the base line the
       // crisp test, since a vertex behind the edge can neither overlap T̂ nor be connected.
       const bool inside = l(0) > 0 && l(1) >= -rho && l(2) >= -rho;
