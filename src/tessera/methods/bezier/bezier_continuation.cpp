@@ -12,6 +12,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -330,6 +332,7 @@ int BezierBuilder::add_vertex(VertexData vertex) {
     message << "stopped at max_vertices = " << options_.max_vertices;
     throw StopRun{CoveringTermination::VertexLimit, message.str()};
   }
+  if (std::getenv("BZDBG")) std::fprintf(stderr, "V %g %g %g %g s %g th %g\n", vertex.x(0), vertex.x(1), vertex.x(2), vertex.x.size() > 3 ? vertex.x(3) : 0.0, vertex.step, vertex.theta);
   vertices_.push_back(std::move(vertex));
   vertex_triangles_.emplace_back();
   front_out_.emplace_back();
@@ -622,6 +625,13 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
         Eigen::VectorXd z = y;
         double face_theta = 0.0;
         if (!project_onto_faces(z, faces, face_theta)) {
+          // Two near faces need not meet on M (on the CSTR, Da ≈ x1 near x1 = 0.02, so the
+          // faces x1 = 0.02 and Da = 0 are both near but M misses their intersection): retry
+          // with the nearest face alone; a face that is then violated is added above.
+          if (faces.size() == 2 && round == 0) {
+            faces.resize(1);
+            continue;
+          }
           break;
         }
         // Another face may now be violated (near an edge of the box): add it and redo.
@@ -637,6 +647,13 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
       // Moving onto the faces must keep the point inside all the others, and near the edge.
       projected = projected && domain_.contains(y, 1e-9 * (1.0 + y.norm())) &&
                   (y - unconstrained).norm() <= s;
+      if (!projected && domain_.contains(unconstrained)) {
+        // Snapping is cosmetic for a point inside: when M does not meet the near face there
+        // (on the CSTR, Da ≥ 0 is near everywhere but M ∩ {Da = 0} lies outside the box),
+        // keep the point where it is instead of shrinking the step.
+        y = unconstrained;
+        projected = true;
+      }
       if (!projected) {
         failure = {"the point " + describe_point(y) +
                        " near the domain boundary could not be moved onto M ∩ boundary",
