@@ -616,37 +616,40 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
     }
     if (!near_faces.empty()) {
       const Eigen::VectorXd unconstrained = y;
-      std::vector<int> faces;
+      // The face sets tried, in order: both near faces (a corner of the box), the nearest, the
+      // other. Two near faces need not meet on M, and M need not meet a near face nearby (on
+      // the CSTR, Da ≈ x1 near x1 = 0.02: the faces x1 = 0.02 and Da = 0 are both near but
+      // M ∩ {Da = 0} lies outside the box).
+      std::vector<std::vector<int>> attempts;
+      if (near_faces.size() == 2) {
+        attempts.push_back({near_faces[0].second, near_faces[1].second});
+      }
       for (const auto& [distance, k] : near_faces) {
-        faces.push_back(k);
+        attempts.push_back({k});
       }
       bool projected = false;
-      for (int round = 0; round < 3 && !projected; ++round) {
-        Eigen::VectorXd z = y;
-        double face_theta = 0.0;
-        if (!project_onto_faces(z, faces, face_theta)) {
-          // Two near faces need not meet on M (on the CSTR, Da ≈ x1 near x1 = 0.02, so the
-          // faces x1 = 0.02 and Da = 0 are both near but M misses their intersection): retry
-          // with the nearest face alone; a face that is then violated is added above.
-          if (faces.size() == 2 && round == 0) {
-            faces.resize(1);
+      for (std::size_t attempt = 0; attempt < attempts.size() && !projected; ++attempt) {
+        std::vector<int> faces = attempts[attempt];
+        for (int round = 0; round < 2 && !projected; ++round) {
+          Eigen::VectorXd z = unconstrained;
+          double face_theta = 0.0;
+          if (!project_onto_faces(z, faces, face_theta)) {
+            break;
+          }
+          // Another face may now be violated (near an edge of the box): add it and redo.
+          const BoundaryDistance other = domain_.boundary_distance(z);
+          if (other.signed_distance < -1e-9 * (1.0 + z.norm()) && faces.size() < 2 &&
+              std::find(faces.begin(), faces.end(), other.nearest_half_space) == faces.end()) {
+            faces.push_back(other.nearest_half_space);
             continue;
           }
-          break;
+          // Moving onto the faces must keep the point inside all the others, and near the edge.
+          if (domain_.contains(z, 1e-9 * (1.0 + z.norm())) && (z - unconstrained).norm() <= s) {
+            y = z;
+            projected = true;
+          }
         }
-        // Another face may now be violated (near an edge of the box): add it and redo.
-        const BoundaryDistance other = domain_.boundary_distance(z);
-        if (other.signed_distance < -1e-9 * (1.0 + z.norm()) && faces.size() < 2 &&
-            std::find(faces.begin(), faces.end(), other.nearest_half_space) == faces.end()) {
-          faces.push_back(other.nearest_half_space);
-          continue;
-        }
-        y = z;
-        projected = true;
       }
-      // Moving onto the faces must keep the point inside all the others, and near the edge.
-      projected = projected && domain_.contains(y, 1e-9 * (1.0 + y.norm())) &&
-                  (y - unconstrained).norm() <= s;
       if (!projected && domain_.contains(unconstrained)) {
         // Snapping is cosmetic for a point inside: when M does not meet the near face there
         // (on the CSTR, Da ≥ 0 is near everywhere but M ∩ {Da = 0} lies outside the box),
