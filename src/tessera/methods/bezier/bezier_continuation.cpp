@@ -268,6 +268,7 @@ class BezierBuilder {
   std::vector<int> faces_of(const Eigen::VectorXd& y) const;
   std::optional<double> worst_tangent_angle(int a, const NewPoint& point, int b) const;
   bool is_admissible(int a, int b, int c, int v, const Eigen::VectorXd& y) const;
+  double new_edges_distance(int a, int b, int v) const;
   bool overlaps_mesh(int a, int b, int v, const Eigen::VectorXd& y) const;
   std::vector<int> front_vertices_near(const Eigen::VectorXd& x, double radius) const;
 
@@ -743,6 +744,27 @@ bool BezierBuilder::overlaps_mesh(int a, int b, int v, const Eigen::VectorXd& y)
   return false;
 }
 
+double BezierBuilder::new_edges_distance(int a, int b, int v) const {
+  // The distance to M of the midpoints of the edges (a, v) and (b, v) that do not exist yet,
+  // estimated by one Gauss–Newton step from the midpoint.
+  double distance = 0.0;
+  Eigen::VectorXd F(n_ - 2), dx(n_);
+  Linearization linearization;
+  for (int end : {a, b}) {
+    if (has_edge(end, v) || has_edge(v, end)) {
+      continue;
+    }
+    const Eigen::VectorXd mid = 0.5 * (vertices_[end].x + vertices_[v].x);
+    problem_.evaluate(mid, F);
+    if (!F.allFinite() || !linearization.factor(problem_, mid)) {
+      return std::numeric_limits<double>::infinity();
+    }
+    linearization.solve_minimum_norm(-F, dx);
+    distance = std::max(distance, dx.norm());
+  }
+  return distance;
+}
+
 bool BezierBuilder::is_admissible(int a, int b, int c, int v, const Eigen::VectorXd& y) const {
   // Can triangle (b, a, v) be added at free edge a→b (whose triangle has third vertex c)?
   // Combinatorially: the edges a→v and v→b must be new (or close free edges v→a, b→v), so
@@ -803,6 +825,7 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
   const double beta = options_.connection_sector;
   double s = predicted_step(a, b);
   int overlap_reductions = 0;
+  std::vector<int> refused;  // connections refused because of the tolerance
   for (int attempt = 0; s >= min_step_ * (1.0 - 1e-12); ++attempt) {
     if (attempt > 0) {
       ++step_reductions_;
@@ -918,8 +941,15 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
       }
     }
     std::sort(connectable.begin(), connectable.end());
+    // With a tolerance, a connection whose new edges are farther from M than it is taken only
+    // when the step cannot be reduced further for this edge (a smaller imaginary triangle may
+    // avoid the overlap and give a new point instead).
+    const bool strict = options_.tolerance > 0 && overlap_reductions < 2;
     const auto connect = [&]() {
       for (const auto& [distance, v] : connectable) {
+        if (strict && !(new_edges_distance(a, b, v) <= options_.tolerance)) {
+          continue;
+        }
         if (is_admissible(a, b, c, v, vertices_[v].x)) {
           add_triangle(b, a, v);
           ++connections_;
@@ -932,7 +962,20 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
       if (connect()) {
         return true;
       }
+      if (strict) {
+        // Remember the connections refused for the tolerance: the last resort below.
+        for (const auto& candidate : connectable) {
+          refused.push_back(candidate.second);
+        }
+      }
       if (++overlap_reductions > 2) {
+        for (int v : refused) {
+          if (is_admissible(a, b, c, v, vertices_[v].x)) {
+            add_triangle(b, a, v);
+            ++connections_;
+            return true;
+          }
+        }
         std::ostringstream message;
         message << "the imaginary triangle at edge (" << a << ", " << b << ") between "
                 << describe_point(ya) << " and " << describe_point(yb)
