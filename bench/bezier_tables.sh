@@ -44,9 +44,12 @@ field() {  # field FILE EXPRESSION  (python expression over the summary dict d)
 sphere|60 / 174 / 116|sphere
 blobby (equipotential)|153 / 453 / 302|equipotential
 cusp (Whitney pleat, box [−1.5, 1.5]³)|206 / 555 / 350|whitney_pleat
+cusp, box [−1.5, 1.5]³, max step 0.3|206 / 555 / 350|whitney_pleat --max-step 0.3
 cusp, box [−1, 1]³|206 / 555 / 350|whitney_pleat --box -1,1,-1,1,-1,1
 torus R = 1, r = 0.4|273 / 819 / 546|torus
 cstr (catalogue box)|166 / 447 / 282|cstr
+cstr, max step 0.5|166 / 447 / 282|cstr --max-step 0.5
+cstr, tolerance 0.01|166 / 447 / 282|cstr --tolerance 0.01
 TABLE
   echo
   echo "## Cubic surface against flat triangles (unit sphere, fixed step h)"

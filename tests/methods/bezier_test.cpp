@@ -316,6 +316,18 @@ TEST(BezierContinuation, StirredTankReactorInR4GivesAValidMesh) {
   EXPECT_GT(run.result.mesh.triangle_count(), 100);
 }
 
+TEST(BezierContinuation, StirredTankReactorCompletesWithAMaximumStep) {
+  // Regression pin (measured, not a theorem): with the default maximum step 0.8 the run stops in
+  // the steep corner x1 → 1, Da = 0.3 of the catalogue's box (docs/algorithms/bezier.md); with
+  // max_step = 0.5 it completes with ≈ 290 points.
+  BezierOptions options;
+  options.max_step = 0.5;
+  const BezierRun run = run_bezier("cstr", options);
+  ASSERT_TRUE(run.result.summary.is_complete()) << run.result.summary.message;
+  expect_invariants(run, "cstr");
+  EXPECT_EQ(validate(run.result.mesh).euler_characteristic, 1);
+}
+
 TEST(BezierContinuation, RefusesBadOptionsNamingThem) {
   const ProblemSetup setup = make_catalogue_problem("sphere");
   BezierOptions options;
