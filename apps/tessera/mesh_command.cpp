@@ -10,8 +10,8 @@
 #include "cli_support.h"
 #include "output_checks.h"
 #include "tessera/core/error.h"
-#include "tessera/geometry/mesh_validation.h"
 #include "tessera/geometry/bezier_surface.h"
+#include "tessera/geometry/mesh_validation.h"
 #include "tessera/io/bezier_patches.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/summary_json.h"
@@ -27,8 +27,9 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_option("--method", mesh.method,
                        "covering method (default " + covering_methods().front().name + ")")
       ->check(CLI::IsMember(covering_method_names()));
-  mesh_app->add_option("--step,-s", mesh.settings.step,
-                       "edge length h (default: the problem's suggestion)")
+  mesh_app
+      ->add_option("--step,-s", mesh.settings.step,
+                   "edge length h (default: the problem's suggestion)")
       ->check(finite_positive());
   mesh_app->add_option("--start", mesh.start, "start point, comma separated, e.g. 0,0,1");
   mesh_app->add_option("--box", mesh.box,
@@ -57,22 +58,27 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_option("--order", mesh.settings.front_order,
                        "front: 'gap' (smallest gap first, default) or 'fifo' (the paper's queue)")
       ->check(CLI::IsMember({"gap", "fifo"}));
-  mesh_app->add_option("--tolerance", mesh.settings.tolerance,
-                       "bezier: bound on the distance of the new edges' midpoints to M (default: "
-                       "the paper's step control only)")
+  mesh_app
+      ->add_option("--tolerance", mesh.settings.tolerance,
+                   "bezier: bound on the distance of the new edges' midpoints to M (default: "
+                   "the paper's step control only)")
       ->check(finite_positive());
-  mesh_app->add_option("--max-step", mesh.settings.bezier_max_step,
-                       "bezier: upper bound on the step (default 8 × the initial step)")
+  mesh_app
+      ->add_option("--max-step", mesh.settings.bezier_max_step,
+                   "bezier: upper bound on the step (default 8 × the initial step)")
       ->check(finite_positive());
-  mesh_app->add_option("--edge-length-factor", mesh.settings.bezier_edge_length_factor,
-                       "bezier: tangent length l_ij/|y_j - y_i| of eq. 3.4 (default 1.0; paper 1.2)")
+  mesh_app
+      ->add_option("--edge-length-factor", mesh.settings.bezier_edge_length_factor,
+                   "bezier: tangent length l_ij/|y_j - y_i| of eq. 3.4 (default 1.0; paper 1.2)")
       ->check(CLI::Range(0.1, 3.0));
-  mesh_app->add_option("--min-tangent-cosine", mesh.settings.bezier_min_tangent_cosine,
-                       "bezier: alpha_min, the smallest |<t_ij, t_ji>| on an edge (default 0.8)")
+  mesh_app
+      ->add_option("--min-tangent-cosine", mesh.settings.bezier_min_tangent_cosine,
+                   "bezier: alpha_min, the smallest |<t_ij, t_ji>| on an edge (default 0.8)")
       ->check(CLI::Range(0.01, 0.999));
-  mesh_app->add_option("--refine", mesh.refine,
-                       "bezier: write the cubic surface evaluated on a K x K subdivision of "
-                       "every triangle instead of the flat triangles")
+  mesh_app
+      ->add_option("--refine", mesh.refine,
+                   "bezier: write the cubic surface evaluated on a K x K subdivision of "
+                   "every triangle instead of the flat triangles")
       ->check(CLI::Range(1, 64));
   mesh_app->add_option("--patches", mesh.patches,
                        "bezier: write the Bezier control points of every triangle to this file "

@@ -16,8 +16,8 @@ using testing::run_cli;
 
 TEST(CliBezier, WritesTheMeshThePatchesAndTheRefinedSurface) {
   const std::string dir = testing::temporary_directory("cli_bezier");
-  const auto flat = run_cli("mesh torus --method bezier --patches " + dir + "/t.json -o " + dir +
-                            "/t.ply");
+  const auto flat =
+      run_cli("mesh torus --method bezier --patches " + dir + "/t.json -o " + dir + "/t.ply");
   ASSERT_EQ(flat.exit_code, 0) << flat.output;
   EXPECT_NE(flat.output.find("bezier"), std::string::npos) << flat.output;
   const TriangleMesh mesh = read_mesh(dir + "/t.ply");
@@ -36,8 +36,10 @@ TEST(CliBezier, WritesTheMeshThePatchesAndTheRefinedSurface) {
 
 TEST(CliBezier, ToleranceGivesMoreTriangles) {
   const std::string dir = testing::temporary_directory("cli_bezier_tolerance");
-  ASSERT_EQ(run_cli("mesh sphere --method bezier --tolerance 0.02 -q -o " + dir + "/a.ply").exit_code, 0);
-  ASSERT_EQ(run_cli("mesh sphere --method bezier --tolerance 0.01 -q -o " + dir + "/b.ply").exit_code, 0);
+  ASSERT_EQ(
+      run_cli("mesh sphere --method bezier --tolerance 0.02 -q -o " + dir + "/a.ply").exit_code, 0);
+  ASSERT_EQ(
+      run_cli("mesh sphere --method bezier --tolerance 0.01 -q -o " + dir + "/b.ply").exit_code, 0);
   EXPECT_GT(read_mesh(dir + "/b.ply").triangle_count(),
             1.5 * read_mesh(dir + "/a.ply").triangle_count());
 }

@@ -67,8 +67,8 @@ TEST(BezierSurface, RefinementIsWatertightAndKeepsTheTopology) {
 }
 
 TEST(BezierSurface, RefinedPointsAreCloserToTheSphereThanTheFlatTriangles) {
-  // Even on the coarse octahedron (edges of 90°) the cubic surface is within 0.2 of the sphere (measured 0.15)
-  // where the flat faces are up to 1 − 1/√3 = 0.42 away.
+  // Even on the coarse octahedron (edges of 90°) the cubic surface is within 0.2 of the sphere
+  // (measured 0.15) where the flat faces are up to 1 − 1/√3 = 0.42 away.
   const Octahedron o = octahedron(1.0);
   const TriangleMesh refined = refine_bezier_surface(o.mesh, o.patches, 6);
   double worst = 0.0;

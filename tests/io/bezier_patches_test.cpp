@@ -55,8 +55,8 @@ TEST(BezierPatchesFile, RefusesAFileOfAnotherFormat) {
 TEST(BezierPatchesFile, RefusesAPatchCountThatDoesNotMatchTheTriangles) {
   BezierSurfaceFile surface = one_patch_in_r4();
   surface.patches.push_back(surface.patches[0]);
-  EXPECT_THROW(write_bezier_patches(testing::temporary_directory("bezier_patches_count") + "/p.json",
-                                    surface),
+  EXPECT_THROW(write_bezier_patches(
+                   testing::temporary_directory("bezier_patches_count") + "/p.json", surface),
                InvalidArgument);
 }
 

@@ -223,10 +223,10 @@ SphereErrors sphere_errors(double h, double edge_length_factor) {
           Eigen::MatrixXd b(3, 10);
           for (int c = 0; c < 10; ++c) {
             const auto& alpha = CubicBezierPatch::multi_indices()[c];
-            b.col(c) = (alpha[0] * run.result.mesh.point(t[0]) +
-                        alpha[1] * run.result.mesh.point(t[1]) +
-                        alpha[2] * run.result.mesh.point(t[2])) /
-                       3.0;
+            b.col(c) =
+                (alpha[0] * run.result.mesh.point(t[0]) + alpha[1] * run.result.mesh.point(t[1]) +
+                 alpha[2] * run.result.mesh.point(t[2])) /
+                3.0;
           }
           linear.emplace_back(b);
         }

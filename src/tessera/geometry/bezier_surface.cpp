@@ -18,8 +18,7 @@ void check_patches(const TriangleMesh& mesh, const std::vector<CubicBezierPatch>
   for (std::size_t t = 0; t < patches.size(); ++t) {
     TESSERA_CHECK(patches[t].ambient_dimension() == mesh.ambient_dimension(),
                   "cubic surface: patch " << t << " is in R^" << patches[t].ambient_dimension()
-                                          << " but the mesh is in R^"
-                                          << mesh.ambient_dimension());
+                                          << " but the mesh is in R^" << mesh.ambient_dimension());
   }
 }
 
@@ -32,8 +31,7 @@ Eigen::Vector3d lattice(int i, int j, int K) {
 }  // namespace
 
 TriangleMesh refine_bezier_surface(const TriangleMesh& mesh,
-                                   const std::vector<CubicBezierPatch>& patches,
-                                   int subdivisions) {
+                                   const std::vector<CubicBezierPatch>& patches, int subdivisions) {
   check_patches(mesh, patches);
   TESSERA_CHECK(subdivisions >= 1, "refine: subdivisions = " << subdivisions << " must be >= 1");
   const int K = subdivisions;
@@ -134,9 +132,9 @@ double max_edge_mismatch(const TriangleMesh& mesh, const std::vector<CubicBezier
         mine(to) = mu;
         theirs(other.from) = 1.0 - mu;
         theirs(other.to) = mu;
-        mismatch = std::max(mismatch, (patches[t].evaluate(mine) -
-                                       patches[other.triangle].evaluate(theirs))
-                                          .norm());
+        mismatch =
+            std::max(mismatch,
+                     (patches[t].evaluate(mine) - patches[other.triangle].evaluate(theirs)).norm());
       }
     }
   }

@@ -21,8 +21,7 @@ namespace tessera {
 /// \param subdivisions K ≥ 1 (K = 1 returns the flat triangles).
 /// \throw InvalidArgument if the counts or dimensions disagree or K < 1.
 TriangleMesh refine_bezier_surface(const TriangleMesh& mesh,
-                                   const std::vector<CubicBezierPatch>& patches,
-                                   int subdivisions);
+                                   const std::vector<CubicBezierPatch>& patches, int subdivisions);
 
 /// The largest distance, over every edge shared by two triangles and `samples` points along
 /// it, between the two patches' edge curves. Zero up to rounding when the surface is continuous

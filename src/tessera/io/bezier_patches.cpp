@@ -41,16 +41,16 @@ void write_bezier_patches(const std::string& path, const BezierSurfaceFile& surf
   TESSERA_CHECK(static_cast<int>(surface.patches.size()) == mesh.triangle_count(),
                 "write_bezier_patches: " << surface.patches.size() << " patches for "
                                          << mesh.triangle_count() << " triangles");
-  TESSERA_CHECK(surface.coordinate_names.empty() ||
-                    static_cast<int>(surface.coordinate_names.size()) == n,
-                "write_bezier_patches: " << surface.coordinate_names.size()
-                                         << " coordinate names for n = " << n);
+  TESSERA_CHECK(
+      surface.coordinate_names.empty() || static_cast<int>(surface.coordinate_names.size()) == n,
+      "write_bezier_patches: " << surface.coordinate_names.size()
+                               << " coordinate names for n = " << n);
   nlohmann::json file;
   file["format"] = kFormat;
   file["version"] = kVersion;
   file["dimension"] = n;
-  file["coordinate_names"] = surface.coordinate_names.empty() ? default_coordinate_names(n)
-                                                              : surface.coordinate_names;
+  file["coordinate_names"] =
+      surface.coordinate_names.empty() ? default_coordinate_names(n) : surface.coordinate_names;
   file["multi_indices"] = CubicBezierPatch::multi_indices();
   nlohmann::json vertices = nlohmann::json::array();
   for (int v = 0; v < mesh.vertex_count(); ++v) {
@@ -101,8 +101,8 @@ BezierSurfaceFile read_bezier_patches(const std::string& path) {
   const auto& vertices = file["vertices"];
   TESSERA_CHECK(vertices.is_array(), "'" << path << "': field 'vertices' must be an array");
   for (std::size_t v = 0; v < vertices.size(); ++v) {
-    surface.mesh.add_vertex(vector_from(vertices[v], n, "'" + path + "': vertices[" +
-                                                            std::to_string(v) + "]"));
+    surface.mesh.add_vertex(
+        vector_from(vertices[v], n, "'" + path + "': vertices[" + std::to_string(v) + "]"));
   }
   const auto& triangles = file["triangles"];
   const auto& control_points = file["control_points"];
@@ -113,17 +113,16 @@ BezierSurfaceFile read_bezier_patches(const std::string& path) {
     const auto tri = triangles[t].get<std::array<int, 3>>();
     for (int v : tri) {
       TESSERA_CHECK(v >= 0 && v < surface.mesh.vertex_count(),
-                    "'" << path << "': triangles[" << t << "] has vertex " << v
-                        << " out of range");
+                    "'" << path << "': triangles[" << t << "] has vertex " << v << " out of range");
     }
     surface.mesh.add_triangle(tri[0], tri[1], tri[2]);
     TESSERA_CHECK(control_points[t].is_array() && control_points[t].size() == 10,
                   "'" << path << "': control_points[" << t << "] must hold 10 points");
     Eigen::MatrixXd b(n, 10);
     for (int c = 0; c < 10; ++c) {
-      b.col(c) = vector_from(control_points[t][c], n,
-                             "'" + path + "': control_points[" + std::to_string(t) + "][" +
-                                 std::to_string(c) + "]");
+      b.col(c) = vector_from(
+          control_points[t][c], n,
+          "'" + path + "': control_points[" + std::to_string(t) + "][" + std::to_string(c) + "]");
     }
     surface.patches.emplace_back(std::move(b));
   }

@@ -13,7 +13,7 @@ namespace tessera {
 /// A triangle mesh with one cubic Bézier patch per triangle.
 struct BezierSurfaceFile {
   TriangleMesh mesh;
-  std::vector<CubicBezierPatch> patches;       ///< patches[t] over mesh.triangle(t)
+  std::vector<CubicBezierPatch> patches;      ///< patches[t] over mesh.triangle(t)
   std::vector<std::string> coordinate_names;  ///< n names; empty: x0 … x{n−1} (x, y, z)
 };
 

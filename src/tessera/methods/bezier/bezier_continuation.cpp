@@ -36,49 +36,48 @@ void BezierOptions::validate() const {
                 "BezierOptions::initial_step = " << initial_step << " must be > 0");
   TESSERA_CHECK(std::isfinite(max_step) && max_step >= 0,
                 "BezierOptions::max_step = " << max_step << " must be >= 0 (0: 8 × initial_step)");
-  TESSERA_CHECK(max_step == 0 || max_step >= initial_step,
-                "BezierOptions::max_step = " << max_step << " must be >= initial_step = "
-                                             << initial_step);
-  TESSERA_CHECK(min_step_fraction > 0 && min_step_fraction < 1,
-                "BezierOptions::min_step_fraction = " << min_step_fraction
-                                                      << " must lie in (0, 1)");
+  TESSERA_CHECK(
+      max_step == 0 || max_step >= initial_step,
+      "BezierOptions::max_step = " << max_step << " must be >= initial_step = " << initial_step);
+  TESSERA_CHECK(
+      min_step_fraction > 0 && min_step_fraction < 1,
+      "BezierOptions::min_step_fraction = " << min_step_fraction << " must lie in (0, 1)");
   TESSERA_CHECK(target_contraction > 0 && target_contraction < max_contraction,
-                "BezierOptions::target_contraction = "
-                    << target_contraction << " must lie in (0, max_contraction = "
-                    << max_contraction << ")");
+                "BezierOptions::target_contraction = " << target_contraction
+                                                       << " must lie in (0, max_contraction = "
+                                                       << max_contraction << ")");
   TESSERA_CHECK(max_contraction > 0 && max_contraction < 1,
                 "BezierOptions::max_contraction = " << max_contraction << " must lie in (0, 1)");
-  TESSERA_CHECK(max_step_growth >= 1, "BezierOptions::max_step_growth = " << max_step_growth
-                                                                         << " must be >= 1");
-  TESSERA_CHECK(min_tangent_cosine > 0 && min_tangent_cosine < 1,
-                "BezierOptions::min_tangent_cosine = " << min_tangent_cosine
-                                                       << " must lie in (0, 1)");
+  TESSERA_CHECK(max_step_growth >= 1,
+                "BezierOptions::max_step_growth = " << max_step_growth << " must be >= 1");
+  TESSERA_CHECK(
+      min_tangent_cosine > 0 && min_tangent_cosine < 1,
+      "BezierOptions::min_tangent_cosine = " << min_tangent_cosine << " must lie in (0, 1)");
   TESSERA_CHECK(overlap_safety >= 0 && overlap_safety < 1,
                 "BezierOptions::overlap_safety = " << overlap_safety << " must lie in [0, 1)");
   TESSERA_CHECK(connection_sector >= 0,
                 "BezierOptions::connection_sector = " << connection_sector << " must be >= 0");
-  TESSERA_CHECK(edge_length_factor > 0 && edge_length_factor <= 3,
-                "BezierOptions::edge_length_factor = " << edge_length_factor
-                                                       << " must lie in (0, 3]");
+  TESSERA_CHECK(
+      edge_length_factor > 0 && edge_length_factor <= 3,
+      "BezierOptions::edge_length_factor = " << edge_length_factor << " must lie in (0, 3]");
   TESSERA_CHECK(step_reduction > 0 && step_reduction < 1,
                 "BezierOptions::step_reduction = " << step_reduction << " must lie in (0, 1)");
-  TESSERA_CHECK(close_vertex_fraction >= 0 && close_vertex_fraction < 1,
-                "BezierOptions::close_vertex_fraction = " << close_vertex_fraction
-                                                          << " must lie in [0, 1)");
+  TESSERA_CHECK(
+      close_vertex_fraction >= 0 && close_vertex_fraction < 1,
+      "BezierOptions::close_vertex_fraction = " << close_vertex_fraction << " must lie in [0, 1)");
   TESSERA_CHECK(boundary_snap_fraction >= 0 && boundary_snap_fraction < 0.5,
                 "BezierOptions::boundary_snap_fraction = " << boundary_snap_fraction
                                                            << " must lie in [0, 0.5)");
   TESSERA_CHECK(std::isfinite(tolerance) && tolerance >= 0,
                 "BezierOptions::tolerance = " << tolerance << " must be >= 0 (0: off)");
-  TESSERA_CHECK(corrector_tolerance > 0, "BezierOptions::corrector_tolerance = "
-                                             << corrector_tolerance << " must be > 0");
+  TESSERA_CHECK(corrector_tolerance > 0,
+                "BezierOptions::corrector_tolerance = " << corrector_tolerance << " must be > 0");
   TESSERA_CHECK(max_corrector_iterations >= 2, "BezierOptions::max_corrector_iterations = "
-                                                   << max_corrector_iterations
-                                                   << " must be >= 2");
+                                                   << max_corrector_iterations << " must be >= 2");
   TESSERA_CHECK(std::isfinite(max_start_distance) && max_start_distance >= 0,
                 "BezierOptions::max_start_distance = " << max_start_distance << " must be >= 0");
-  TESSERA_CHECK(max_vertices >= 3, "BezierOptions::max_vertices = " << max_vertices
-                                                                    << " must be >= 3");
+  TESSERA_CHECK(max_vertices >= 3,
+                "BezierOptions::max_vertices = " << max_vertices << " must be >= 3");
 }
 
 namespace {
@@ -136,7 +135,9 @@ struct PlaneFrame {
   }
 };
 
-double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u(0) * v(1) - u(1) * v(0); }
+double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+  return u(0) * v(1) - u(1) * v(0);
+}
 
 // Barycentric coordinates of p with respect to the 2-D triangle (A, B, C).
 Eigen::Vector3d barycentric(const Eigen::Vector2d& p, const Eigen::Vector2d& A,
@@ -189,8 +190,8 @@ Eigen::VectorXd edge_tangent(const Eigen::MatrixXd& T_i, const Eigen::VectorXd& 
 
 struct VertexData {
   Eigen::VectorXd x;
-  Eigen::MatrixXd T;  // n×2 orthonormal basis of T_x M
-  double step = 0.0;  // s_j: the step with which the vertex was computed (section 5)
+  Eigen::MatrixXd T;   // n×2 orthonormal basis of T_x M
+  double step = 0.0;   // s_j: the step with which the vertex was computed (section 5)
   double theta = 0.0;  // θ_j: first contraction of its Gauss–Newton iteration
   double step_limit = std::numeric_limits<double>::infinity();  // from the tolerance, if any
   std::vector<int> faces;  // domain half-spaces the vertex lies on
@@ -333,7 +334,9 @@ int BezierBuilder::add_vertex(VertexData vertex) {
     message << "stopped at max_vertices = " << options_.max_vertices;
     throw StopRun{CoveringTermination::VertexLimit, message.str()};
   }
-  if (std::getenv("BZDBG")) std::fprintf(stderr, "V %g %g %g %g s %g th %g\n", vertex.x(0), vertex.x(1), vertex.x(2), vertex.x.size() > 3 ? vertex.x(3) : 0.0, vertex.step, vertex.theta);
+  if (std::getenv("BZDBG"))
+    std::fprintf(stderr, "V %g %g %g %g s %g th %g\n", vertex.x(0), vertex.x(1), vertex.x(2),
+                 vertex.x.size() > 3 ? vertex.x(3) : 0.0, vertex.step, vertex.theta);
   vertices_.push_back(std::move(vertex));
   vertex_triangles_.emplace_back();
   front_out_.emplace_back();
@@ -368,7 +371,8 @@ void BezierBuilder::add_triangle(int i, int j, int k) {
   std::array<Eigen::MatrixXd, 3> bases;
   const std::array<int, 3> ids{i, j, k};
   for (int c = 0; c < 3; ++c) {
-    longest_edge_ = std::max(longest_edge_, (vertices_[ids[c]].x - vertices_[ids[(c + 1) % 3]].x).norm());
+    longest_edge_ =
+        std::max(longest_edge_, (vertices_[ids[c]].x - vertices_[ids[(c + 1) % 3]].x).norm());
     corners.col(c) = vertices_[ids[c]].x;
     bases[c] = vertices_[ids[c]].T;
   }
@@ -481,8 +485,7 @@ double BezierBuilder::front_angle(int a, int b) const {
   return angle + (it == failures_.end() ? 0.0 : 4 * kPi * it->second);
 }
 
-std::vector<int> BezierBuilder::front_vertices_near(const Eigen::VectorXd& x,
-                                                    double radius) const {
+std::vector<int> BezierBuilder::front_vertices_near(const Eigen::VectorXd& x, double radius) const {
   return grid_.near(x, std::min(radius, search_radius_),
                     [&](int id) -> const Eigen::VectorXd& { return vertices_[id].x; });
 }
@@ -545,8 +548,8 @@ bool BezierBuilder::project_onto_faces(Eigen::VectorXd& y, std::vector<int>& fac
   return false;
 }
 
-std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& prediction,
-                                                     double s, const Eigen::MatrixXd& reference,
+std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& prediction, double s,
+                                                     const Eigen::MatrixXd& reference,
                                                      StepFailure& failure) {
   NewPoint point;
   Eigen::VectorXd y = prediction;
@@ -564,9 +567,9 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
   y += dx0;
   problem_.evaluate(y, F);
   if (!F.allFinite()) {
-    failure = {"F is not finite after the first Gauss–Newton step from " +
-                   describe_point(prediction),
-               0.5};
+    failure = {
+        "F is not finite after the first Gauss–Newton step from " + describe_point(prediction),
+        0.5};
     return std::nullopt;
   }
   point.linearization.solve_minimum_norm(-F, dx_bar);
@@ -578,12 +581,13 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
   };
   if (theta > options_.max_contraction) {
     std::ostringstream why;
-    why << "Gauss–Newton from " << describe_point(prediction) << " fails the monotonicity test: θ₀ = "
-        << theta << " > " << options_.max_contraction;
+    why << "Gauss–Newton from " << describe_point(prediction)
+        << " fails the monotonicity test: θ₀ = " << theta << " > " << options_.max_contraction;
     failure = {why.str(), reduction(theta)};
     return std::nullopt;
   }
-  const CorrectorSummary summary = project_gauss_newton(problem_, y, corrector_, point.linearization);
+  const CorrectorSummary summary =
+      project_gauss_newton(problem_, y, corrector_, point.linearization);
   if (!summary.is_success()) {
     failure = {"Gauss–Newton from " + describe_point(prediction) + ": " + summary.brief_report(),
                summary.contraction > 0 ? reduction(summary.contraction) : 0.5};
@@ -868,8 +872,8 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
     const double radius = 1.2 * (s + 0.5 * base);
     std::vector<int> candidates = front_vertices_near(midpoint, radius);
     for (const std::optional<int>& neighbour : {previous, next}) {
-      if (neighbour && std::find(candidates.begin(), candidates.end(), *neighbour) ==
-                           candidates.end()) {
+      if (neighbour &&
+          std::find(candidates.begin(), candidates.end(), *neighbour) == candidates.end()) {
         candidates.push_back(*neighbour);
       }
     }
@@ -888,9 +892,9 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
       // it, so the angle bound is doubled: otherwise a last hole of four vertices on a curved
       // region could not be closed at all (tessera's relaxation; the paper is silent).
       const bool is_neighbour = v == previous || v == next;
-      const double min_cosine =
-          is_neighbour ? std::cos(2.0 * std::acos(options_.min_tangent_cosine))
-                       : options_.min_tangent_cosine;
+      const double min_cosine = is_neighbour
+                                    ? std::cos(2.0 * std::acos(options_.min_tangent_cosine))
+                                    : options_.min_tangent_cosine;
       bool compatible = true;
       for (int end : {a, b}) {
         if (has_edge(v, end) || has_edge(end, v)) {
@@ -933,9 +937,10 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
           if (other_plane.offset(predicted) > 0.5 * std::max(size, s)) {
             continue;
           }
-          const Eigen::Vector3d l = barycentric(
-              other_plane.project(predicted), other_plane.project(vertices_[other[0]].x),
-              other_plane.project(vertices_[other[1]].x), other_plane.project(vertices_[other[2]].x));
+          const Eigen::Vector3d l = barycentric(other_plane.project(predicted),
+                                                other_plane.project(vertices_[other[0]].x),
+                                                other_plane.project(vertices_[other[1]].x),
+                                                other_plane.project(vertices_[other[2]].x));
           overlap = l.minCoeff() >= -rho;
         }
       }
@@ -1083,8 +1088,10 @@ void BezierBuilder::build_initial_triangle(const StartPoint& start) {
       for (const NewPoint& p : points) {
         ok = ok && !worst_tangent_angle(0, p, -1);
       }
-      const Eigen::VectorXd t12 = edge_tangent(points[0].vertex.T, points[0].vertex.x, points[1].vertex.x);
-      const Eigen::VectorXd t21 = edge_tangent(points[1].vertex.T, points[1].vertex.x, points[0].vertex.x);
+      const Eigen::VectorXd t12 =
+          edge_tangent(points[0].vertex.T, points[0].vertex.x, points[1].vertex.x);
+      const Eigen::VectorXd t21 =
+          edge_tangent(points[1].vertex.T, points[1].vertex.x, points[0].vertex.x);
       ok = ok && std::abs(t12.dot(t21)) >= options_.min_tangent_cosine;
       const PlaneFrame plane(y0, points[0].vertex.x, points[1].vertex.x);
       ok = ok && plane.valid;
@@ -1248,10 +1255,10 @@ BezierResult triangulate_by_bezier_continuation(const ImplicitProblem& user_prob
                                                 const Eigen::VectorXd& start, const Domain& domain,
                                                 const BezierOptions& options) {
   options.validate();
-  TESSERA_CHECK(domain.is_unbounded() ||
-                    domain.ambient_dimension() == user_problem.ambient_dimension(),
-                "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^"
-                                  << user_problem.ambient_dimension());
+  TESSERA_CHECK(
+      domain.is_unbounded() || domain.ambient_dimension() == user_problem.ambient_dimension(),
+      "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^"
+                        << user_problem.ambient_dimension());
   const auto clock_start = std::chrono::steady_clock::now();
   CountedProblem problem(user_problem);
   const double max_start_distance =
