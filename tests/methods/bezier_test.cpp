@@ -156,6 +156,19 @@ TEST(BezierContinuation, HalvingTheToleranceDoublesTheTrianglesOnTheTorus) {
   EXPECT_LT(counts[1], 2.5 * counts[0]);
 }
 
+TEST(BezierContinuation, ToleranceFarBelowTheInitialStepShrinksTheInitialTriangle) {
+  // Regression: with ε = 0.002 and the sphere's initial step 0.3 (flat-edge distance ≈ 0.011),
+  // the initial triangle's edges were too long for any later edge to meet ε, and the run
+  // stopped at the first edge. Every edge is at least half as long as the edge it grows from.
+  BezierOptions options;
+  options.tolerance = 0.002;
+  const BezierRun run = run_bezier("sphere", options);
+  ASSERT_TRUE(run.result.summary.is_complete()) << run.result.summary.message;
+  expect_invariants(run, "sphere");
+  const MeshQuality quality = measure_quality(run.result.mesh, *run.setup.problem);
+  EXPECT_LE(quality.midpoint_distance.max, 2.0 * options.tolerance);
+}
+
 TEST(BezierContinuation, PatchesInterpolateVerticesAndTangentPlanes) {
   const BezierRun run = run_bezier("torus");
   ASSERT_TRUE(run.result.summary.is_complete());

@@ -1070,7 +1070,7 @@ void BezierBuilder::build_initial_triangle(const StartPoint& start) {
   // tangents"; 60° gives an equilateral start).
   double s = options_.initial_step;
   std::string why;
-  for (int attempt = 0; attempt < 12; ++attempt) {
+  for (int attempt = 0; attempt < 24; ++attempt) {
     std::vector<NewPoint> points;
     bool ok = true;
     for (double angle : {0.0, kPi / 3}) {
@@ -1099,13 +1099,32 @@ void BezierBuilder::build_initial_triangle(const StartPoint& start) {
         why = "the tangent planes of the initial triangle differ by more than arccos(α_min)";
       }
     }
+    double reduction = options_.step_reduction;
+    if (ok && options_.tolerance > 0) {
+      // The tolerance holds for the initial triangle's edges too: every later edge is at least
+      // half as long as the edge it grows from, so a too long first edge could never be fixed.
+      const std::array<Eigen::VectorXd, 3> corners{y0, points[0].vertex.x, points[1].vertex.x};
+      double distance = 0.0;
+      Eigen::VectorXd F(n_ - 2), dx(n_);
+      for (int e = 0; e < 3; ++e) {
+        const Eigen::VectorXd mid = 0.5 * (corners[e] + corners[(e + 1) % 3]);
+        problem_.evaluate(mid, F);
+        points[0].linearization.solve_minimum_norm(-F, dx);
+        distance = std::max(distance, dx.norm());
+      }
+      if (distance > options_.tolerance) {
+        ok = false;
+        reduction = std::clamp(0.9 * std::sqrt(options_.tolerance / distance), 0.25, 0.9);
+        why = "the initial triangle's edges are farther from M than the tolerance";
+      }
+    }
     if (ok) {
       const int v1 = add_vertex(std::move(points[0].vertex));
       const int v2 = add_vertex(std::move(points[1].vertex));
       add_triangle(0, v1, v2);
       return;
     }
-    s *= options_.step_reduction;
+    s *= reduction;
   }
   throw ComputationFailed("the initial triangle at " + describe_point(y0) +
                           " could not be built: " + why);
