@@ -12,8 +12,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -334,9 +332,6 @@ int BezierBuilder::add_vertex(VertexData vertex) {
     message << "stopped at max_vertices = " << options_.max_vertices;
     throw StopRun{CoveringTermination::VertexLimit, message.str()};
   }
-  if (std::getenv("BZDBG"))
-    std::fprintf(stderr, "V %g %g %g %g s %g th %g\n", vertex.x(0), vertex.x(1), vertex.x(2),
-                 vertex.x.size() > 3 ? vertex.x(3) : 0.0, vertex.step, vertex.theta);
   vertices_.push_back(std::move(vertex));
   vertex_triangles_.emplace_back();
   front_out_.emplace_back();
