@@ -808,9 +808,10 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
     ++connections_;
     return true;
   }
-  const Eigen::VectorXd& ya = vertices_[a].x;
-  const Eigen::VectorXd& yb = vertices_[b].x;
-  const Eigen::VectorXd& yc = vertices_[c].x;
+  // Copies: adding a vertex may reallocate vertices_.
+  const Eigen::VectorXd ya = vertices_[a].x;
+  const Eigen::VectorXd yb = vertices_[b].x;
+  const Eigen::VectorXd yc = vertices_[c].x;
   const double base = (yb - ya).norm();
   const Eigen::VectorXd midpoint = 0.5 * (ya + yb);
   // Parameter plane <T> of section 5: e1 along the edge, e2 towards c.
