@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,29 @@ TEST(BezierContinuation, PaperExamplesAreValidWithTheRightEulerCharacteristic) {
         << name;
     const bool closed = name != "whitney_pleat";
     EXPECT_EQ(validate(run.result.mesh).boundary_edge_count == 0, closed) << name;
+    if (!closed) {
+      // Box restriction (example 3): the boundary of a completed run lies on M ∩ ∂S — every
+      // vertex of a boundary edge is on a face, computed by Gauss–Newton on M ∩ face.
+      const TriangleMesh& mesh = run.result.mesh;
+      std::map<std::pair<int, int>, int> directed;
+      for (const Triangle& t : mesh.triangles()) {
+        for (int c = 0; c < 3; ++c) {
+          directed[{t[c], t[(c + 1) % 3]}] += 1;
+        }
+      }
+      int boundary_vertices = 0;
+      for (const auto& [edge, count] : directed) {
+        if (directed.count({edge.second, edge.first}) == 0) {
+          for (int v : {edge.first, edge.second}) {
+            const double distance =
+                run.setup.domain.boundary_distance(mesh.point(v)).signed_distance;
+            EXPECT_LE(std::abs(distance), 1e-9) << name << " boundary vertex " << v;
+            ++boundary_vertices;
+          }
+        }
+      }
+      EXPECT_GT(boundary_vertices, 0);
+    }
   }
 }
 
