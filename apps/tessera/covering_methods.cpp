@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "covering_methods.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "tessera/core/error.h"
 #include "tessera/methods/atlas/atlas.h"
+#include "tessera/methods/bezier/bezier_continuation.h"
 #include "tessera/methods/front/advancing_front.h"
 
 namespace tessera::app {
@@ -47,6 +49,27 @@ CoveringResult run_front(const ProblemSetup& setup, const MethodSettings& settin
   return triangulate_by_front(*setup.problem, setup.start, setup.domain, options);
 }
 
+CoveringResult run_bezier(const ProblemSetup& setup, const MethodSettings& settings) {
+  BezierOptions options;
+  options.initial_step = settings.step > 0 ? settings.step : setup.suggested_step;
+  if (settings.bezier_max_step > 0) {
+    options.max_step = std::max(settings.bezier_max_step, options.initial_step);
+  }
+  options.tolerance = settings.tolerance;
+  if (settings.bezier_edge_length_factor > 0) {
+    options.edge_length_factor = settings.bezier_edge_length_factor;
+  }
+  if (settings.bezier_min_tangent_cosine > 0) {
+    options.min_tangent_cosine = settings.bezier_min_tangent_cosine;
+  }
+  options.max_vertices = settings.max_vertices;
+  options.max_start_distance = settings.max_start_distance;
+  options.progress = settings.progress;
+  BezierResult bezier =
+      triangulate_by_bezier_continuation(*setup.problem, setup.start, setup.domain, options);
+  return {std::move(bezier.mesh), std::move(bezier.summary), std::move(bezier.patches)};
+}
+
 }  // namespace
 
 const std::vector<CoveringMethod>& covering_methods() {
@@ -54,6 +77,10 @@ const std::vector<CoveringMethod>& covering_methods() {
       {"atlas", "atlas of curvature-adapted charts, any topology (Henderson)", true, run_atlas},
       {"front", "advancing front with fixed step h (Brodzik & Rheinboldt, PITMAN)", false,
        run_front},
+      {"bezier",
+       "adaptive continuation with Gauss-Newton step control and cubic Bezier patches "
+       "(Hohmann)",
+       true, run_bezier},
   };
   return methods;
 }

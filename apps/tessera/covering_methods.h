@@ -26,6 +26,10 @@ struct MethodSettings {
   double front_min_gap_degrees = 0.0;
   int front_max_valence = 0;
   std::string front_order = "gap";
+  // bezier (0: the method's default)
+  double bezier_max_step = 0.0;            ///< upper bound on the step; 0: 8 × initial step
+  double bezier_edge_length_factor = 0.0;  ///< l_ij/‖y_j − y_i‖ of eq. 3.4 (paper 1.2)
+  double bezier_min_tangent_cosine = 0.0;  ///< α_min (paper 0.8)
 };
 
 struct CoveringMethod {

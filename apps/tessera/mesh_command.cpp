@@ -10,7 +10,9 @@
 #include "cli_support.h"
 #include "output_checks.h"
 #include "tessera/core/error.h"
+#include "tessera/geometry/bezier_surface.h"
 #include "tessera/geometry/mesh_validation.h"
+#include "tessera/io/bezier_patches.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/summary_json.h"
 #include "tessera/methods/improvement/improve_mesh.h"
@@ -26,10 +28,13 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
                        "covering method (default " + covering_methods().front().name + ")")
       ->check(CLI::IsMember(covering_method_names()));
   mesh_app->add_option("--step,-s", mesh.settings.step,
-                       "front: edge length h (default: the problem's suggestion); atlas: largest chart radius (default 2h)")
+                       "front: edge length h (default: the problem's suggestion); atlas: "
+                       "largest chart radius (default 2h); bezier: initial step")
       ->check(finite_positive());
   mesh_app->add_option("--tolerance,-t", mesh.settings.tolerance,
-                       "atlas: bound on the distance from the mesh to M (default: step/50)")
+                       "atlas: bound on the distance from the mesh to M (default: step/50); bezier: "
+                       "bound on the distance of new edges' midpoints (default: the paper's "
+                       "step control only)")
       ->check(finite_positive());
   mesh_app->add_option("--placement", mesh.settings.atlas_placement,
                        "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
@@ -62,6 +67,26 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_option("--order", mesh.settings.front_order,
                        "front: 'gap' (smallest gap first, default) or 'fifo' (the paper's queue)")
       ->check(CLI::IsMember({"gap", "fifo"}));
+  mesh_app
+      ->add_option("--max-step", mesh.settings.bezier_max_step,
+                   "bezier: upper bound on the step (default 8 × the initial step)")
+      ->check(finite_positive());
+  mesh_app
+      ->add_option("--edge-length-factor", mesh.settings.bezier_edge_length_factor,
+                   "bezier: tangent length l_ij/|y_j - y_i| of eq. 3.4 (default 1.0; paper 1.2)")
+      ->check(CLI::Range(0.1, 3.0));
+  mesh_app
+      ->add_option("--min-tangent-cosine", mesh.settings.bezier_min_tangent_cosine,
+                   "bezier: alpha_min, the smallest |<t_ij, t_ji>| on an edge (default 0.8)")
+      ->check(CLI::Range(0.01, 0.999));
+  mesh_app
+      ->add_option("--refine", mesh.refine,
+                   "bezier: write the cubic surface evaluated on a K x K subdivision of "
+                   "every triangle instead of the flat triangles")
+      ->check(CLI::Range(1, 64));
+  mesh_app->add_option("--patches", mesh.patches,
+                       "bezier: write the Bezier control points of every triangle to this file "
+                       "(docs/bezier-patches.md)");
   return mesh_app;
 }
 
@@ -77,6 +102,14 @@ int run_mesh(const MeshCommand& command) {
   // Every option is checked before the computation starts.
   check_mesh_output(command.output);
   check_output_folder(command.summary);
+  check_output_folder(command.patches);
+  const bool wants_patches = command.refine > 0 || !command.patches.empty();
+  TESSERA_CHECK(!wants_patches || method.name == "bezier",
+                "--refine and --patches need the cubic surface of --method bezier, not '"
+                    << method.name << "'");
+  TESSERA_CHECK(!(wants_patches && command.improve),
+                "--improve changes the triangles, so it cannot be combined with --refine or "
+                "--patches (the patches belong to the unimproved triangles)");
   MeshFileOptions file_options;
   if (!command.obj_coordinates.empty()) {
     const auto values = parse_numbers(command.obj_coordinates, "--obj-coordinates");
@@ -105,6 +138,15 @@ int run_mesh(const MeshCommand& command) {
     // Delaunay-type swaps judged in the tangent planes, 3 passes of tangential smoothing, and
     // swaps again (docs/algorithms/improvement.md): validity and boundary are kept.
     improve_mesh(result.mesh, *setup.problem, ImprovementOptions{}, 3);
+  }
+  if (!command.patches.empty()) {
+    write_bezier_patches(command.patches,
+                         {result.mesh, result.patches, setup.problem->coordinate_names()});
+  }
+  if (command.refine > 0 && result.mesh.triangle_count() > 0) {
+    // The cubic surface sampled on a K×K subdivision of each triangle; the report below then
+    // measures the cubic surface (its centroids and edge midpoints) instead of the flat mesh.
+    result.mesh = refine_bezier_surface(result.mesh, result.patches, command.refine);
   }
   // Whatever happened, keep the work: write the mesh and the summary before reporting.
   file_options.binary = !command.ascii;

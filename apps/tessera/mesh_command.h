@@ -21,6 +21,8 @@ struct MeshCommand {
   bool ascii = false;
   bool quiet = false;
   bool improve = false;
+  int refine = 0;       ///< bezier: evaluate the cubic patches on a K×K subdivision (0: off)
+  std::string patches;  ///< bezier: write the Bézier control points to this file
 };
 
 CLI::App* add_mesh_command(CLI::App& app, MeshCommand& command);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tessera/geometry/bezier_patch.h"
 #include "tessera/geometry/triangle_mesh.h"
 
 namespace tessera {
@@ -52,6 +53,9 @@ struct CoveringSummary {
 struct CoveringResult {
   TriangleMesh mesh;
   CoveringSummary summary;
+  /// A piecewise cubic surface through the mesh, one patch per triangle in the triangle's
+  /// vertex order, when the method builds one (method `bezier`); empty otherwise.
+  std::vector<CubicBezierPatch> patches;
 };
 
 /// Progress of a long run, reported to an optional callback (the CLI draws a status line).

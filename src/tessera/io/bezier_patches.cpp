@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/io/bezier_patches.h"
+
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+
+#include "tessera/core/error.h"
+#include "tessera/core/implicit_problem.h"
+
+namespace tessera {
+namespace {
+
+constexpr const char* kFormat = "tessera-bezier-patches";
+constexpr int kVersion = 1;
+
+nlohmann::json column(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  nlohmann::json values = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    values.push_back(x(i));
+  }
+  return values;
+}
+
+Eigen::VectorXd vector_from(const nlohmann::json& values, int n, const std::string& where) {
+  TESSERA_CHECK(values.is_array() && static_cast<int>(values.size()) == n,
+                where << " must be an array of " << n << " numbers");
+  Eigen::VectorXd x(n);
+  for (int i = 0; i < n; ++i) {
+    TESSERA_CHECK(values[i].is_number(), where << "[" << i << "] is not a number");
+    x(i) = values[i].get<double>();
+  }
+  return x;
+}
+
+}  // namespace
+
+void write_bezier_patches(const std::string& path, const BezierSurfaceFile& surface) {
+  const TriangleMesh& mesh = surface.mesh;
+  const int n = mesh.ambient_dimension();
+  TESSERA_CHECK(static_cast<int>(surface.patches.size()) == mesh.triangle_count(),
+                "write_bezier_patches: " << surface.patches.size() << " patches for "
+                                         << mesh.triangle_count() << " triangles");
+  TESSERA_CHECK(
+      surface.coordinate_names.empty() || static_cast<int>(surface.coordinate_names.size()) == n,
+      "write_bezier_patches: " << surface.coordinate_names.size()
+                               << " coordinate names for n = " << n);
+  nlohmann::json file;
+  file["format"] = kFormat;
+  file["version"] = kVersion;
+  file["dimension"] = n;
+  file["coordinate_names"] =
+      surface.coordinate_names.empty() ? default_coordinate_names(n) : surface.coordinate_names;
+  file["multi_indices"] = CubicBezierPatch::multi_indices();
+  nlohmann::json vertices = nlohmann::json::array();
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    vertices.push_back(column(mesh.point(v)));
+  }
+  file["vertices"] = std::move(vertices);
+  nlohmann::json triangles = nlohmann::json::array();
+  nlohmann::json control_points = nlohmann::json::array();
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const CubicBezierPatch& patch = surface.patches[t];
+    TESSERA_CHECK(patch.ambient_dimension() == n,
+                  "write_bezier_patches: patch " << t << " is in R^" << patch.ambient_dimension());
+    triangles.push_back(mesh.triangle(t));
+    nlohmann::json points = nlohmann::json::array();
+    for (int c = 0; c < 10; ++c) {
+      points.push_back(column(patch.control_points().col(c)));
+    }
+    control_points.push_back(std::move(points));
+  }
+  file["triangles"] = std::move(triangles);
+  file["control_points"] = std::move(control_points);
+  std::ofstream out(path);
+  TESSERA_CHECK(out.good(), "cannot open '" << path << "' for writing");
+  out << std::setprecision(17) << file.dump() << "\n";
+  TESSERA_CHECK(out.good(), "writing '" << path << "' failed");
+}
+
+BezierSurfaceFile read_bezier_patches(const std::string& path) {
+  std::ifstream in(path);
+  TESSERA_CHECK(in.good(), "cannot open '" << path << "'");
+  nlohmann::json file;
+  try {
+    in >> file;
+  } catch (const nlohmann::json::exception& error) {
+    TESSERA_CHECK(false, "'" << path << "' is not JSON: " << error.what());
+  }
+  TESSERA_CHECK(file.value("format", "") == kFormat,
+                "'" << path << "' is not a " << kFormat << " file (field 'format')");
+  TESSERA_CHECK(file.value("version", 0) == kVersion,
+                "'" << path << "': version " << file.value("version", 0) << " is not supported");
+  const int n = file.value("dimension", 0);
+  TESSERA_CHECK(n >= 3, "'" << path << "': dimension " << n << " must be >= 3");
+  TESSERA_CHECK(file["multi_indices"] == nlohmann::json(CubicBezierPatch::multi_indices()),
+                "'" << path << "': field 'multi_indices' is not tessera's order");
+  BezierSurfaceFile surface;
+  surface.coordinate_names = file["coordinate_names"].get<std::vector<std::string>>();
+  surface.mesh = TriangleMesh(n);
+  const auto& vertices = file["vertices"];
+  TESSERA_CHECK(vertices.is_array(), "'" << path << "': field 'vertices' must be an array");
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    surface.mesh.add_vertex(
+        vector_from(vertices[v], n, "'" + path + "': vertices[" + std::to_string(v) + "]"));
+  }
+  const auto& triangles = file["triangles"];
+  const auto& control_points = file["control_points"];
+  TESSERA_CHECK(triangles.is_array() && control_points.is_array() &&
+                    triangles.size() == control_points.size(),
+                "'" << path << "': 'triangles' and 'control_points' must be arrays of equal size");
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto tri = triangles[t].get<std::array<int, 3>>();
+    for (int v : tri) {
+      TESSERA_CHECK(v >= 0 && v < surface.mesh.vertex_count(),
+                    "'" << path << "': triangles[" << t << "] has vertex " << v << " out of range");
+    }
+    surface.mesh.add_triangle(tri[0], tri[1], tri[2]);
+    TESSERA_CHECK(control_points[t].is_array() && control_points[t].size() == 10,
+                  "'" << path << "': control_points[" << t << "] must hold 10 points");
+    Eigen::MatrixXd b(n, 10);
+    for (int c = 0; c < 10; ++c) {
+      b.col(c) = vector_from(
+          control_points[t][c], n,
+          "'" + path + "': control_points[" + std::to_string(t) + "][" + std::to_string(c) + "]");
+    }
+    surface.patches.emplace_back(std::move(b));
+  }
+  return surface;
+}
+
+}  // namespace tessera

@@ -1,0 +1,1305 @@
+// SPDX-License-Identifier: MIT
+// Hohmann's adaptive continuation (ZIB SC 91-20, Algorithm 1 with sections 2–5). The free edges
+// of the triangulation are processed smallest front angle first; for each, an imaginary
+// triangle is predicted on the nine-parameter interpolant of its real triangle with the step of
+// section 5, and realised either by connecting it to an existing front vertex (section 4/5:
+// softened barycentric overlap tests, connection sector S) or by a new Gauss–Newton solution.
+// Every deviation from the paper is listed with its reason in docs/algorithms/bezier.md.
+#include "tessera/methods/bezier/bezier_continuation.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <queue>
+#include <sstream>
+#include <unordered_map>
+
+#include "tessera/core/corrector.h"
+#include "tessera/core/counted_problem.h"
+#include "tessera/core/describe.h"
+#include "tessera/core/error.h"
+#include "tessera/core/linearization.h"
+#include "tessera/methods/common/point_grid.h"
+#include "tessera/methods/start_point.h"
+
+namespace tessera {
+
+void BezierOptions::validate() const {
+  TESSERA_CHECK(std::isfinite(initial_step) && initial_step > 0,
+                "BezierOptions::initial_step = " << initial_step << " must be > 0");
+  TESSERA_CHECK(std::isfinite(max_step) && max_step >= 0,
+                "BezierOptions::max_step = " << max_step << " must be >= 0 (0: 8 × initial_step)");
+  TESSERA_CHECK(
+      max_step == 0 || max_step >= initial_step,
+      "BezierOptions::max_step = " << max_step << " must be >= initial_step = " << initial_step);
+  TESSERA_CHECK(
+      min_step_fraction > 0 && min_step_fraction < 1,
+      "BezierOptions::min_step_fraction = " << min_step_fraction << " must lie in (0, 1)");
+  TESSERA_CHECK(target_contraction > 0 && target_contraction < max_contraction,
+                "BezierOptions::target_contraction = " << target_contraction
+                                                       << " must lie in (0, max_contraction = "
+                                                       << max_contraction << ")");
+  TESSERA_CHECK(max_contraction > 0 && max_contraction < 1,
+                "BezierOptions::max_contraction = " << max_contraction << " must lie in (0, 1)");
+  TESSERA_CHECK(max_step_growth >= 1,
+                "BezierOptions::max_step_growth = " << max_step_growth << " must be >= 1");
+  TESSERA_CHECK(
+      min_tangent_cosine > 0 && min_tangent_cosine < 1,
+      "BezierOptions::min_tangent_cosine = " << min_tangent_cosine << " must lie in (0, 1)");
+  TESSERA_CHECK(overlap_safety >= 0 && overlap_safety < 1,
+                "BezierOptions::overlap_safety = " << overlap_safety << " must lie in [0, 1)");
+  TESSERA_CHECK(connection_sector >= 0,
+                "BezierOptions::connection_sector = " << connection_sector << " must be >= 0");
+  TESSERA_CHECK(
+      edge_length_factor > 0 && edge_length_factor <= 3,
+      "BezierOptions::edge_length_factor = " << edge_length_factor << " must lie in (0, 3]");
+  TESSERA_CHECK(step_reduction > 0 && step_reduction < 1,
+                "BezierOptions::step_reduction = " << step_reduction << " must lie in (0, 1)");
+  TESSERA_CHECK(
+      close_vertex_fraction >= 0 && close_vertex_fraction < 1,
+      "BezierOptions::close_vertex_fraction = " << close_vertex_fraction << " must lie in [0, 1)");
+  TESSERA_CHECK(boundary_snap_fraction >= 0 && boundary_snap_fraction < 0.5,
+                "BezierOptions::boundary_snap_fraction = " << boundary_snap_fraction
+                                                           << " must lie in [0, 0.5)");
+  TESSERA_CHECK(std::isfinite(tolerance) && tolerance >= 0,
+                "BezierOptions::tolerance = " << tolerance << " must be >= 0 (0: off)");
+  TESSERA_CHECK(corrector_tolerance > 0,
+                "BezierOptions::corrector_tolerance = " << corrector_tolerance << " must be > 0");
+  TESSERA_CHECK(max_corrector_iterations >= 2, "BezierOptions::max_corrector_iterations = "
+                                                   << max_corrector_iterations << " must be >= 2");
+  TESSERA_CHECK(std::isfinite(max_start_distance) && max_start_distance >= 0,
+                "BezierOptions::max_start_distance = " << max_start_distance << " must be >= 0");
+  TESSERA_CHECK(max_vertices >= 3,
+                "BezierOptions::max_vertices = " << max_vertices << " must be >= 3");
+}
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// An edge whose imaginary triangle could not be realised is retried after the other edges
+// (their triangles may resolve the conflict); after this many failures the run stops.
+constexpr int kMaxEdgeFailures = 3;
+// Triangles are shrunk by this fraction towards their centroids before the overlap test, so
+// that triangles sharing a vertex or an edge do not count as overlapping.
+constexpr double kOverlapShrink = 1e-4;
+
+using EdgeKey = std::uint64_t;
+EdgeKey edge_key(int a, int b) {
+  return (static_cast<EdgeKey>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+struct StopRun {
+  CoveringTermination termination;
+  std::string message;
+};
+
+// An orthonormal frame of the plane through three points (paper, section 5, "Projections and
+// barycentric coordinates"): e1 along p1 − p0, e2 by one Gram–Schmidt step.
+struct PlaneFrame {
+  Eigen::VectorXd origin, e1, e2;
+  bool valid = false;
+
+  PlaneFrame(const Eigen::VectorXd& p0, const Eigen::VectorXd& p1, const Eigen::VectorXd& p2)
+      : origin(p0) {
+    e1 = p1 - p0;
+    const double alpha = e1.norm();
+    if (!(alpha > 0)) {
+      return;
+    }
+    e1 /= alpha;
+    e2 = p2 - p0;
+    e2 -= e1.dot(e2) * e1;
+    const double gamma = e2.norm();
+    if (!(gamma > 1e-14 * alpha)) {
+      return;
+    }
+    e2 /= gamma;
+    valid = true;
+  }
+  Eigen::Vector2d project(const Eigen::VectorXd& y) const {
+    const Eigen::VectorXd d = y - origin;
+    return {d.dot(e1), d.dot(e2)};
+  }
+  // Distance of y from the plane.
+  double offset(const Eigen::VectorXd& y) const {
+    const Eigen::VectorXd d = y - origin;
+    return (d - d.dot(e1) * e1 - d.dot(e2) * e2).norm();
+  }
+};
+
+double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+  return u(0) * v(1) - u(1) * v(0);
+}
+
+// Barycentric coordinates of p with respect to the 2-D triangle (A, B, C).
+Eigen::Vector3d barycentric(const Eigen::Vector2d& p, const Eigen::Vector2d& A,
+                            const Eigen::Vector2d& B, const Eigen::Vector2d& C) {
+  const double area = cross2(B - A, C - A);
+  if (std::abs(area) < 1e-300) {
+    return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  }
+  const double lb = cross2(p - A, C - A) / area;
+  const double lc = cross2(B - A, p - A) / area;
+  return {1.0 - lb - lc, lb, lc};
+}
+
+// True if the interiors of two 2-D triangles, each shrunk slightly towards its centroid,
+// intersect (separating-axis test over the six edge normals).
+bool triangles_overlap(std::array<Eigen::Vector2d, 3> P, std::array<Eigen::Vector2d, 3> Q) {
+  for (auto* T : {&P, &Q}) {
+    const Eigen::Vector2d c = ((*T)[0] + (*T)[1] + (*T)[2]) / 3.0;
+    for (auto& v : *T) {
+      v = c + (1.0 - kOverlapShrink) * (v - c);
+    }
+  }
+  for (const auto* T : {&P, &Q}) {
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector2d edge = (*T)[(i + 1) % 3] - (*T)[i];
+      const Eigen::Vector2d axis(-edge(1), edge(0));
+      double pmin = std::numeric_limits<double>::infinity(), pmax = -pmin;
+      double qmin = pmin, qmax = -pmin;
+      for (int k = 0; k < 3; ++k) {
+        pmin = std::min(pmin, axis.dot(P[k]));
+        pmax = std::max(pmax, axis.dot(P[k]));
+        qmin = std::min(qmin, axis.dot(Q[k]));
+        qmax = std::max(qmax, axis.dot(Q[k]));
+      }
+      if (pmax <= qmin || qmax <= pmin) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// t_ij of eq. 3.4 ii: the normed projection of y_j − y_i onto the tangent plane at y_i.
+Eigen::VectorXd edge_tangent(const Eigen::MatrixXd& T_i, const Eigen::VectorXd& y_i,
+                             const Eigen::VectorXd& y_j) {
+  Eigen::VectorXd t = T_i * (T_i.transpose() * (y_j - y_i));
+  const double norm = t.norm();
+  return norm > 0 ? Eigen::VectorXd(t / norm) : t;
+}
+
+struct VertexData {
+  Eigen::VectorXd x;
+  Eigen::MatrixXd T;   // n×2 orthonormal basis of T_x M
+  double step = 0.0;   // s_j: the step with which the vertex was computed (section 5)
+  double theta = 0.0;  // θ_j: first contraction of its Gauss–Newton iteration
+  double step_limit = std::numeric_limits<double>::infinity();  // from the tolerance, if any
+  std::vector<int> faces;  // domain half-spaces the vertex lies on
+  bool in_grid = false;
+};
+
+// A computed point, before it is accepted as a vertex.
+struct NewPoint {
+  VertexData vertex;
+  Linearization linearization;  // at vertex.x
+};
+
+// Why a step failed and by how much to reduce it.
+struct StepFailure {
+  std::string why;
+  double factor = 0.5;
+};
+
+struct QueueEntry {
+  double key;
+  int a, b;
+  bool operator>(const QueueEntry& other) const {
+    return key > other.key || (key == other.key && edge_key(a, b) > edge_key(other.a, other.b));
+  }
+};
+
+class BezierBuilder {
+ public:
+  BezierBuilder(const ImplicitProblem& problem, const Domain& domain, const BezierOptions& options)
+      : problem_(problem),
+        domain_(domain),
+        options_(options),
+        n_(problem.ambient_dimension()),
+        max_step_(options.max_step > 0 ? options.max_step : 8.0 * options.initial_step),
+        min_step_(options.min_step_fraction * options.initial_step),
+        search_radius_(3.0 * max_step_),
+        grid_(problem.ambient_dimension(), search_radius_) {
+    corrector_.tolerance = options.corrector_tolerance;
+    corrector_.max_iterations = options.max_corrector_iterations;
+    corrector_.max_contraction = options.max_contraction;
+  }
+
+  void build_initial_triangle(const StartPoint& start);
+  void run();
+
+  int connections() const { return connections_; }
+  int step_reductions() const { return step_reductions_; }
+  // The final mesh and patches, with non-manifold vertices of a partial run removed.
+  void extract(BezierResult& result) const;
+  int vertex_count() const { return static_cast<int>(vertices_.size()); }
+
+ private:
+  // -- the triangulation
+  int add_vertex(VertexData vertex);
+  void add_triangle(int i, int j, int k);
+  bool has_edge(int a, int b) const { return edge_triangle_.count(edge_key(a, b)) > 0; }
+  bool is_free(int a, int b) const { return has_edge(a, b) && !has_edge(b, a); }
+  bool is_front_vertex(int v) const { return !front_out_[v].empty() || !front_in_[v].empty(); }
+  bool is_boundary_edge(int a, int b) const;
+  int third_vertex(int t, int a, int b) const;
+  void update_front_membership(int v);
+  void push_edges_of(int v);
+  // Front angle at the ends of free edge a→b (radians, through the unfilled side).
+  double wedge_angle(int v, int u, int c, int w) const;
+  std::optional<int> previous_on_front(int a, int b, int c) const;
+  std::optional<int> next_on_front(int a, int b, int c) const;
+  double front_angle(int a, int b) const;
+
+  // -- the algorithm
+  bool realize(int a, int b, std::string& why);
+  double predicted_step(int a, int b) const;
+  std::optional<NewPoint> compute_point(const Eigen::VectorXd& prediction, double s,
+                                        const Eigen::MatrixXd& reference, StepFailure& failure);
+  bool project_onto_faces(Eigen::VectorXd& y, std::vector<int>& faces, double& theta) const;
+  std::vector<int> faces_of(const Eigen::VectorXd& y) const;
+  std::optional<double> worst_tangent_angle(int a, const NewPoint& point, int b) const;
+  bool is_admissible(int a, int b, int c, int v, const Eigen::VectorXd& y) const;
+  double new_edges_distance(int a, int b, int v) const;
+  bool overlaps_mesh(int a, int b, int v, const Eigen::VectorXd& y) const;
+  std::vector<int> front_vertices_near(const Eigen::VectorXd& x, double radius) const;
+
+  const ImplicitProblem& problem_;
+  const Domain& domain_;
+  const BezierOptions& options_;
+  const int n_;
+  const double max_step_;
+  const double min_step_;
+  const double search_radius_;
+  CorrectorOptions corrector_;
+
+  std::vector<VertexData> vertices_;
+  std::vector<Triangle> triangles_;
+  std::vector<CubicBezierPatch> patches_;
+  std::unordered_map<EdgeKey, int> edge_triangle_;  // directed edge → its triangle
+  std::vector<std::vector<int>> vertex_triangles_;
+  std::vector<std::vector<int>> front_out_, front_in_;  // free directed edges at each vertex
+  std::unordered_map<EdgeKey, int> failures_;
+  std::vector<std::pair<EdgeKey, std::string>> failure_messages_;  // first failure of each edge
+  PointGrid grid_;  // front vertices only: the paper's "boundary vertices" (section 4)
+  std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<>> queue_;
+  int connections_ = 0;
+  int step_reductions_ = 0;
+  double longest_edge_ = 0.0;  // of the whole mesh, for the radius of the overlap search
+  int next_progress_ = 1000;
+};
+
+std::vector<int> BezierBuilder::faces_of(const Eigen::VectorXd& y) const {
+  std::vector<int> faces;
+  for (int k = 0; k < static_cast<int>(domain_.half_spaces().size()); ++k) {
+    if (std::abs(domain_.signed_distance(k, y)) <= 1e-9 * (1.0 + y.norm())) {
+      faces.push_back(k);
+    }
+  }
+  return faces;
+}
+
+bool BezierBuilder::is_boundary_edge(int a, int b) const {
+  for (int k : vertices_[a].faces) {
+    if (std::find(vertices_[b].faces.begin(), vertices_[b].faces.end(), k) !=
+        vertices_[b].faces.end()) {
+      return true;
+    }
+  }
+  return false;
+}
+
+int BezierBuilder::third_vertex(int t, int a, int b) const {
+  for (int v : triangles_[t]) {
+    if (v != a && v != b) {
+      return v;
+    }
+  }
+  TESSERA_ASSERT(false);
+  return -1;
+}
+
+int BezierBuilder::add_vertex(VertexData vertex) {
+  if (static_cast<int>(vertices_.size()) >= options_.max_vertices) {
+    std::ostringstream message;
+    message << "stopped at max_vertices = " << options_.max_vertices;
+    throw StopRun{CoveringTermination::VertexLimit, message.str()};
+  }
+  vertices_.push_back(std::move(vertex));
+  vertex_triangles_.emplace_back();
+  front_out_.emplace_back();
+  front_in_.emplace_back();
+  if (options_.progress && static_cast<int>(vertices_.size()) >= next_progress_) {
+    next_progress_ += 1000;
+    CoveringProgress progress;
+    progress.vertex_count = static_cast<int>(vertices_.size());
+    progress.triangle_count = static_cast<int>(triangles_.size());
+    progress.front_size = static_cast<int>(queue_.size());
+    options_.progress(progress);
+  }
+  return static_cast<int>(vertices_.size()) - 1;
+}
+
+void BezierBuilder::update_front_membership(int v) {
+  VertexData& data = vertices_[v];
+  const bool front = is_front_vertex(v);
+  if (front && !data.in_grid) {
+    grid_.insert(v, data.x);
+    data.in_grid = true;
+  } else if (!front && data.in_grid) {
+    grid_.remove(v, data.x);
+    data.in_grid = false;
+  }
+}
+
+void BezierBuilder::add_triangle(int i, int j, int k) {
+  const int t = static_cast<int>(triangles_.size());
+  triangles_.push_back({i, j, k});
+  Eigen::MatrixXd corners(n_, 3);
+  std::array<Eigen::MatrixXd, 3> bases;
+  const std::array<int, 3> ids{i, j, k};
+  for (int c = 0; c < 3; ++c) {
+    longest_edge_ =
+        std::max(longest_edge_, (vertices_[ids[c]].x - vertices_[ids[(c + 1) % 3]].x).norm());
+    corners.col(c) = vertices_[ids[c]].x;
+    bases[c] = vertices_[ids[c]].T;
+  }
+  // Eq. 3.5. The edge curve of edge (y_i, y_j) depends only on y_i, y_j, T_i and T_j, so the
+  // patches of the two triangles at an edge share it: the cubic surface is continuous.
+  patches_.push_back(CubicBezierPatch::interpolate_triangle_on_manifold(
+      corners, bases, options_.edge_length_factor));
+  for (int c = 0; c < 3; ++c) {
+    const int u = ids[c];
+    const int w = ids[(c + 1) % 3];
+    TESSERA_ASSERT(!has_edge(u, w));
+    edge_triangle_[edge_key(u, w)] = t;
+    vertex_triangles_[u].push_back(t);
+    if (has_edge(w, u)) {
+      // w→u was free: the new triangle closes it.
+      auto& out = front_out_[w];
+      out.erase(std::remove(out.begin(), out.end(), u), out.end());
+      auto& in = front_in_[u];
+      in.erase(std::remove(in.begin(), in.end(), w), in.end());
+    } else {
+      front_out_[u].push_back(w);
+      front_in_[w].push_back(u);
+    }
+  }
+  for (int v : ids) {
+    update_front_membership(v);
+  }
+  for (int v : ids) {
+    push_edges_of(v);
+  }
+}
+
+void BezierBuilder::push_edges_of(int v) {
+  const auto push = [&](int a, int b) {
+    if (!is_boundary_edge(a, b)) {
+      queue_.push({front_angle(a, b), a, b});
+    }
+  };
+  for (int w : front_out_[v]) {
+    push(v, w);
+  }
+  for (int u : front_in_[v]) {
+    push(u, v);
+  }
+}
+
+double BezierBuilder::wedge_angle(int v, int u, int c, int w) const {
+  // In the tangent plane at v: the triangle at edge (v, u) lies between directions u and c;
+  // the unfilled side is the other one. Returns the angle from u to w through that side.
+  const Eigen::MatrixXd& T = vertices_[v].T;
+  const Eigen::VectorXd& x = vertices_[v].x;
+  const Eigen::Vector2d pu = T.transpose() * (vertices_[u].x - x);
+  const Eigen::Vector2d pc = T.transpose() * (vertices_[c].x - x);
+  const Eigen::Vector2d pw = T.transpose() * (vertices_[w].x - x);
+  const auto angle_from_u = [&](const Eigen::Vector2d& p) {
+    return std::atan2(cross2(pu, p), pu.dot(p));
+  };
+  const double side = angle_from_u(pc) >= 0 ? -1.0 : 1.0;
+  double angle = side * angle_from_u(pw);
+  if (angle < 0) {
+    angle += 2 * kPi;
+  }
+  return angle;
+}
+
+std::optional<int> BezierBuilder::previous_on_front(int a, int b, int c) const {
+  // The free edge p→a that bounds the unfilled wedge at a next to a→b (at a pinched vertex
+  // there are several; the one with the smallest wedge is the neighbour).
+  std::optional<int> best;
+  double best_angle = std::numeric_limits<double>::infinity();
+  for (int p : front_in_[a]) {
+    if (p == b) {
+      continue;
+    }
+    const double angle = wedge_angle(a, b, c, p);
+    if (angle < best_angle) {
+      best_angle = angle;
+      best = p;
+    }
+  }
+  return best;
+}
+
+std::optional<int> BezierBuilder::next_on_front(int a, int b, int c) const {
+  std::optional<int> best;
+  double best_angle = std::numeric_limits<double>::infinity();
+  for (int q : front_out_[b]) {
+    if (q == a) {
+      continue;
+    }
+    const double angle = wedge_angle(b, a, c, q);
+    if (angle < best_angle) {
+      best_angle = angle;
+      best = q;
+    }
+  }
+  return best;
+}
+
+double BezierBuilder::front_angle(int a, int b) const {
+  const int c = third_vertex(edge_triangle_.at(edge_key(a, b)), a, b);
+  double angle = 2 * kPi;
+  if (const auto p = previous_on_front(a, b, c)) {
+    angle = std::min(angle, wedge_angle(a, b, c, *p));
+  }
+  if (const auto q = next_on_front(a, b, c)) {
+    angle = std::min(angle, wedge_angle(b, a, c, *q));
+  }
+  const auto it = failures_.find(edge_key(a, b));
+  return angle + (it == failures_.end() ? 0.0 : 4 * kPi * it->second);
+}
+
+std::vector<int> BezierBuilder::front_vertices_near(const Eigen::VectorXd& x, double radius) const {
+  return grid_.near(x, std::min(radius, search_radius_),
+                    [&](int id) -> const Eigen::VectorXd& { return vertices_[id].x; });
+}
+
+double BezierBuilder::predicted_step(int a, int b) const {
+  // Section 5: s = min(√(θ̄/θ_j) s_j, √(θ̄/θ_k) s_k), the factor capped at max_step_growth.
+  const auto grown = [&](int v) {
+    const VertexData& data = vertices_[v];
+    double factor = options_.max_step_growth;
+    if (data.theta > 0) {
+      factor = std::min(factor, std::sqrt(options_.target_contraction / data.theta));
+    }
+    return std::min(factor * data.step, data.step_limit);
+  };
+  return std::clamp(std::min(grown(a), grown(b)), min_step_, max_step_);
+}
+
+bool BezierBuilder::project_onto_faces(Eigen::VectorXd& y, std::vector<int>& faces,
+                                       double& theta) const {
+  // Example 3: on a face the point is computed for F restricted to it. For a general
+  // half-space b·(x − p) ≥ 0 this is Gauss–Newton on the bordered system F(x) = 0,
+  // b·(x − p) = 0 with minimum-norm corrections; for a box face b = ±e_i it fixes x_i.
+  const int m = n_ - 2;
+  const int rows = m + static_cast<int>(faces.size());
+  Eigen::VectorXd F(m), r(rows), dx(n_);
+  Eigen::MatrixXd J(m, n_), A(rows, n_);
+  double previous = 0.0;
+  theta = 0.0;
+  for (int k = 0; k < 2 * options_.max_corrector_iterations; ++k) {
+    problem_.evaluate(y, F);
+    if (!F.allFinite()) {
+      return false;
+    }
+    problem_.jacobian(y, J);
+    A.topRows(m) = J;
+    r.head(m) = F;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const HalfSpace& h = domain_.half_spaces()[faces[f]];
+      A.row(m + static_cast<int>(f)) = h.normal.transpose();
+      r(m + static_cast<int>(f)) = h.normal.dot(y - h.point);
+    }
+    if (!solve_minimum_norm_dense(A, -r, dx)) {
+      return false;
+    }
+    y += dx;
+    const double norm = dx.norm();
+    if (k == 1 && previous > 0) {
+      theta = norm / previous;
+    }
+    if (k > 0 && previous > 0 && norm > 0.9 * previous &&
+        norm > options_.corrector_tolerance * (1.0 + y.norm())) {
+      return false;  // not contracting
+    }
+    previous = norm;
+    if (norm <= options_.corrector_tolerance * (1.0 + y.norm())) {
+      problem_.evaluate(y, F);
+      return F.allFinite() && F.norm() <= 1e-9;
+    }
+  }
+  return false;
+}
+
+std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& prediction, double s,
+                                                     const Eigen::MatrixXd& reference,
+                                                     StepFailure& failure) {
+  NewPoint point;
+  Eigen::VectorXd y = prediction;
+  // First Gauss–Newton step and the simplified correction with the same factorisation give
+  // Deuflhard's θ₀ = ‖Δ̄y¹‖/‖Δy⁰‖ exactly as in (2.3)/(2.4).
+  Eigen::VectorXd F(n_ - 2), dx0(n_), dx_bar(n_);
+  problem_.evaluate(y, F);
+  if (!F.allFinite() || !point.linearization.factor(problem_, y, &reference)) {
+    failure = {"F is not finite or DF is rank deficient at the predicted point " +
+                   describe_point(prediction),
+               0.5};
+    return std::nullopt;
+  }
+  point.linearization.solve_minimum_norm(-F, dx0);
+  y += dx0;
+  problem_.evaluate(y, F);
+  if (!F.allFinite()) {
+    failure = {
+        "F is not finite after the first Gauss–Newton step from " + describe_point(prediction),
+        0.5};
+    return std::nullopt;
+  }
+  point.linearization.solve_minimum_norm(-F, dx_bar);
+  const double norm0 = dx0.norm();
+  const double theta =
+      norm0 > options_.corrector_tolerance * (1.0 + y.norm()) ? dx_bar.norm() / norm0 : 0.0;
+  const auto reduction = [&](double th) {
+    return std::clamp(std::sqrt(options_.target_contraction / th), 0.25, 0.7);
+  };
+  if (theta > options_.max_contraction) {
+    std::ostringstream why;
+    why << "Gauss–Newton from " << describe_point(prediction)
+        << " fails the monotonicity test: θ₀ = " << theta << " > " << options_.max_contraction;
+    failure = {why.str(), reduction(theta)};
+    return std::nullopt;
+  }
+  const CorrectorSummary summary =
+      project_gauss_newton(problem_, y, corrector_, point.linearization);
+  if (!summary.is_success()) {
+    failure = {"Gauss–Newton from " + describe_point(prediction) + ": " + summary.brief_report(),
+               summary.contraction > 0 ? reduction(summary.contraction) : 0.5};
+    return std::nullopt;
+  }
+  // A corrector that travels farther than the step has left the neighbourhood of the
+  // prediction (e.g. onto another sheet): not a neighbour of the edge.
+  if ((y - prediction).norm() > 0.75 * s) {
+    std::ostringstream why;
+    why << "Gauss–Newton from " << describe_point(prediction) << " moved "
+        << (y - prediction).norm() << " > 0.75 × step " << s;
+    failure = {why.str(), 0.5};
+    return std::nullopt;
+  }
+  point.vertex.theta = theta;
+  point.vertex.step = s;
+  if (!domain_.is_unbounded()) {
+    const double snap = options_.boundary_snap_fraction * s;
+    // All faces nearer than the snap distance, nearest first (at most n − 1 constraints in all,
+    // so that M ∩ faces is not overdetermined).
+    std::vector<std::pair<double, int>> near_faces;
+    for (int k = 0; k < static_cast<int>(domain_.half_spaces().size()); ++k) {
+      const double distance = domain_.signed_distance(k, y);
+      if (distance < snap) {
+        near_faces.emplace_back(distance, k);
+      }
+    }
+    std::sort(near_faces.begin(), near_faces.end());
+    if (static_cast<int>(near_faces.size()) > 2) {
+      near_faces.resize(2);
+    }
+    if (!near_faces.empty()) {
+      const Eigen::VectorXd unconstrained = y;
+      // The face sets tried, in order: both near faces (a corner of the box), the nearest, the
+      // other. Two near faces need not meet on M, and M need not meet a near face nearby (on
+      // the CSTR, Da ≈ x1 near x1 = 0.02: the faces x1 = 0.02 and Da = 0 are both near but
+      // M ∩ {Da = 0} lies outside the box).
+      std::vector<std::vector<int>> attempts;
+      if (near_faces.size() == 2) {
+        attempts.push_back({near_faces[0].second, near_faces[1].second});
+      }
+      for (const auto& [distance, k] : near_faces) {
+        attempts.push_back({k});
+      }
+      bool projected = false;
+      for (std::size_t attempt = 0; attempt < attempts.size() && !projected; ++attempt) {
+        std::vector<int> faces = attempts[attempt];
+        for (int round = 0; round < 2 && !projected; ++round) {
+          Eigen::VectorXd z = unconstrained;
+          double face_theta = 0.0;
+          if (!project_onto_faces(z, faces, face_theta)) {
+            break;
+          }
+          // Another face may now be violated (near an edge of the box): add it and redo.
+          const BoundaryDistance other = domain_.boundary_distance(z);
+          if (other.signed_distance < -1e-9 * (1.0 + z.norm()) && faces.size() < 2 &&
+              std::find(faces.begin(), faces.end(), other.nearest_half_space) == faces.end()) {
+            faces.push_back(other.nearest_half_space);
+            continue;
+          }
+          // Moving onto the faces must keep the point inside all the others, and near the edge.
+          if (domain_.contains(z, 1e-9 * (1.0 + z.norm())) && (z - unconstrained).norm() <= s) {
+            y = z;
+            projected = true;
+          }
+        }
+      }
+      if (!projected && domain_.contains(unconstrained)) {
+        // Snapping is cosmetic for a point inside: when M does not meet the near face there
+        // (on the CSTR, Da ≥ 0 is near everywhere but M ∩ {Da = 0} lies outside the box),
+        // keep the point where it is instead of shrinking the step.
+        y = unconstrained;
+        projected = true;
+      }
+      if (!projected) {
+        failure = {"the point " + describe_point(y) +
+                       " near the domain boundary could not be moved onto M ∩ boundary",
+                   0.5};
+        return std::nullopt;
+      }
+      if (!point.linearization.factor(problem_, y, &reference)) {
+        failure = {"DF is rank deficient at the boundary point " + describe_point(y), 0.5};
+        return std::nullopt;
+      }
+    }
+  }
+  point.vertex.x = y;
+  point.vertex.T = point.linearization.tangent_basis();
+  align_tangent_basis(point.vertex.T, reference);
+  point.vertex.faces = faces_of(y);
+  return point;
+}
+
+std::optional<double> BezierBuilder::worst_tangent_angle(int a, const NewPoint& point,
+                                                         int b) const {
+  // Section 4: |⟨t_ij, t_ji⟩| ≥ α_min on the two new real edges. Returns the largest angle
+  // arccos|⟨t_ij, t_ji⟩| if it is too large, nullopt if both edges pass.
+  double worst = 0.0;
+  for (int v : {a, b}) {
+    if (v < 0) {
+      continue;
+    }
+    const Eigen::VectorXd t_vy = edge_tangent(vertices_[v].T, vertices_[v].x, point.vertex.x);
+    const Eigen::VectorXd t_yv = edge_tangent(point.vertex.T, point.vertex.x, vertices_[v].x);
+    worst = std::max(worst, std::acos(std::min(1.0, std::abs(t_vy.dot(t_yv)))));
+  }
+  if (std::cos(worst) >= options_.min_tangent_cosine) {
+    return std::nullopt;
+  }
+  return worst;
+}
+
+bool BezierBuilder::overlaps_mesh(int a, int b, int v, const Eigen::VectorXd& y) const {
+  // Does the triangle (a, b, y) overlap a triangle of the mesh near it? The test is in the
+  // plane of the new triangle (the paper's local plane model), with triangles far from that
+  // plane (another sheet of M) left out.
+  const PlaneFrame plane(vertices_[a].x, vertices_[b].x, y);
+  if (!plane.valid) {
+    return true;
+  }
+  const std::array<Eigen::Vector2d, 3> P{plane.project(vertices_[a].x),
+                                         plane.project(vertices_[b].x), plane.project(y)};
+  const double size = std::max({(vertices_[a].x - vertices_[b].x).norm(),
+                                (vertices_[a].x - y).norm(), (vertices_[b].x - y).norm()});
+  const Eigen::VectorXd centroid = (vertices_[a].x + vertices_[b].x + y) / 3.0;
+  // Every triangle that overlaps the new one has a vertex within size + (longest edge) of its
+  // centroid, and one that overlaps it without crossing the front cannot exist.
+  std::vector<int> nearby = front_vertices_near(centroid, size + longest_edge_);
+  nearby.push_back(a);
+  nearby.push_back(b);
+  if (v >= 0) {
+    nearby.push_back(v);
+  }
+  std::vector<int> checked;
+  for (int w : nearby) {
+    for (int t : vertex_triangles_[w]) {
+      if (std::find(checked.begin(), checked.end(), t) != checked.end()) {
+        continue;
+      }
+      checked.push_back(t);
+      const Triangle& tri = triangles_[t];
+      const Eigen::VectorXd c =
+          (vertices_[tri[0]].x + vertices_[tri[1]].x + vertices_[tri[2]].x) / 3.0;
+      const double size_q = std::max({(vertices_[tri[0]].x - vertices_[tri[1]].x).norm(),
+                                      (vertices_[tri[1]].x - vertices_[tri[2]].x).norm(),
+                                      (vertices_[tri[2]].x - vertices_[tri[0]].x).norm()});
+      if (plane.offset(c) > 0.5 * std::max(size, size_q)) {
+        continue;
+      }
+      const std::array<Eigen::Vector2d, 3> Q{plane.project(vertices_[tri[0]].x),
+                                             plane.project(vertices_[tri[1]].x),
+                                             plane.project(vertices_[tri[2]].x)};
+      if (triangles_overlap(P, Q)) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+double BezierBuilder::new_edges_distance(int a, int b, int v) const {
+  // The distance to M of the midpoints of the edges (a, v) and (b, v) that do not exist yet,
+  // estimated by one Gauss–Newton step from the midpoint.
+  double distance = 0.0;
+  Eigen::VectorXd F(n_ - 2), dx(n_);
+  Linearization linearization;
+  for (int end : {a, b}) {
+    if (has_edge(end, v) || has_edge(v, end)) {
+      continue;
+    }
+    const Eigen::VectorXd mid = 0.5 * (vertices_[end].x + vertices_[v].x);
+    problem_.evaluate(mid, F);
+    if (!F.allFinite() || !linearization.factor(problem_, mid)) {
+      return std::numeric_limits<double>::infinity();
+    }
+    linearization.solve_minimum_norm(-F, dx);
+    distance = std::max(distance, dx.norm());
+  }
+  return distance;
+}
+
+bool BezierBuilder::is_admissible(int a, int b, int c, int v, const Eigen::VectorXd& y) const {
+  // Can triangle (b, a, v) be added at free edge a→b (whose triangle has third vertex c)?
+  // Combinatorially: the edges a→v and v→b must be new (or close free edges v→a, b→v), so
+  // every edge keeps at most two consistently oriented triangles.
+  if (v >= 0 && (v == a || v == b || v == c || has_edge(a, v) || has_edge(v, b))) {
+    return false;
+  }
+  // Geometrically: y lies on the unfilled side of a→b in the tangent planes at a and at b.
+  for (int end : {a, b}) {
+    const Eigen::MatrixXd& T = vertices_[end].T;
+    const Eigen::VectorXd& x = vertices_[end].x;
+    const int other = end == a ? b : a;
+    const Eigen::Vector2d pe = T.transpose() * (vertices_[other].x - x);
+    const Eigen::Vector2d pc = T.transpose() * (vertices_[c].x - x);
+    const Eigen::Vector2d py = T.transpose() * (y - x);
+    if (cross2(pe, pc) * cross2(pe, py) >= 0) {
+      return false;
+    }
+  }
+  return !overlaps_mesh(a, b, v, y);
+}
+
+bool BezierBuilder::realize(int a, int b, std::string& why) {
+  const int t = edge_triangle_.at(edge_key(a, b));
+  const int c = third_vertex(t, a, b);
+  // The front neighbours of the edge are always candidates for a close overlap (figure 2).
+  const std::optional<int> previous = previous_on_front(a, b, c);
+  const std::optional<int> next = next_on_front(a, b, c);
+  const Triangle tri = triangles_[t];
+  const CubicBezierPatch patch = patches_[t];
+  int la = 0, lb = 0, lc = 0;
+  for (int i = 0; i < 3; ++i) {
+    la = tri[i] == a ? i : la;
+    lb = tri[i] == b ? i : lb;
+    lc = tri[i] == c ? i : lc;
+  }
+  // A front loop of three edges is a hole that only one triangle can close; it is closed
+  // whatever its shape (a needle is better than a hole, and the topology requires it).
+  if (previous && previous == next && *previous != c && !has_edge(a, *previous) &&
+      !has_edge(*previous, b)) {
+    add_triangle(b, a, *previous);
+    ++connections_;
+    return true;
+  }
+  // Copies: adding a vertex may reallocate vertices_.
+  const Eigen::VectorXd ya = vertices_[a].x;
+  const Eigen::VectorXd yb = vertices_[b].x;
+  const Eigen::VectorXd yc = vertices_[c].x;
+  const double base = (yb - ya).norm();
+  const Eigen::VectorXd midpoint = 0.5 * (ya + yb);
+  // Parameter plane <T> of section 5: e1 along the edge, e2 towards c.
+  const PlaneFrame parameter_plane(ya, yb, yc);
+  TESSERA_ASSERT(parameter_plane.valid);
+  const double gamma = parameter_plane.project(yc)(1);
+  const double beta_c = parameter_plane.project(yc)(0);
+  const Eigen::Vector3d corner_a = Eigen::Vector3d::Unit(la);
+  const Eigen::Vector3d corner_b = Eigen::Vector3d::Unit(lb);
+  const double rho = options_.overlap_safety;
+  const double beta = options_.connection_sector;
+  double s = predicted_step(a, b);
+  int overlap_reductions = 0;
+  std::vector<int> refused;  // connections refused because of the tolerance
+  for (int attempt = 0; s >= min_step_ * (1.0 - 1e-12); ++attempt) {
+    if (attempt > 0) {
+      ++step_reductions_;
+    }
+    // ỹ = ȳ + s·t on the outward normal of the edge in <T>, in barycentric coordinates.
+    const double x1 = 0.5 * base;
+    const double x2 = -s;
+    const double lambda_c = x2 / gamma;
+    const double lambda_b = (x1 - beta_c * lambda_c) / base;
+    Eigen::Vector3d lambda = Eigen::Vector3d::Zero();
+    lambda(lc) = lambda_c;
+    lambda(lb) = lambda_b;
+    lambda(la) = 1.0 - lambda_b - lambda_c;
+    const Eigen::VectorXd predicted = patch.evaluate(lambda);
+    // The imaginary tangents t̂_ij of section 5 from the Bézier net of T̂ = (y_a, y_b, ŷ),
+    // i.e. the derivatives of p at the corners of T̂ along its edges.
+    double worst_angle = 0.0;
+    for (const Eigen::Vector3d& corner : {corner_a, corner_b}) {
+      const Eigen::VectorXd t1 = patch.derivative(corner, lambda - corner);
+      const Eigen::VectorXd t2 = patch.derivative(lambda, corner - lambda);
+      const double norms = t1.norm() * t2.norm();
+      const double cosine = norms > 0 ? std::abs(t1.dot(t2)) / norms : 0.0;
+      worst_angle = std::max(worst_angle, std::acos(std::min(1.0, cosine)));
+    }
+    if (std::cos(worst_angle) < options_.min_tangent_cosine) {
+      // The tangent angle grows about linearly with the edge: shrink s in proportion.
+      s *= std::clamp(0.95 * std::acos(options_.min_tangent_cosine) / worst_angle, 0.25, 0.9);
+      continue;
+    }
+    // Overlaps (section 4), in the plane of the imaginary triangle, apex 0 = ŷ, 1 = a, 2 = b.
+    const PlaneFrame plane(ya, yb, predicted);
+    if (!plane.valid) {
+      s *= options_.step_reduction;
+      continue;
+    }
+    const Eigen::Vector2d A = plane.project(ya), B = plane.project(yb),
+                          Y = plane.project(predicted);
+    bool overlap = false;
+    std::vector<std::pair<double, int>> connectable;  // (distance to ŷ, vertex)
+    const double radius = 1.2 * (s + 0.5 * base);
+    std::vector<int> candidates = front_vertices_near(midpoint, radius);
+    for (const std::optional<int>& neighbour : {previous, next}) {
+      if (neighbour &&
+          std::find(candidates.begin(), candidates.end(), *neighbour) == candidates.end()) {
+        candidates.push_back(*neighbour);
+      }
+    }
+    for (int v : candidates) {
+      if (v == a || v == b) {
+        continue;
+      }
+      const Eigen::VectorXd& yv = vertices_[v].x;
+      const Eigen::Vector2d pv = plane.project(yv);
+      // The plane model is local: vertices far from the plane (another sheet) do not count.
+      if (plane.offset(yv) > 0.5 * std::max((pv - 0.5 * (A + B)).norm(), base)) {
+        continue;
+      }
+      // Connecting v must respect α_min on the edges (a, v) and (b, v) that are new. For a front
+      // neighbour (close overlap, figure 2) the new edge spans two edges that each satisfy
+      // it, so the angle bound is doubled: otherwise a last hole of four vertices on a curved
+      // region could not be closed at all (tessera's relaxation; the paper is silent).
+      const bool is_neighbour = v == previous || v == next;
+      const double min_cosine = is_neighbour
+                                    ? std::cos(2.0 * std::acos(options_.min_tangent_cosine))
+                                    : options_.min_tangent_cosine;
+      bool compatible = true;
+      for (int end : {a, b}) {
+        if (has_edge(v, end) || has_edge(end, v)) {
+          continue;
+        }
+        const Eigen::VectorXd t1 = edge_tangent(vertices_[end].T, vertices_[end].x, yv);
+        const Eigen::VectorXd t2 = edge_tangent(vertices_[v].T, yv, vertices_[end].x);
+        compatible = compatible && std::abs(t1.dot(t2)) >= min_cosine;
+      }
+      if (!compatible) {
+        continue;
+      }
+      const Eigen::Vector3d l = barycentric(pv, Y, A, B);
+      // Softened containment (section 5, ρ) on the sides through ŷ; on the base line the
+      // crisp test, since a vertex behind the edge can neither overlap T̂ nor be connected.
+      const bool inside = l(0) > 0 && l(1) >= -rho && l(2) >= -rho;
+      const bool close = (yv - predicted).norm() < options_.close_vertex_fraction * s;
+      overlap = overlap || inside || close;
+      const bool in_sector = l(0) >= 0 && l(2) >= beta * (l(1) - 1) && l(1) >= beta * (l(2) - 1);
+      if ((in_sector || is_neighbour) && l(0) > 0) {
+        connectable.emplace_back((pv - Y).norm(), v);
+      }
+    }
+    // ŷ inside (softened) a triangle at a front vertex nearby: a close or distant overlap.
+    if (!overlap) {
+      for (int v : front_vertices_near(predicted, radius)) {
+        for (int q : vertex_triangles_[v]) {
+          if (q == t || overlap) {
+            continue;
+          }
+          const Triangle& other = triangles_[q];
+          const PlaneFrame other_plane(vertices_[other[0]].x, vertices_[other[1]].x,
+                                       vertices_[other[2]].x);
+          if (!other_plane.valid) {
+            continue;
+          }
+          const double size = std::max({(vertices_[other[1]].x - vertices_[other[0]].x).norm(),
+                                        (vertices_[other[2]].x - vertices_[other[1]].x).norm(),
+                                        (vertices_[other[0]].x - vertices_[other[2]].x).norm()});
+          if (other_plane.offset(predicted) > 0.5 * std::max(size, s)) {
+            continue;
+          }
+          const Eigen::Vector3d l = barycentric(other_plane.project(predicted),
+                                                other_plane.project(vertices_[other[0]].x),
+                                                other_plane.project(vertices_[other[1]].x),
+                                                other_plane.project(vertices_[other[2]].x));
+          overlap = l.minCoeff() >= -rho;
+        }
+      }
+    }
+    std::sort(connectable.begin(), connectable.end());
+    // With a tolerance, a connection whose new edges are farther from M than it is taken only
+    // when the step cannot be reduced further for this edge (a smaller imaginary triangle may
+    // avoid the overlap and give a new point instead).
+    const bool strict = options_.tolerance > 0 && overlap_reductions < 2;
+    const auto connect = [&]() {
+      for (const auto& [distance, v] : connectable) {
+        if (strict && !(new_edges_distance(a, b, v) <= options_.tolerance)) {
+          continue;
+        }
+        if (is_admissible(a, b, c, v, vertices_[v].x)) {
+          add_triangle(b, a, v);
+          ++connections_;
+          return true;
+        }
+      }
+      return false;
+    };
+    if (overlap) {
+      if (connect()) {
+        return true;
+      }
+      if (strict) {
+        // Remember the connections refused for the tolerance: the last resort below.
+        for (const auto& candidate : connectable) {
+          refused.push_back(candidate.second);
+        }
+      }
+      if (++overlap_reductions > 2) {
+        for (int v : refused) {
+          if (is_admissible(a, b, c, v, vertices_[v].x)) {
+            add_triangle(b, a, v);
+            ++connections_;
+            return true;
+          }
+        }
+        std::ostringstream message;
+        message << "the imaginary triangle at edge (" << a << ", " << b << ") between "
+                << describe_point(ya) << " and " << describe_point(yb)
+                << " overlaps the mesh and no vertex in its connection sector can be connected";
+        why = message.str();
+        return false;
+      }
+      s *= options_.step_reduction;
+      continue;
+    }
+    // Realise T̂ by a new solution.
+    StepFailure failure;
+    std::optional<NewPoint> point = compute_point(predicted, s, vertices_[a].T, failure);
+    if (!point) {
+      why = failure.why;
+      s *= failure.factor;
+      continue;
+    }
+    if (const auto angle = worst_tangent_angle(a, *point, b)) {
+      s *= std::clamp(0.95 * std::acos(options_.min_tangent_cosine) / *angle, 0.25, 0.9);
+      std::ostringstream message;
+      message << "the tangent planes at the ends of a new edge differ by " << *angle * 180 / kPi
+              << "° at " << describe_point(point->vertex.x);
+      why = message.str();
+      continue;
+    }
+    if (options_.tolerance > 0) {
+      // Distance of the midpoints of the new edges to M by one simplified Gauss–Newton step.
+      double distance = 0.0;
+      Eigen::VectorXd F(n_ - 2), dx(n_);
+      for (int end : {a, b}) {
+        const Eigen::VectorXd mid = 0.5 * (vertices_[end].x + point->vertex.x);
+        problem_.evaluate(mid, F);
+        point->linearization.solve_minimum_norm(-F, dx);
+        distance = std::max(distance, dx.norm());
+      }
+      if (distance > options_.tolerance) {
+        s *= std::clamp(0.9 * std::sqrt(options_.tolerance / distance), 0.25, 0.9);
+        std::ostringstream message;
+        message << "new edges at " << describe_point(point->vertex.x) << " are " << distance
+                << " from M, more than the tolerance " << options_.tolerance;
+        why = message.str();
+        continue;
+      }
+      point->vertex.step_limit =
+          s * std::min(options_.max_step_growth,
+                       0.9 * std::sqrt(options_.tolerance / std::max(distance, 1e-300)));
+    }
+    // The real triangle must not overlap the mesh, and must not end next to a front vertex.
+    bool near_vertex = false;
+    for (int v : front_vertices_near(point->vertex.x, options_.close_vertex_fraction * s)) {
+      near_vertex = near_vertex || (v != a && v != b);
+    }
+    if (near_vertex || !is_admissible(a, b, c, -1, point->vertex.x)) {
+      if (connect()) {
+        return true;
+      }
+      s *= options_.step_reduction;
+      why = "the new triangle at " + describe_point(point->vertex.x) + " would overlap the mesh";
+      continue;
+    }
+    const int v = add_vertex(std::move(point->vertex));
+    add_triangle(b, a, v);
+    return true;
+  }
+  std::ostringstream message;
+  message << "cannot realise the imaginary triangle at edge (" << a << ", " << b << ") between "
+          << describe_point(ya) << " and " << describe_point(yb) << " even with step " << min_step_
+          << (why.empty() ? "" : "; last reason: ") << why;
+  why = message.str();
+  return false;
+}
+
+void BezierBuilder::build_initial_triangle(const StartPoint& start) {
+  VertexData first;
+  first.x = start.x;
+  first.T = start.linearization.tangent_basis();
+  first.step = options_.initial_step;
+  // The start's own contraction reflects the user's guess, not the surface: use θ̄, so the
+  // first predicted steps are the initial step itself.
+  first.theta = options_.target_contraction;
+  first.faces = faces_of(first.x);
+  const Eigen::MatrixXd T0 = first.T;
+  const Eigen::VectorXd y0 = first.x;
+  add_vertex(std::move(first));
+  // Tangent continuation in two directions 60° apart (the paper: "two linearly independent
+  // tangents"; 60° gives an equilateral start).
+  double s = options_.initial_step;
+  std::string why;
+  for (int attempt = 0; attempt < 24; ++attempt) {
+    std::vector<NewPoint> points;
+    bool ok = true;
+    for (double angle : {0.0, kPi / 3}) {
+      const Eigen::VectorXd direction = T0 * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+      StepFailure failure;
+      auto point = compute_point(y0 + s * direction, s, T0, failure);
+      if (!point) {
+        why = failure.why;
+        ok = false;
+        break;
+      }
+      points.push_back(std::move(*point));
+    }
+    if (ok) {
+      for (const NewPoint& p : points) {
+        ok = ok && !worst_tangent_angle(0, p, -1);
+      }
+      const Eigen::VectorXd t12 =
+          edge_tangent(points[0].vertex.T, points[0].vertex.x, points[1].vertex.x);
+      const Eigen::VectorXd t21 =
+          edge_tangent(points[1].vertex.T, points[1].vertex.x, points[0].vertex.x);
+      ok = ok && std::abs(t12.dot(t21)) >= options_.min_tangent_cosine;
+      const PlaneFrame plane(y0, points[0].vertex.x, points[1].vertex.x);
+      ok = ok && plane.valid;
+      if (!ok) {
+        why = "the tangent planes of the initial triangle differ by more than arccos(α_min)";
+      }
+    }
+    double reduction = options_.step_reduction;
+    if (ok && options_.tolerance > 0) {
+      // The tolerance holds for the initial triangle's edges too: every later edge is at least
+      // half as long as the edge it grows from, so a too long first edge could never be fixed.
+      const std::array<Eigen::VectorXd, 3> corners{y0, points[0].vertex.x, points[1].vertex.x};
+      double distance = 0.0;
+      Eigen::VectorXd F(n_ - 2), dx(n_);
+      for (int e = 0; e < 3; ++e) {
+        const Eigen::VectorXd mid = 0.5 * (corners[e] + corners[(e + 1) % 3]);
+        problem_.evaluate(mid, F);
+        points[0].linearization.solve_minimum_norm(-F, dx);
+        distance = std::max(distance, dx.norm());
+      }
+      if (distance > options_.tolerance) {
+        ok = false;
+        reduction = std::clamp(0.9 * std::sqrt(options_.tolerance / distance), 0.25, 0.9);
+        why = "the initial triangle's edges are farther from M than the tolerance";
+      }
+    }
+    if (ok) {
+      const int v1 = add_vertex(std::move(points[0].vertex));
+      const int v2 = add_vertex(std::move(points[1].vertex));
+      add_triangle(0, v1, v2);
+      return;
+    }
+    s *= reduction;
+  }
+  throw ComputationFailed("the initial triangle at " + describe_point(y0) +
+                          " could not be built: " + why);
+}
+
+void BezierBuilder::run() {
+  while (!queue_.empty()) {
+    const QueueEntry entry = queue_.top();
+    queue_.pop();
+    if (!is_free(entry.a, entry.b) || is_boundary_edge(entry.a, entry.b)) {
+      continue;
+    }
+    const double key = front_angle(entry.a, entry.b);
+    if (key > entry.key + 1e-12) {
+      queue_.push({key, entry.a, entry.b});
+      continue;
+    }
+    std::string why;
+    if (realize(entry.a, entry.b, why)) {
+      continue;
+    }
+    // Retry later: the triangles added at the other edges may resolve the conflict, and an
+    // edge is pushed again whenever a triangle is added at one of its ends.
+    int& failures = failures_[edge_key(entry.a, entry.b)];
+    if (failures == 0) {
+      failure_messages_.emplace_back(edge_key(entry.a, entry.b), why);
+    }
+    if (++failures < kMaxEdgeFailures) {
+      queue_.push({front_angle(entry.a, entry.b), entry.a, entry.b});
+    }
+  }
+  // Edges that are still free (and not on the domain boundary) could not be realised.
+  for (const auto& [key, message] : failure_messages_) {
+    const int a = static_cast<int>(key >> 32);
+    const int b = static_cast<int>(key & 0xffffffffu);
+    if (is_free(a, b) && !is_boundary_edge(a, b)) {
+      throw StopRun{CoveringTermination::FrontCollision, message};
+    }
+  }
+}
+
+void BezierBuilder::extract(BezierResult& result) const {
+  // A partial run may leave pinched vertices (two fans meeting at a vertex, a state the
+  // completed run always resolves). Keep the largest fan at such a vertex and drop the others,
+  // repeatedly, so that the returned mesh is valid.
+  std::vector<bool> keep(triangles_.size(), true);
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<std::vector<int>> around(vertices_.size());
+    for (std::size_t t = 0; t < triangles_.size(); ++t) {
+      if (keep[t]) {
+        for (int v : triangles_[t]) {
+          around[v].push_back(static_cast<int>(t));
+        }
+      }
+    }
+    for (std::size_t v = 0; v < vertices_.size(); ++v) {
+      const auto& fan = around[v];
+      if (fan.size() < 2) {
+        continue;
+      }
+      // Components of the fan, joined across edges through v.
+      std::vector<int> component(fan.size(), -1);
+      int components = 0;
+      for (std::size_t i = 0; i < fan.size(); ++i) {
+        if (component[i] >= 0) {
+          continue;
+        }
+        std::vector<std::size_t> stack{i};
+        component[i] = components;
+        while (!stack.empty()) {
+          const std::size_t k = stack.back();
+          stack.pop_back();
+          for (std::size_t j = 0; j < fan.size(); ++j) {
+            if (component[j] >= 0) {
+              continue;
+            }
+            int shared = 0;
+            for (int p : triangles_[fan[k]]) {
+              for (int q : triangles_[fan[j]]) {
+                shared += (p == q && p != static_cast<int>(v)) ? 1 : 0;
+              }
+            }
+            if (shared > 0) {
+              component[j] = components;
+              stack.push_back(j);
+            }
+          }
+        }
+        ++components;
+      }
+      if (components < 2) {
+        continue;
+      }
+      std::vector<int> sizes(components, 0);
+      for (int c : component) {
+        ++sizes[c];
+      }
+      const int largest =
+          static_cast<int>(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
+      for (std::size_t i = 0; i < fan.size(); ++i) {
+        if (component[i] != largest) {
+          keep[fan[i]] = false;
+          changed = true;
+        }
+      }
+    }
+  }
+  std::vector<int> new_index(vertices_.size(), -1);
+  std::vector<Triangle> triangles;
+  for (std::size_t t = 0; t < triangles_.size(); ++t) {
+    if (!keep[t]) {
+      continue;
+    }
+    Triangle tri = triangles_[t];
+    for (int& v : tri) {
+      if (new_index[v] < 0) {
+        new_index[v] = 0;
+      }
+    }
+    triangles.push_back(tri);
+    result.patches.push_back(patches_[t]);
+  }
+  int count = 0;
+  for (int& index : new_index) {
+    if (index >= 0) {
+      index = count++;
+    }
+  }
+  Eigen::MatrixXd points(n_, count);
+  for (std::size_t v = 0; v < vertices_.size(); ++v) {
+    if (new_index[v] >= 0) {
+      points.col(new_index[v]) = vertices_[v].x;
+    }
+  }
+  for (Triangle& tri : triangles) {
+    for (int& v : tri) {
+      v = new_index[v];
+    }
+  }
+  result.mesh = TriangleMesh(points, std::move(triangles));
+}
+
+}  // namespace
+
+BezierResult triangulate_by_bezier_continuation(const ImplicitProblem& user_problem,
+                                                const Eigen::VectorXd& start, const Domain& domain,
+                                                const BezierOptions& options) {
+  options.validate();
+  TESSERA_CHECK(
+      domain.is_unbounded() || domain.ambient_dimension() == user_problem.ambient_dimension(),
+      "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^"
+                        << user_problem.ambient_dimension());
+  const auto clock_start = std::chrono::steady_clock::now();
+  CountedProblem problem(user_problem);
+  const double max_start_distance =
+      options.max_start_distance > 0 ? options.max_start_distance : 10.0 * options.initial_step;
+  const StartPoint start_point = project_start_point(problem, start, domain, max_start_distance);
+  BezierResult result;
+  result.summary.method = "bezier";
+  result.summary.step = options.initial_step;
+  BezierBuilder builder(problem, domain, options);
+  builder.build_initial_triangle(start_point);
+  try {
+    builder.run();
+  } catch (const StopRun& stop) {
+    result.summary.termination = stop.termination;
+    result.summary.message = stop.message;
+  }
+  builder.extract(result);
+  result.summary.merges = builder.connections();
+  result.summary.step_reductions = builder.step_reductions();
+  result.summary.vertex_count = result.mesh.vertex_count();
+  result.summary.triangle_count = result.mesh.triangle_count();
+  result.summary.function_evaluations = problem.function_evaluations();
+  result.summary.jacobian_evaluations = problem.jacobian_evaluations();
+  result.summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+}  // namespace tessera
