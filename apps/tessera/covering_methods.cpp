@@ -67,6 +67,7 @@ CoveringResult run_bezier(const ProblemSetup& setup, const MethodSettings& setti
   options.progress = settings.progress;
   BezierResult bezier =
       triangulate_by_bezier_continuation(*setup.problem, setup.start, setup.domain, options);
+  bezier.summary.tolerance = options.tolerance;  // so that `compare` shows the bound asked for
   return {std::move(bezier.mesh), std::move(bezier.summary), std::move(bezier.patches)};
 }
 

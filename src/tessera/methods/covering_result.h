@@ -2,6 +2,7 @@
 // What every covering method returns: the mesh and a summary (Options in, Result out).
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
@@ -65,5 +66,18 @@ struct CoveringProgress {
   int front_size = 0;
 };
 using ProgressCallback = std::function<void(const CoveringProgress&)>;
+
+class CountedProblem;
+class Domain;
+class ImplicitProblem;
+
+/// Every method's entry check: the domain (if bounded) lives in the problem's R^n.
+/// \throw InvalidArgument naming both dimensions.
+void check_domain_dimension(const Domain& domain, const ImplicitProblem& problem);
+
+/// Fills the summary's counts (vertices, triangles, evaluations of F and DF) and the wall time
+/// since `start`: the last step of every method.
+void finish_summary(const TriangleMesh& mesh, CoveringSummary& summary,
+                    const CountedProblem& problem, std::chrono::steady_clock::time_point start);
 
 }  // namespace tessera

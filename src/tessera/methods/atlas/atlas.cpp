@@ -769,10 +769,7 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
 CoveringResult cover_by_atlas(const ImplicitProblem& user_problem, const Eigen::VectorXd& start,
                               const Domain& domain, const AtlasOptions& options) {
   options.validate();
-  TESSERA_CHECK(domain.is_unbounded() ||
-                    domain.ambient_dimension() == user_problem.ambient_dimension(),
-                "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^"
-                                  << user_problem.ambient_dimension());
+  check_domain_dimension(domain, user_problem);
   const auto clock_start = std::chrono::steady_clock::now();
   CountedProblem problem(user_problem);
   const double max_start_distance =
@@ -789,13 +786,7 @@ CoveringResult cover_by_atlas(const ImplicitProblem& user_problem, const Eigen::
     result.summary.notes.push_back("charts snapped onto the domain boundary left a mesh the "
                                    "clipping refused; computed again without snapping");
   }
-  CoveringSummary& summary = result.summary;
-  summary.vertex_count = result.mesh.vertex_count();
-  summary.triangle_count = result.mesh.triangle_count();
-  summary.function_evaluations = problem.function_evaluations();
-  summary.jacobian_evaluations = problem.jacobian_evaluations();
-  summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  finish_summary(result.mesh, result.summary, problem, clock_start);
   return result;
 }
 

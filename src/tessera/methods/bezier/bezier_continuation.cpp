@@ -1270,10 +1270,7 @@ BezierResult triangulate_by_bezier_continuation(const ImplicitProblem& user_prob
                                                 const Eigen::VectorXd& start, const Domain& domain,
                                                 const BezierOptions& options) {
   options.validate();
-  TESSERA_CHECK(
-      domain.is_unbounded() || domain.ambient_dimension() == user_problem.ambient_dimension(),
-      "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^"
-                        << user_problem.ambient_dimension());
+  check_domain_dimension(domain, user_problem);
   const auto clock_start = std::chrono::steady_clock::now();
   CountedProblem problem(user_problem);
   const double max_start_distance =
@@ -1293,12 +1290,7 @@ BezierResult triangulate_by_bezier_continuation(const ImplicitProblem& user_prob
   builder.extract(result);
   result.summary.merges = builder.connections();
   result.summary.step_reductions = builder.step_reductions();
-  result.summary.vertex_count = result.mesh.vertex_count();
-  result.summary.triangle_count = result.mesh.triangle_count();
-  result.summary.function_evaluations = problem.function_evaluations();
-  result.summary.jacobian_evaluations = problem.jacobian_evaluations();
-  result.summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  finish_summary(result.mesh, result.summary, problem, clock_start);
   return result;
 }
 

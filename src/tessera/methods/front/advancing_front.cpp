@@ -629,9 +629,7 @@ CoveringResult triangulate_by_front(const ImplicitProblem& user_problem,
                                     const Eigen::VectorXd& start, const Domain& domain,
                                     const FrontOptions& options) {
   options.validate();
-  TESSERA_CHECK(domain.is_unbounded() || domain.ambient_dimension() == user_problem.ambient_dimension(),
-                "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^"
-                                  << user_problem.ambient_dimension());
+  check_domain_dimension(domain, user_problem);
   const auto clock_start = std::chrono::steady_clock::now();
   CountedProblem problem(user_problem);
   StartPoint start_point = project_start_point(problem, start, domain,
@@ -652,12 +650,7 @@ CoveringResult triangulate_by_front(const ImplicitProblem& user_problem,
       result.summary.message = clipped.message;
     }
   }
-  result.summary.vertex_count = result.mesh.vertex_count();
-  result.summary.triangle_count = result.mesh.triangle_count();
-  result.summary.function_evaluations = problem.function_evaluations();
-  result.summary.jacobian_evaluations = problem.jacobian_evaluations();
-  result.summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  finish_summary(result.mesh, result.summary, problem, clock_start);
   return result;
 }
 
