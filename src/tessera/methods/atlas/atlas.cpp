@@ -744,19 +744,33 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
       summary.message = clipped.message;
     }
   }
-  // Snapping and cutting reshape the triangles at ∂S: those are bisected until their sampled
-  // points are within ε of M again.
-  if (!domain.is_unbounded()) {
+  // Clipping leaves poor angles at ∂S that Delaunay swaps in the tangent planes repair (the
+  // interior is a weighted Delaunay triangulation already; measured: cut sphere 22° → 28°).
+  // Snapping, cutting and swapping reshape the triangles near ∂S: those are then bisected
+  // until their sampled points are within ε of M again.
+  if (!domain.is_unbounded() && result.mesh.triangle_count() > 0) {
+    improve_by_edge_swaps(result.mesh, problem, ImprovementOptions{});
+    const double band = 2.0 * summary.max_chart_radius;
     std::vector<int> at_boundary;
     for (int t = 0; t < result.mesh.triangle_count(); ++t) {
       for (int v : result.mesh.triangle(t)) {
-        if (std::abs(domain.boundary_distance(result.mesh.point(v)).signed_distance) <= 1e-8) {
+        if (domain.boundary_distance(result.mesh.point(v)).signed_distance <= band) {
           at_boundary.push_back(t);
           break;
         }
       }
     }
     summary.refined_edges += refine_where(problem, domain, result.mesh, at_boundary, options);
+    if (summary.refined_edges > 0) {
+      // Bisection can leave a poor angle next to the split edge: swap once more, and check
+      // again, so that the last word is the distance bound's.
+      improve_by_edge_swaps(result.mesh, problem, ImprovementOptions{});
+      std::vector<int> all(result.mesh.triangle_count());
+      for (int t = 0; t < result.mesh.triangle_count(); ++t) {
+        all[t] = t;
+      }
+      summary.refined_edges += refine_where(problem, domain, result.mesh, all, options);
+    }
   }
   check_coverage(domain, result.mesh, summary);
   summary.notes.push_back("covered the component of M that contains the start point; other "

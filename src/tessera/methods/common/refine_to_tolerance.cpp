@@ -63,8 +63,21 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const Eigen::VectorXd a = mesh.point(tri[0]);
       const Eigen::VectorXd b = mesh.point(tri[1]);
       const Eigen::VectorXd c = mesh.point(tri[2]);
-      const double worst = std::max({distance_to_m((a + b + c) / 3.0), distance_to_m(0.5 * (a + b)),
-                                     distance_to_m(0.5 * (b + c)), distance_to_m(0.5 * (c + a))});
+      double worst = std::max({distance_to_m((a + b + c) / 3.0), distance_to_m(0.5 * (a + b)),
+                               distance_to_m(0.5 * (b + c)), distance_to_m(0.5 * (c + a))});
+      // On a surface of constant curvature the farthest point is the circumcentre (when it
+      // lies inside the triangle); sampling it makes the estimate nearly exact.
+      const Eigen::VectorXd ab = b - a;
+      const Eigen::VectorXd ac = c - a;
+      const double uu = ab.squaredNorm(), ww = ac.squaredNorm(), uw = ab.dot(ac);
+      const double det = 2.0 * (uu * ww - uw * uw);
+      if (det > 0) {
+        const double beta = ww * (uu - uw) / det;
+        const double gamma = uu * (ww - uw) / det;
+        if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) {
+          worst = std::max(worst, distance_to_m(a + beta * ab + gamma * ac));
+        }
+      }
       if (worst <= threshold) {
         continue;
       }

@@ -12,11 +12,12 @@
 namespace tessera {
 
 struct ToleranceRefinementOptions {
-  /// A triangle is split if its centroid or an edge midpoint lies farther than this from M.
+  /// A triangle is split if its centroid, an edge midpoint or its circumcentre (when inside)
+  /// lies farther than tolerance·sample_safety from M.
   double tolerance = 1e-3;
-  /// The four sampled points can miss the farthest point of a triangle (its circumcentre):
-  /// triangles are split above tolerance·sample_safety.
-  double sample_safety = 0.9;
+  /// The samples include the farthest point of a triangle on a surface of constant curvature
+  /// (the circumcentre, or a midpoint for obtuse triangles); 0.97 covers the rest.
+  double sample_safety = 0.97;
   int max_rounds = 6;
   /// Points within this of a domain face count as lying on it (boundary edges stay on ∂S).
   double face_tolerance = 1e-8;
