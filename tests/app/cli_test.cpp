@@ -335,7 +335,7 @@ TEST(CliAtlas, IsTheDefaultMethodAndTakesATolerance) {
 TEST(CliCompare, PrintsOneRowPerMethodWithValidityAndTopology) {
   const testing::CommandResult result = testing::run_cli("compare sphere");
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  for (const std::string method : {"atlas", "front"}) {
+  for (const std::string method : {"atlas", "front", "bezier"}) {
     const auto row = result.output.find("\n" + method + " ");
     ASSERT_NE(row, std::string::npos) << result.output;
     const std::string line = result.output.substr(row + 1, result.output.find('\n', row + 1) - row - 1);
