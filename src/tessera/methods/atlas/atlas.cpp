@@ -717,6 +717,7 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
     }
     summary.refined_edges += refine_where(problem, domain, result.mesh, to_check, options);
   }
+  double boundary_scale = min_radius;  // median radius of the charts near ∂S (set below)
   if (!domain.is_unbounded() && result.mesh.triangle_count() > 0) {
     ClipOptions clip;
     // Snap and collapse lengths follow the charts near the boundary: the median radius of the
@@ -727,7 +728,7 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
         boundary_radii.push_back(builder.chart(c).radius);
       }
     }
-    double scale = min_radius;
+    double& scale = boundary_scale;
     if (!boundary_radii.empty()) {
       std::nth_element(boundary_radii.begin(), boundary_radii.begin() + boundary_radii.size() / 2,
                        boundary_radii.end());
@@ -750,26 +751,27 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
   // until their sampled points are within ε of M again.
   if (!domain.is_unbounded() && result.mesh.triangle_count() > 0) {
     improve_by_edge_swaps(result.mesh, problem, ImprovementOptions{});
-    const double band = 2.0 * summary.max_chart_radius;
-    std::vector<int> at_boundary;
-    for (int t = 0; t < result.mesh.triangle_count(); ++t) {
-      for (int v : result.mesh.triangle(t)) {
-        if (domain.boundary_distance(result.mesh.point(v)).signed_distance <= band) {
-          at_boundary.push_back(t);
-          break;
+    // Swaps stay within a triangle or two of ∂S: check the band of two boundary radii.
+    const auto near_boundary = [&] {
+      std::vector<int> band;
+      for (int t = 0; t < result.mesh.triangle_count(); ++t) {
+        for (int v : result.mesh.triangle(t)) {
+          if (domain.boundary_distance(result.mesh.point(v)).signed_distance <=
+              2.0 * boundary_scale) {
+            band.push_back(t);
+            break;
+          }
         }
       }
-    }
-    summary.refined_edges += refine_where(problem, domain, result.mesh, at_boundary, options);
-    if (summary.refined_edges > 0) {
+      return band;
+    };
+    const int split = refine_where(problem, domain, result.mesh, near_boundary(), options);
+    summary.refined_edges += split;
+    if (split > 0) {
       // Bisection can leave a poor angle next to the split edge: swap once more, and check
       // again, so that the last word is the distance bound's.
       improve_by_edge_swaps(result.mesh, problem, ImprovementOptions{});
-      std::vector<int> all(result.mesh.triangle_count());
-      for (int t = 0; t < result.mesh.triangle_count(); ++t) {
-        all[t] = t;
-      }
-      summary.refined_edges += refine_where(problem, domain, result.mesh, all, options);
+      summary.refined_edges += refine_where(problem, domain, result.mesh, near_boundary(), options);
     }
   }
   check_coverage(domain, result.mesh, summary);
