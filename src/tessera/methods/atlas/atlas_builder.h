@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: MIT
+// The continuation of method `atlas`: charts are created on M, cut each other's polygons, and
+// are added where a polygon has an uncovered corner, until none is left (Henderson's section 5).
+// Internal to the method: atlas.cpp turns the charts into a mesh.
+#pragma once
+
+#include <Eigen/Core>
+#include <deque>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "tessera/core/domain.h"
+#include "tessera/core/implicit_problem.h"
+#include "tessera/core/linearization.h"
+#include "tessera/methods/atlas/atlas.h"
+#include "tessera/methods/atlas/chart_index.h"
+#include "tessera/methods/atlas/chart_polygon.h"
+#include "tessera/methods/covering_result.h"
+
+namespace tessera::detail {
+
+struct Chart {
+  double radius = 0.0;
+  ChartPolygon polygon;
+  int parent = -1;
+  signed char orientation = 0;  // sign of det([J; Tᵀ]) at the centre; 0: not watched
+  float jacobian_scale = 0.0f;  // σ_min(J) at the centre (only where crossings are watched)
+  bool queued = false;
+};
+
+class AtlasBuilder {
+ public:
+  AtlasBuilder(const ImplicitProblem& problem, const Domain& domain, const AtlasOptions& options);
+
+  void run(const Eigen::VectorXd& start, CoveringSummary& summary);
+
+  int chart_count() const { return static_cast<int>(charts_.size()); }
+  Eigen::Map<const Eigen::VectorXd> center(int c) const {
+    return {centers_.data() + static_cast<std::ptrdiff_t>(c) * n_, n_};
+  }
+  Eigen::Map<const Eigen::MatrixXd> tangent(int c) const {
+    return {tangents_.data() + static_cast<std::ptrdiff_t>(c) * 2 * n_, n_, 2};
+  }
+  const Chart& chart(int c) const { return charts_[c]; }
+  bool is_closed(int c) const {
+    const Chart& ch = charts_[c];
+    if (ch.polygon.is_empty()) {
+      return false;
+    }
+    for (const auto& v : ch.polygon.vertices()) {
+      if (v.edge_label == ChartPolygon::kNoNeighbour) {
+        return false;
+      }
+    }
+    return ch.polygon.farthest_exterior_vertex(ch.radius) < 0;
+  }
+
+ private:
+  bool choose_radius(const Linearization& at_center, double trial, double& radius);
+  bool project(const Linearization& at_center, double distance, Eigen::VectorXd& y);
+  void evaluate_jacobian(const Eigen::VectorXd& x);
+  double jacobian_scale() const;
+  int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);
+  void connect_neighbours(int k);
+  int next_open_vertex(int c) const;
+  Eigen::Vector2d child_position(int c, int vertex) const;
+  void snap_to_domain_boundary(Eigen::VectorXd& y, double radius);
+  bool is_eligible(int c) const;
+  bool same_sheet(int a, int b, const Eigen::VectorXd& offset) const;
+  signed char orientation_sign(const Eigen::Ref<const Eigen::MatrixXd>& T) const;
+  void enqueue(int c);
+  void fail(CoveringSummary& summary, CoveringTermination why, const std::string& message) {
+    summary.termination = why;
+    summary.message = message;
+    stopped_ = true;
+  }
+
+  const ImplicitProblem& problem_;
+  const Domain& domain_;
+  const AtlasOptions& options_;
+  const int n_;
+  ChartIndex index_;
+  const bool watch_crossings_;
+  std::vector<double> centers_;   // n per chart
+  std::vector<double> tangents_;  // n×2 per chart, column-major
+  std::vector<Chart> charts_;
+  std::deque<int> open_;          // charts that may have eligible exterior vertices
+  std::unordered_map<int, Linearization> factored_;  // factorisations of queued charts
+  std::vector<Linearization> spare_;  // factorisations of processed charts, reused (no allocation)
+  Linearization take_spare() {
+    if (spare_.empty()) {
+      return Linearization();
+    }
+    Linearization spare = std::move(spare_.back());
+    spare_.pop_back();
+    return spare;
+  }
+  std::vector<int> candidates_;   // scratch
+  Eigen::VectorXd offset_;        // scratch
+  Eigen::VectorXd predicted_;     // scratch
+  Eigen::MatrixXd jacobian_;      // J at the last point checked for singularity
+  Eigen::VectorXd probe_;         // scratch
+  Eigen::MatrixXd quadratic_;     // scratch: n×3, q_i of choose_radius
+  Eigen::MatrixXd parent_tangent_;  // scratch
+  Linearization scratch_;         // workspace of full Gauss–Newton
+  bool stopped_ = false;
+  int singular_crossings_ = 0;
+  int sheet_rejections_ = 0;
+  std::string first_crossing_;
+  double min_radius_ = 0.0;
+};
+
+}  // namespace tessera::detail
