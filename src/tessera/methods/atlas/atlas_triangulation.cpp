@@ -12,6 +12,7 @@
 
 #include "tessera/core/describe.h"
 #include "tessera/geometry/mesh_quality.h"
+#include "tessera/geometry/pinched_vertices.h"
 
 namespace tessera {
 namespace {
@@ -21,7 +22,7 @@ namespace {
 constexpr int kMaxHoleVertices = 12;
 
 struct Proposal {
-  unsigned __int128 key = 0;  // the triangle's charts in increasing order, packed
+  std::pair<std::uint64_t, std::uint32_t> key;  // the triangle's charts, increasing, packed
   std::array<int, 3> sorted;  // the same, unpacked
   int proposer = 0;
   bool even = true;  // (i, j, k) as proposed is an even permutation of `sorted`
@@ -243,91 +244,6 @@ bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>
   return true;
 }
 
-// A vertex whose triangles form two or more fans that share no edge is not vertex-manifold;
-// keeps the largest fan there and drops the others, until no such vertex is left.
-// Returns the number of triangles dropped.
-int remove_pinched_fans(int vertex_count, std::vector<Triangle>& triangles) {
-  int dropped_total = 0;
-  for (int round = 0; round < 8; ++round) {
-    std::vector<int> first(vertex_count + 1, 0);
-    for (const Triangle& t : triangles) {
-      for (int v : t) {
-        ++first[v + 1];
-      }
-    }
-    for (int v = 0; v < vertex_count; ++v) {
-      first[v + 1] += first[v];
-    }
-    std::vector<int> incident(first.back());
-    std::vector<int> fill = first;
-    for (int t = 0; t < static_cast<int>(triangles.size()); ++t) {
-      for (int v : triangles[t]) {
-        incident[fill[v]++] = t;
-      }
-    }
-    std::vector<bool> drop(triangles.size(), false);
-    bool any = false;
-    std::vector<int> parent;
-    for (int v = 0; v < vertex_count; ++v) {
-      const int begin = first[v];
-      const int count = first[v + 1] - begin;
-      if (count < 2) {
-        continue;
-      }
-      parent.resize(count);
-      for (int i = 0; i < count; ++i) {
-        parent[i] = i;
-      }
-      auto root = [&](int i) {
-        while (parent[i] != i) {
-          i = parent[i] = parent[parent[i]];
-        }
-        return i;
-      };
-      for (int i = 0; i < count; ++i) {
-        for (int j = i + 1; j < count; ++j) {
-          const Triangle& a = triangles[incident[begin + i]];
-          const Triangle& b = triangles[incident[begin + j]];
-          int shared = 0;
-          for (int x : a) {
-            shared += (x != v && (x == b[0] || x == b[1] || x == b[2])) ? 1 : 0;
-          }
-          if (shared > 0) {
-            parent[root(i)] = root(j);
-          }
-        }
-      }
-      std::vector<int> size(count, 0);
-      for (int i = 0; i < count; ++i) {
-        ++size[root(i)];
-      }
-      const int largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
-      if (size[largest] == count) {
-        continue;
-      }
-      for (int i = 0; i < count; ++i) {
-        if (root(i) != largest) {
-          drop[incident[begin + i]] = true;
-          any = true;
-        }
-      }
-    }
-    if (!any) {
-      break;
-    }
-    std::vector<Triangle> kept;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      if (drop[t]) {
-        ++dropped_total;
-      } else {
-        kept.push_back(triangles[t]);
-      }
-    }
-    triangles = std::move(kept);
-  }
-  return dropped_total;
-}
-
 }  // namespace
 
 AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
@@ -349,10 +265,10 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
       const std::array<int, 3> t = {c, before, after};
       std::array<int, 3> sorted = t;
       std::sort(sorted.begin(), sorted.end());
-      const unsigned __int128 key =
-          (static_cast<unsigned __int128>(static_cast<std::uint32_t>(sorted[0])) << 64) |
-          (static_cast<unsigned __int128>(static_cast<std::uint32_t>(sorted[1])) << 32) |
-          static_cast<std::uint32_t>(sorted[2]);
+      const std::pair<std::uint64_t, std::uint32_t> key = {
+          (static_cast<std::uint64_t>(static_cast<std::uint32_t>(sorted[0])) << 32) |
+              static_cast<std::uint32_t>(sorted[1]),
+          static_cast<std::uint32_t>(sorted[2])};
       proposals.push_back({key, sorted, c, is_even_rotation(t, sorted)});
       ++proposed[c];
     }
@@ -442,7 +358,17 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
   triangles.insert(triangles.end(), settled.begin(), settled.end());
   // Pinches arise at the ragged outer edge of an unfinished atlas (outside the domain, or
   // where a run stopped); the caller checks that none is left where M must be covered.
-  result.dropped_triangles = remove_pinched_fans(cells.chart_count, triangles);
+  {
+    const std::vector<bool> keep = keep_largest_fans(cells.chart_count, triangles);
+    std::vector<Triangle> kept;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      if (keep[t]) {
+        kept.push_back(triangles[t]);
+      }
+    }
+    result.dropped_triangles = static_cast<int>(triangles.size() - kept.size());
+    triangles = std::move(kept);
+  }
 
   // Vertices: the charts that carry triangles, in chart order.
   std::vector<int> vertex_of(cells.chart_count, -1);

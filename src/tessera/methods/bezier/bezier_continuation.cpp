@@ -24,6 +24,7 @@
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
+#include "tessera/geometry/pinched_vertices.h"
 #include "tessera/methods/common/point_grid.h"
 #include "tessera/methods/start_point.h"
 
@@ -1164,71 +1165,9 @@ void BezierBuilder::run() {
 
 void BezierBuilder::extract(BezierResult& result) const {
   // A partial run may leave pinched vertices (two fans meeting at a vertex, a state the
-  // completed run always resolves). Keep the largest fan at such a vertex and drop the others,
-  // repeatedly, so that the returned mesh is valid.
-  std::vector<bool> keep(triangles_.size(), true);
-  for (bool changed = true; changed;) {
-    changed = false;
-    std::vector<std::vector<int>> around(vertices_.size());
-    for (std::size_t t = 0; t < triangles_.size(); ++t) {
-      if (keep[t]) {
-        for (int v : triangles_[t]) {
-          around[v].push_back(static_cast<int>(t));
-        }
-      }
-    }
-    for (std::size_t v = 0; v < vertices_.size(); ++v) {
-      const auto& fan = around[v];
-      if (fan.size() < 2) {
-        continue;
-      }
-      // Components of the fan, joined across edges through v.
-      std::vector<int> component(fan.size(), -1);
-      int components = 0;
-      for (std::size_t i = 0; i < fan.size(); ++i) {
-        if (component[i] >= 0) {
-          continue;
-        }
-        std::vector<std::size_t> stack{i};
-        component[i] = components;
-        while (!stack.empty()) {
-          const std::size_t k = stack.back();
-          stack.pop_back();
-          for (std::size_t j = 0; j < fan.size(); ++j) {
-            if (component[j] >= 0) {
-              continue;
-            }
-            int shared = 0;
-            for (int p : triangles_[fan[k]]) {
-              for (int q : triangles_[fan[j]]) {
-                shared += (p == q && p != static_cast<int>(v)) ? 1 : 0;
-              }
-            }
-            if (shared > 0) {
-              component[j] = components;
-              stack.push_back(j);
-            }
-          }
-        }
-        ++components;
-      }
-      if (components < 2) {
-        continue;
-      }
-      std::vector<int> sizes(components, 0);
-      for (int c : component) {
-        ++sizes[c];
-      }
-      const int largest =
-          static_cast<int>(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
-      for (std::size_t i = 0; i < fan.size(); ++i) {
-        if (component[i] != largest) {
-          keep[fan[i]] = false;
-          changed = true;
-        }
-      }
-    }
-  }
+  // completed run always resolves): keep the largest fan there, so that the mesh is valid.
+  const std::vector<bool> keep =
+      keep_largest_fans(static_cast<int>(vertices_.size()), triangles_);
   std::vector<int> new_index(vertices_.size(), -1);
   std::vector<Triangle> triangles;
   for (std::size_t t = 0; t < triangles_.size(); ++t) {
