@@ -7,6 +7,8 @@
 // Every deviation from the paper is listed with its reason in docs/algorithms/bezier.md.
 #include "tessera/methods/bezier/bezier_continuation.h"
 
+#include "tessera/methods/bezier/bezier_builder.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
@@ -24,7 +26,6 @@
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
-#include "tessera/geometry/pinched_vertices.h"
 #include "tessera/methods/common/point_grid.h"
 #include "tessera/methods/start_point.h"
 
@@ -79,6 +80,7 @@ void BezierOptions::validate() const {
                 "BezierOptions::max_vertices = " << max_vertices << " must be >= 3");
 }
 
+namespace detail {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -88,17 +90,6 @@ constexpr int kMaxEdgeFailures = 3;
 // Triangles are shrunk by this fraction towards their centroids before the overlap test, so
 // that triangles sharing a vertex or an edge do not count as overlapping.
 constexpr double kOverlapShrink = 1e-4;
-
-using EdgeKey = std::uint64_t;
-EdgeKey edge_key(int a, int b) {
-  return (static_cast<EdgeKey>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
-}
-
-struct StopRun {
-  CoveringTermination termination;
-  std::string message;
-};
 
 // An orthonormal frame of the plane through three points (paper, section 5, "Projections and
 // barycentric coordinates"): e1 along p1 − p0, e2 by one Gram–Schmidt step.
@@ -134,9 +125,6 @@ struct PlaneFrame {
   }
 };
 
-double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-  return u(0) * v(1) - u(1) * v(0);
-}
 
 // Barycentric coordinates of p with respect to the 2-D triangle (A, B, C).
 Eigen::Vector3d barycentric(const Eigen::Vector2d& p, const Eigen::Vector2d& A,
@@ -187,304 +175,7 @@ Eigen::VectorXd edge_tangent(const Eigen::MatrixXd& T_i, const Eigen::VectorXd& 
   return norm > 0 ? Eigen::VectorXd(t / norm) : t;
 }
 
-struct VertexData {
-  Eigen::VectorXd x;
-  Eigen::MatrixXd T;   // n×2 orthonormal basis of T_x M
-  double step = 0.0;   // s_j: the step with which the vertex was computed (section 5)
-  double theta = 0.0;  // θ_j: first contraction of its Gauss–Newton iteration
-  double step_limit = std::numeric_limits<double>::infinity();  // from the tolerance, if any
-  std::vector<int> faces;  // domain half-spaces the vertex lies on
-  bool in_grid = false;
-};
-
-// A computed point, before it is accepted as a vertex.
-struct NewPoint {
-  VertexData vertex;
-  Linearization linearization;  // at vertex.x
-};
-
-// Why a step failed and by how much to reduce it.
-struct StepFailure {
-  std::string why;
-  double factor = 0.5;
-};
-
-struct QueueEntry {
-  double key;
-  int a, b;
-  bool operator>(const QueueEntry& other) const {
-    return key > other.key || (key == other.key && edge_key(a, b) > edge_key(other.a, other.b));
-  }
-};
-
-class BezierBuilder {
- public:
-  BezierBuilder(const ImplicitProblem& problem, const Domain& domain, const BezierOptions& options)
-      : problem_(problem),
-        domain_(domain),
-        options_(options),
-        n_(problem.ambient_dimension()),
-        max_step_(options.max_step > 0 ? options.max_step : 8.0 * options.initial_step),
-        min_step_(options.min_step_fraction * options.initial_step),
-        search_radius_(3.0 * max_step_),
-        grid_(problem.ambient_dimension(), search_radius_) {
-    corrector_.tolerance = options.corrector_tolerance;
-    corrector_.max_iterations = options.max_corrector_iterations;
-    corrector_.max_contraction = options.max_contraction;
-  }
-
-  void build_initial_triangle(const StartPoint& start);
-  void run();
-
-  int connections() const { return connections_; }
-  int step_reductions() const { return step_reductions_; }
-  // The final mesh and patches, with non-manifold vertices of a partial run removed.
-  void extract(BezierResult& result) const;
-  int vertex_count() const { return static_cast<int>(vertices_.size()); }
-
- private:
-  // -- the triangulation
-  int add_vertex(VertexData vertex);
-  void add_triangle(int i, int j, int k);
-  bool has_edge(int a, int b) const { return edge_triangle_.count(edge_key(a, b)) > 0; }
-  bool is_free(int a, int b) const { return has_edge(a, b) && !has_edge(b, a); }
-  bool is_front_vertex(int v) const { return !front_out_[v].empty() || !front_in_[v].empty(); }
-  bool is_boundary_edge(int a, int b) const;
-  int third_vertex(int t, int a, int b) const;
-  void update_front_membership(int v);
-  void push_edges_of(int v);
-  // Front angle at the ends of free edge a→b (radians, through the unfilled side).
-  double wedge_angle(int v, int u, int c, int w) const;
-  std::optional<int> previous_on_front(int a, int b, int c) const;
-  std::optional<int> next_on_front(int a, int b, int c) const;
-  double front_angle(int a, int b) const;
-
-  // -- the algorithm
-  bool realize(int a, int b, std::string& why);
-  double predicted_step(int a, int b) const;
-  std::optional<NewPoint> compute_point(const Eigen::VectorXd& prediction, double s,
-                                        const Eigen::MatrixXd& reference, StepFailure& failure);
-  bool project_onto_faces(Eigen::VectorXd& y, std::vector<int>& faces, double& theta) const;
-  std::vector<int> faces_of(const Eigen::VectorXd& y) const;
-  std::optional<double> worst_tangent_angle(int a, const NewPoint& point, int b) const;
-  bool is_admissible(int a, int b, int c, int v, const Eigen::VectorXd& y) const;
-  double new_edges_distance(int a, int b, int v) const;
-  bool overlaps_mesh(int a, int b, int v, const Eigen::VectorXd& y) const;
-  std::vector<int> front_vertices_near(const Eigen::VectorXd& x, double radius) const;
-
-  const ImplicitProblem& problem_;
-  const Domain& domain_;
-  const BezierOptions& options_;
-  const int n_;
-  const double max_step_;
-  const double min_step_;
-  const double search_radius_;
-  CorrectorOptions corrector_;
-
-  std::vector<VertexData> vertices_;
-  std::vector<Triangle> triangles_;
-  std::vector<CubicBezierPatch> patches_;
-  std::unordered_map<EdgeKey, int> edge_triangle_;  // directed edge → its triangle
-  std::vector<std::vector<int>> vertex_triangles_;
-  std::vector<std::vector<int>> front_out_, front_in_;  // free directed edges at each vertex
-  std::unordered_map<EdgeKey, int> failures_;
-  std::vector<std::pair<EdgeKey, std::string>> failure_messages_;  // first failure of each edge
-  PointGrid grid_;  // front vertices only: the paper's "boundary vertices" (section 4)
-  std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<>> queue_;
-  int connections_ = 0;
-  int step_reductions_ = 0;
-  double longest_edge_ = 0.0;  // of the whole mesh, for the radius of the overlap search
-  int next_progress_ = 1000;
-};
-
-std::vector<int> BezierBuilder::faces_of(const Eigen::VectorXd& y) const {
-  std::vector<int> faces;
-  for (int k = 0; k < static_cast<int>(domain_.half_spaces().size()); ++k) {
-    if (std::abs(domain_.signed_distance(k, y)) <= 1e-9 * (1.0 + y.norm())) {
-      faces.push_back(k);
-    }
-  }
-  return faces;
-}
-
-bool BezierBuilder::is_boundary_edge(int a, int b) const {
-  for (int k : vertices_[a].faces) {
-    if (std::find(vertices_[b].faces.begin(), vertices_[b].faces.end(), k) !=
-        vertices_[b].faces.end()) {
-      return true;
-    }
-  }
-  return false;
-}
-
-int BezierBuilder::third_vertex(int t, int a, int b) const {
-  for (int v : triangles_[t]) {
-    if (v != a && v != b) {
-      return v;
-    }
-  }
-  TESSERA_ASSERT(false);
-  return -1;
-}
-
-int BezierBuilder::add_vertex(VertexData vertex) {
-  if (static_cast<int>(vertices_.size()) >= options_.max_vertices) {
-    std::ostringstream message;
-    message << "stopped at max_vertices = " << options_.max_vertices;
-    throw StopRun{CoveringTermination::VertexLimit, message.str()};
-  }
-  vertices_.push_back(std::move(vertex));
-  vertex_triangles_.emplace_back();
-  front_out_.emplace_back();
-  front_in_.emplace_back();
-  if (options_.progress && static_cast<int>(vertices_.size()) >= next_progress_) {
-    next_progress_ += 1000;
-    CoveringProgress progress;
-    progress.vertex_count = static_cast<int>(vertices_.size());
-    progress.triangle_count = static_cast<int>(triangles_.size());
-    progress.front_size = static_cast<int>(queue_.size());
-    options_.progress(progress);
-  }
-  return static_cast<int>(vertices_.size()) - 1;
-}
-
-void BezierBuilder::update_front_membership(int v) {
-  VertexData& data = vertices_[v];
-  const bool front = is_front_vertex(v);
-  if (front && !data.in_grid) {
-    grid_.insert(v, data.x);
-    data.in_grid = true;
-  } else if (!front && data.in_grid) {
-    grid_.remove(v, data.x);
-    data.in_grid = false;
-  }
-}
-
-void BezierBuilder::add_triangle(int i, int j, int k) {
-  const int t = static_cast<int>(triangles_.size());
-  triangles_.push_back({i, j, k});
-  Eigen::MatrixXd corners(n_, 3);
-  std::array<Eigen::MatrixXd, 3> bases;
-  const std::array<int, 3> ids{i, j, k};
-  for (int c = 0; c < 3; ++c) {
-    longest_edge_ =
-        std::max(longest_edge_, (vertices_[ids[c]].x - vertices_[ids[(c + 1) % 3]].x).norm());
-    corners.col(c) = vertices_[ids[c]].x;
-    bases[c] = vertices_[ids[c]].T;
-  }
-  // Eq. 3.5. The edge curve of edge (y_i, y_j) depends only on y_i, y_j, T_i and T_j, so the
-  // patches of the two triangles at an edge share it: the cubic surface is continuous.
-  patches_.push_back(CubicBezierPatch::interpolate_triangle_on_manifold(
-      corners, bases, options_.edge_length_factor));
-  for (int c = 0; c < 3; ++c) {
-    const int u = ids[c];
-    const int w = ids[(c + 1) % 3];
-    TESSERA_ASSERT(!has_edge(u, w));
-    edge_triangle_[edge_key(u, w)] = t;
-    vertex_triangles_[u].push_back(t);
-    if (has_edge(w, u)) {
-      // w→u was free: the new triangle closes it.
-      auto& out = front_out_[w];
-      out.erase(std::remove(out.begin(), out.end(), u), out.end());
-      auto& in = front_in_[u];
-      in.erase(std::remove(in.begin(), in.end(), w), in.end());
-    } else {
-      front_out_[u].push_back(w);
-      front_in_[w].push_back(u);
-    }
-  }
-  for (int v : ids) {
-    update_front_membership(v);
-  }
-  for (int v : ids) {
-    push_edges_of(v);
-  }
-}
-
-void BezierBuilder::push_edges_of(int v) {
-  const auto push = [&](int a, int b) {
-    if (!is_boundary_edge(a, b)) {
-      queue_.push({front_angle(a, b), a, b});
-    }
-  };
-  for (int w : front_out_[v]) {
-    push(v, w);
-  }
-  for (int u : front_in_[v]) {
-    push(u, v);
-  }
-}
-
-double BezierBuilder::wedge_angle(int v, int u, int c, int w) const {
-  // In the tangent plane at v: the triangle at edge (v, u) lies between directions u and c;
-  // the unfilled side is the other one. Returns the angle from u to w through that side.
-  const Eigen::MatrixXd& T = vertices_[v].T;
-  const Eigen::VectorXd& x = vertices_[v].x;
-  const Eigen::Vector2d pu = T.transpose() * (vertices_[u].x - x);
-  const Eigen::Vector2d pc = T.transpose() * (vertices_[c].x - x);
-  const Eigen::Vector2d pw = T.transpose() * (vertices_[w].x - x);
-  const auto angle_from_u = [&](const Eigen::Vector2d& p) {
-    return std::atan2(cross2(pu, p), pu.dot(p));
-  };
-  const double side = angle_from_u(pc) >= 0 ? -1.0 : 1.0;
-  double angle = side * angle_from_u(pw);
-  if (angle < 0) {
-    angle += 2 * kPi;
-  }
-  return angle;
-}
-
-std::optional<int> BezierBuilder::previous_on_front(int a, int b, int c) const {
-  // The free edge p→a that bounds the unfilled wedge at a next to a→b (at a pinched vertex
-  // there are several; the one with the smallest wedge is the neighbour).
-  std::optional<int> best;
-  double best_angle = std::numeric_limits<double>::infinity();
-  for (int p : front_in_[a]) {
-    if (p == b) {
-      continue;
-    }
-    const double angle = wedge_angle(a, b, c, p);
-    if (angle < best_angle) {
-      best_angle = angle;
-      best = p;
-    }
-  }
-  return best;
-}
-
-std::optional<int> BezierBuilder::next_on_front(int a, int b, int c) const {
-  std::optional<int> best;
-  double best_angle = std::numeric_limits<double>::infinity();
-  for (int q : front_out_[b]) {
-    if (q == a) {
-      continue;
-    }
-    const double angle = wedge_angle(b, a, c, q);
-    if (angle < best_angle) {
-      best_angle = angle;
-      best = q;
-    }
-  }
-  return best;
-}
-
-double BezierBuilder::front_angle(int a, int b) const {
-  const int c = third_vertex(edge_triangle_.at(edge_key(a, b)), a, b);
-  double angle = 2 * kPi;
-  if (const auto p = previous_on_front(a, b, c)) {
-    angle = std::min(angle, wedge_angle(a, b, c, *p));
-  }
-  if (const auto q = next_on_front(a, b, c)) {
-    angle = std::min(angle, wedge_angle(b, a, c, *q));
-  }
-  const auto it = failures_.find(edge_key(a, b));
-  return angle + (it == failures_.end() ? 0.0 : 4 * kPi * it->second);
-}
-
-std::vector<int> BezierBuilder::front_vertices_near(const Eigen::VectorXd& x, double radius) const {
-  return grid_.near(x, std::min(radius, search_radius_),
-                    [&](int id) -> const Eigen::VectorXd& { return vertices_[id].x; });
-}
+}  // namespace
 
 double BezierBuilder::predicted_step(int a, int b) const {
   // Section 5: s = min(√(θ̄/θ_j) s_j, √(θ̄/θ_k) s_k), the factor capped at max_step_growth.
@@ -1163,47 +854,10 @@ void BezierBuilder::run() {
   }
 }
 
-void BezierBuilder::extract(BezierResult& result) const {
-  // A partial run may leave pinched vertices (two fans meeting at a vertex, a state the
-  // completed run always resolves): keep the largest fan there, so that the mesh is valid.
-  const std::vector<bool> keep =
-      keep_largest_fans(static_cast<int>(vertices_.size()), triangles_);
-  std::vector<int> new_index(vertices_.size(), -1);
-  std::vector<Triangle> triangles;
-  for (std::size_t t = 0; t < triangles_.size(); ++t) {
-    if (!keep[t]) {
-      continue;
-    }
-    Triangle tri = triangles_[t];
-    for (int& v : tri) {
-      if (new_index[v] < 0) {
-        new_index[v] = 0;
-      }
-    }
-    triangles.push_back(tri);
-    result.patches.push_back(patches_[t]);
-  }
-  int count = 0;
-  for (int& index : new_index) {
-    if (index >= 0) {
-      index = count++;
-    }
-  }
-  Eigen::MatrixXd points(n_, count);
-  for (std::size_t v = 0; v < vertices_.size(); ++v) {
-    if (new_index[v] >= 0) {
-      points.col(new_index[v]) = vertices_[v].x;
-    }
-  }
-  for (Triangle& tri : triangles) {
-    for (int& v : tri) {
-      v = new_index[v];
-    }
-  }
-  result.mesh = TriangleMesh(points, std::move(triangles));
-}
+}  // namespace detail
 
-}  // namespace
+using detail::BezierBuilder;
+using detail::StopRun;
 
 BezierResult triangulate_by_bezier_continuation(const ImplicitProblem& user_problem,
                                                 const Eigen::VectorXd& start, const Domain& domain,
