@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   const tessera::ProblemSetup setup = tessera::make_catalogue_problem(argv[1]);
   tessera::AtlasOptions options;
   options.tolerance = std::atof(argv[2]);
-  options.max_radius = 2.0 * setup.suggested_step;
+  options.step = 2.0 * setup.suggested_step;
   options.max_vertices = 20'000'000;
   const long before = peak_resident_kilobytes();
   const auto start = std::chrono::steady_clock::now();
@@ -47,8 +47,7 @@ int main(int argc, char** argv) {
   const long after = peak_resident_kilobytes();
   const int vertices = result.mesh.vertex_count();
   std::printf("| %s | %g | %d | %s | %.3f | %.0f | %.2f | %.0f |\n", argv[1], options.tolerance,
-              vertices, tessera::to_string(result.summary.termination), seconds,
-              vertices / seconds, 1e6 * seconds / vertices,
-              1024.0 * static_cast<double>(after - before) / vertices);
+              vertices, tessera::to_string(result.summary.termination), seconds, vertices / seconds,
+              1e6 * seconds / vertices, 1024.0 * static_cast<double>(after - before) / vertices);
   return result.summary.is_complete() ? 0 : 1;
 }

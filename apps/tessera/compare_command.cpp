@@ -16,20 +16,24 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommand& command) {
   auto* compare = app.add_subcommand(
       "compare", "run every covering method on one problem and print a table side by side");
   compare->add_option("problem", command.problem, "catalogue name or problem file")->required();
-  compare->add_option("--step,-s", command.settings.step,
-                      "front: edge length; atlas: largest chart radius (defaults as for mesh)")
+  compare
+      ->add_option("--step,-s", command.settings.step,
+                   "front: edge length; atlas: largest chart radius (defaults as for mesh)")
       ->check(finite_positive());
-  compare->add_option("--tolerance,-t", command.settings.tolerance,
-                      "distance bound for the adaptive methods (default: step/50)")
+  compare
+      ->add_option("--tolerance,-t", command.settings.tolerance,
+                   "distance bound for the adaptive methods (default: step/50)")
       ->check(finite_positive());
-  compare->add_option("--placement", command.settings.atlas_placement,
-                       "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
-                       "vertices, then smoothed; slower)")
+  compare
+      ->add_option("--placement", command.settings.atlas_placement,
+                   "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
+                   "vertices, then smoothed; slower)")
       ->check(CLI::IsMember({"disk", "hexagonal"}));
   compare->add_option("--start", command.start, "start point, comma separated");
   compare->add_option("--box", command.box, "clip to a box: lower,upper for each coordinate");
-  compare->add_option("--max-vertices", command.settings.max_vertices,
-                      "stop each method after this many vertices")
+  compare
+      ->add_option("--max-vertices", command.settings.max_vertices,
+                   "stop each method after this many vertices")
       ->check(CLI::Range(7, 100'000'000));
   return compare;
 }
@@ -41,19 +45,8 @@ int run_compare(const CompareCommand& command) {
   for (const CoveringMethod& method : covering_methods()) {
     ProblemSetup setup = resolve_problem(command.problem);
     apply_start_and_box(setup, command.start, command.box);
-    MethodSettings settings = command.settings;
-    if (!method.uses_tolerance) {
-      settings.tolerance = 0.0;
-    }
-    CoveringResult result;
-    try {
-      result = method.run(setup, settings);
-    } catch (const ComputationFailed& e) {
-      std::printf("%-8s failed: %s\n", method.name.c_str(), e.what());
-      all_good = false;
-      continue;
-    }
-    const MeshValidation validation = validate(result.mesh);
+    const CoveringResult result = cover(setup, method, command.settings);
+    const MeshValidation validation = validate(result.mesh, *setup.problem, setup.domain);
     const MeshQuality quality = measure_quality(result.mesh, *setup.problem);
     // The distance of the mesh to M: the larger of the centroid and edge-midpoint distances,
     // measured by projecting those points (not produced by any method) onto M.
@@ -62,9 +55,9 @@ int run_compare(const CompareCommand& command) {
         result.summary.tolerance > 0 ? std::to_string(result.summary.tolerance).substr(0, 8) : "-";
     std::printf("%-8s %9d %10d %9.3f %12.3g %12s %9.1f %6d %-7s %s\n", method.name.c_str(),
                 validation.referenced_vertex_count, validation.triangle_count,
-                result.summary.wall_seconds, distance, tolerance.c_str(),
-                quality.min_angle_degrees, validation.euler_characteristic,
-                validation.is_valid() ? "yes" : "NO", to_string(result.summary.termination));
+                result.summary.wall_seconds, distance, tolerance.c_str(), quality.min_angle_degrees,
+                validation.euler_characteristic, validation.is_valid() ? "yes" : "NO",
+                to_string(result.summary.termination));
     all_good = all_good && validation.is_valid() && result.summary.is_complete();
   }
   ProblemSetup setup = resolve_problem(command.problem);

@@ -5,7 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "covering_methods.h"
+#include "tessera/methods/covering_methods.h"
 
 namespace tessera::app {
 

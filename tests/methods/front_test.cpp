@@ -301,8 +301,8 @@ TEST(FrontOptionsValidate, RefusesEachOutOfRangeOptionByName) {
       {"boundary_snap_fraction", [](FrontOptions& o) { o.boundary_snap_fraction = -0.1; }},
       {"boundary_snap_fraction", [](FrontOptions& o) { o.boundary_snap_fraction = 0.5; }},
       {"boundary_snap_fraction", [](FrontOptions& o) { o.boundary_snap_fraction = kNaN; }},
-      {"max_start_distance_steps", [](FrontOptions& o) { o.max_start_distance_steps = 0.0; }},
-      {"max_start_distance_steps", [](FrontOptions& o) { o.max_start_distance_steps = kNaN; }},
+      {"max_start_distance", [](FrontOptions& o) { o.max_start_distance = -1.0; }},
+      {"max_start_distance", [](FrontOptions& o) { o.max_start_distance = kNaN; }},
       {"max_vertices", [](FrontOptions& o) { o.max_vertices = 6; }},
   };
   for (const Case& c : cases) {
@@ -340,16 +340,21 @@ TEST(FrontBadInput, StartOfTheWrongSizeIsAnInvalidArgument) {
       {"2 coordinates", "n = 3"});
 }
 
-TEST(FrontBadInput, StartFarFromMIsAComputationFailure) {
+// A start that cannot be projected is an outcome (StartFailed with the reason), not an
+// exception: the caller still gets a summary.
+TEST(FrontBadInput, StartFarFromMIsAStartFailure) {
   const ProblemSetup setup = make_catalogue_problem("sphere");
   // The unit sphere is ≈ 172 away; the default limit is 10 steps = 1.
   const Eigen::VectorXd start = Eigen::VectorXd::Constant(3, 100.0);
-  expect_throw_naming<ComputationFailed>(
-      [&] { triangulate_by_front(*setup.problem, start, setup.domain, FrontOptions{}); },
-      {"too far"});
+  const CoveringResult result =
+      triangulate_by_front(*setup.problem, start, setup.domain, FrontOptions{});
+  EXPECT_EQ(result.summary.termination, CoveringTermination::StartFailed);
+  EXPECT_NE(result.summary.message.find("too far"), std::string::npos) << result.summary.message;
+  EXPECT_EQ(result.mesh.triangle_count(), 0);
+  EXPECT_GT(result.summary.function_evaluations, 0);
 }
 
-TEST(FrontBadInput, StartProjectingOutsideTheDomainIsAComputationFailure) {
+TEST(FrontBadInput, StartProjectingOutsideTheDomainIsAStartFailure) {
   ProblemSetup setup = make_catalogue_problem("sphere_cut");
   // The start (0, 0, 1) projects onto itself; the half-space z ≤ 0.5 excludes it.
   Eigen::VectorXd normal = Eigen::VectorXd::Zero(3);
@@ -357,9 +362,12 @@ TEST(FrontBadInput, StartProjectingOutsideTheDomainIsAComputationFailure) {
   Eigen::VectorXd point = Eigen::VectorXd::Zero(3);
   point(2) = 0.5;
   setup.domain.add_half_space(normal, point, "z <= 0.5");
-  expect_throw_naming<ComputationFailed>(
-      [&] { triangulate_by_front(*setup.problem, setup.start, setup.domain, FrontOptions{}); },
-      {"outside the domain", "z <= 0.5"});
+  const CoveringResult result =
+      triangulate_by_front(*setup.problem, setup.start, setup.domain, FrontOptions{});
+  EXPECT_EQ(result.summary.termination, CoveringTermination::StartFailed);
+  for (const char* part : {"outside the domain", "z <= 0.5"}) {
+    EXPECT_NE(result.summary.message.find(part), std::string::npos) << result.summary.message;
+  }
 }
 
 }  // namespace

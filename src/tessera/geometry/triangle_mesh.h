@@ -23,7 +23,9 @@ class TriangleMesh {
   TriangleMesh(const Eigen::Ref<const Eigen::MatrixXd>& points, std::vector<Triangle> triangles);
 
   int ambient_dimension() const { return dimension_; }
-  int vertex_count() const { return dimension_ == 0 ? 0 : static_cast<int>(coordinates_.size()) / dimension_; }
+  int vertex_count() const {
+    return dimension_ == 0 ? 0 : static_cast<int>(coordinates_.size()) / dimension_;
+  }
   int triangle_count() const { return static_cast<int>(triangles_.size()); }
 
   /// n×N view of all vertices (column j is vertex j).
@@ -46,6 +48,10 @@ class TriangleMesh {
   /// Replaces all triangles.
   void set_triangles(std::vector<Triangle> triangles) { triangles_ = std::move(triangles); }
   void reserve(int vertices, int triangles);
+  /// Keeps the triangles t with keep[t] (in order) and the vertices they use (in order).
+  /// \return the new index of every old vertex, −1 for a vertex dropped.
+  /// \pre keep.size() == triangle_count(), indices in range.
+  std::vector<int> keep_triangles(const std::vector<bool>& keep);
 
  private:
   int dimension_ = 0;

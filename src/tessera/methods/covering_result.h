@@ -2,7 +2,6 @@
 // What every covering method returns: the mesh and a summary (Options in, Result out).
 #pragma once
 
-#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
@@ -13,11 +12,11 @@
 namespace tessera {
 
 enum class CoveringTermination {
-  Completed,         ///< the method covered M ∩ S as asked
-  VertexLimit,       ///< stopped at options.max_vertices; the mesh is valid but partial
-  FrontCollision,    ///< the front met itself in a way the method cannot close
-  ProjectionFailed,  ///< the corrector failed even at the smallest step
-  StartFailed,       ///< the start point could not be projected onto M inside the domain
+  Completed,            ///< the method covered M ∩ S as asked
+  VertexLimit,          ///< stopped at options.max_vertices; the mesh is valid but partial
+  FrontCollision,       ///< the front met itself in a way the method cannot close
+  ProjectionFailed,     ///< the corrector failed even at the smallest step
+  StartFailed,          ///< the start point could not be projected onto M inside the domain
   TriangulationFailed,  ///< the charts were computed but no valid mesh could be made of them
 };
 
@@ -33,20 +32,25 @@ struct CoveringSummary {
   long function_evaluations = 0;
   long jacobian_evaluations = 0;
   double wall_seconds = 0.0;
-  double step = 0.0;          ///< the step (edge length) actually used
-  int merges = 0;             ///< open edges identified (front method)
-  int step_reductions = 0;    ///< projections that needed step halving
-  int front_connections = 0;  ///< front glued to a non-adjacent part of itself (front method)
+  double step = 0.0;            ///< the step (edge length) actually used
+  int merges = 0;               ///< open edges identified (front method)
+  int step_reductions = 0;      ///< projections that needed step halving
+  int front_connections = 0;    ///< front glued to a non-adjacent part of itself (front method)
   int clipped_half_spaces = 0;  ///< domain faces the mesh was clipped to
+  double tolerance = 0.0;       ///< the distance bound asked for (0: none)
   // Atlas method (0 for the others).
-  double tolerance = 0.0;      ///< the distance bound the radii were chosen for
-  int charts = 0;              ///< charts computed (before clipping to the domain)
+  int charts = 0;  ///< charts computed (before clipping to the domain)
   double min_chart_radius = 0.0;
   double max_chart_radius = 0.0;
   int singular_crossings = 0;  ///< continuation steps that crossed a singular curve of M
   int sheet_rejections = 0;    ///< overlapping charts kept apart because they lie on other sheets
   int filled_holes = 0;        ///< places where the charts' polygons disagreed, closed afterwards
-  int refined_edges = 0;       ///< edges bisected at the domain boundary to keep the distance bound
+  int refined_edges = 0;       ///< edges bisected on M to keep the distance bound
+  /// Largest distance to M of the points sampled by the tolerance check (centroids, edge
+  /// midpoints, circumcentres) after refinement; −1 if no check was made (tolerance 0).
+  double max_sampled_distance = -1.0;
+  /// Triangles removed by the final geometric validation (flipped, overlapping, outside S).
+  int removed_triangles = 0;
   std::vector<std::string> notes;  ///< remarks for the user, e.g. where a crossing was met
   bool is_complete() const { return termination == CoveringTermination::Completed; }
 };
@@ -57,6 +61,9 @@ struct CoveringResult {
   /// A piecewise cubic surface through the mesh, one patch per triangle in the triangle's
   /// vertex order, when the method builds one (method `bezier`); empty otherwise.
   std::vector<CubicBezierPatch> patches;
+  /// l_ij/‖y_j − y_i‖ of the patches' edge curves (Hohmann eq. 3.4), so that the patches of
+  /// triangles made after the build (refinement, repair) are built as the method built its own.
+  double patch_edge_length_factor = 1.0;
 };
 
 /// Progress of a long run, reported to an optional callback (the CLI draws a status line).
@@ -66,18 +73,5 @@ struct CoveringProgress {
   int front_size = 0;
 };
 using ProgressCallback = std::function<void(const CoveringProgress&)>;
-
-class CountedProblem;
-class Domain;
-class ImplicitProblem;
-
-/// Every method's entry check: the domain (if bounded) lives in the problem's R^n.
-/// \throw InvalidArgument naming both dimensions.
-void check_domain_dimension(const Domain& domain, const ImplicitProblem& problem);
-
-/// Fills the summary's counts (vertices, triangles, evaluations of F and DF) and the wall time
-/// since `start`: the last step of every method.
-void finish_summary(const TriangleMesh& mesh, CoveringSummary& summary,
-                    const CountedProblem& problem, std::chrono::steady_clock::time_point start);
 
 }  // namespace tessera

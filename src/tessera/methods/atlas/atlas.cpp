@@ -10,20 +10,13 @@
 
 #include <Eigen/Core>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <sstream>
 
 #include "tessera/core/counted_problem.h"
-#include "tessera/core/describe.h"
 #include "tessera/core/error.h"
-#include "tessera/core/linearization.h"
-#include "tessera/geometry/mesh_topology.h"
 #include "tessera/methods/atlas/atlas_builder.h"
 #include "tessera/methods/atlas/atlas_triangulation.h"
 #include "tessera/methods/atlas/chart_polygon.h"
-#include "tessera/methods/common/clip_to_domain.h"
-#include "tessera/methods/common/refine_to_tolerance.h"
 #include "tessera/methods/improvement/edge_swap.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/methods/start_point.h"
@@ -31,84 +24,45 @@
 namespace tessera {
 
 void AtlasOptions::validate() const {
-  TESSERA_CHECK(std::isfinite(tolerance) && tolerance > 0,
-                "AtlasOptions::tolerance = " << tolerance << " must be a finite number > 0");
-  TESSERA_CHECK(std::isfinite(max_radius) && max_radius > 0,
-                "AtlasOptions::max_radius = " << max_radius << " must be a finite number > 0");
+  validate_common("AtlasOptions");
+  TESSERA_CHECK(tolerance > 0, "AtlasOptions::tolerance = "
+                                   << tolerance << " must be > 0: the chart radii are sized by it");
   TESSERA_CHECK(hexagonal_side >= 1.0 && hexagonal_side <= 1.9,
                 "AtlasOptions::hexagonal_side = " << hexagonal_side << " must lie in [1, 1.9]");
   TESSERA_CHECK(radius_growth >= 1.0 && radius_growth <= 4.0,
                 "AtlasOptions::radius_growth = " << radius_growth << " must lie in [1, 4]");
-  TESSERA_CHECK(max_turning_angle > 0 && max_turning_angle <= 1.0,
-                "AtlasOptions::max_turning_angle = " << max_turning_angle
-                                                     << " must lie in (0, 1] radians");
+  TESSERA_CHECK(
+      max_turning_angle > 0 && max_turning_angle <= 1.0,
+      "AtlasOptions::max_turning_angle = " << max_turning_angle << " must lie in (0, 1] radians");
   TESSERA_CHECK(min_sheet_cosine >= 0 && min_sheet_cosine < 1,
                 "AtlasOptions::min_sheet_cosine = " << min_sheet_cosine << " must lie in [0, 1)");
   TESSERA_CHECK(domain_margin >= 0 && domain_margin <= 4,
                 "AtlasOptions::domain_margin = " << domain_margin << " must lie in [0, 4]");
-  TESSERA_CHECK(min_radius_fraction > 0 && min_radius_fraction < 1,
-                "AtlasOptions::min_radius_fraction = " << min_radius_fraction
-                                                       << " must lie in (0, 1)");
-  TESSERA_CHECK(max_start_distance >= 0, "AtlasOptions::max_start_distance = "
-                                             << max_start_distance << " must be >= 0");
-  TESSERA_CHECK(max_vertices >= 3,
-                "AtlasOptions::max_vertices = " << max_vertices << " must be at least 3");
+  TESSERA_CHECK(
+      min_radius_fraction > 0 && min_radius_fraction < 1,
+      "AtlasOptions::min_radius_fraction = " << min_radius_fraction << " must lie in (0, 1)");
 }
 
 namespace {
 
 using detail::AtlasBuilder;
 
-// Bisects the listed triangles (and their offspring) until sampled points lie within ε of M.
-int refine_where(const ImplicitProblem& problem, const Domain& domain, TriangleMesh& mesh,
-                 const std::vector<int>& triangles, const AtlasOptions& options) {
-  if (triangles.empty()) {
-    return 0;
+// The atlas and its triangulation; the skeleton (covering.h) clips it to the domain, refines
+// it to the tolerance and validates it.
+void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringResult& result) {
+  AtlasOptions options = given;
+  if (context.attempt > 0) {
+    // Charts snapped onto ∂S can leave the clipping a configuration it refuses (seen where M
+    // meets a face at a shallow angle); the second attempt does without snapping.
+    options.boundary_snap = 0.0;
   }
-  ToleranceRefinementOptions refine;
-  refine.tolerance = options.tolerance;
-  refine.corrector = options.corrector;
-  return refine_to_tolerance(problem, domain, mesh, triangles, refine).split_edges;
-}
-
-// Post-condition of a completed run, checked rather than assumed: on a closed surface the mesh
-// has no boundary; in a bounded domain every boundary vertex lies on ∂S. Anything else is a
-// hole in the covering, reported with its place.
-void check_coverage(const Domain& domain, const TriangleMesh& mesh,
-                    CoveringSummary& summary) {
-  if (!summary.is_complete()) {
-    return;
-  }
-  const MeshTopology topology(mesh);
-  const double tolerance = 1e-6 * (1.0 + summary.max_chart_radius);
-  for (int e : topology.boundary_edges()) {
-    const int v = topology.edge(e)[0];
-    const bool on_boundary =
-        !domain.is_unbounded() &&
-        std::abs(domain.boundary_distance(mesh.point(v)).signed_distance) <= tolerance;
-    if (!on_boundary) {
-      summary.termination = CoveringTermination::TriangulationFailed;
-      summary.message = "the mesh has a hole: its boundary passes through " +
-                        describe_point(mesh.point(v)) +
-                        (domain.is_unbounded() ? ", but M is closed" : ", inside the domain");
-      return;
-    }
-  }
-}
-
-CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point,
-                          const Domain& domain, const AtlasOptions& options,
-                          bool& clipping_failed) {
-  CoveringResult result;
   CoveringSummary& summary = result.summary;
-  summary.method = "atlas";
-  summary.tolerance = options.tolerance;
-  AtlasBuilder builder(problem, domain, options);
-  builder.run(start_point.x, summary);
+  AtlasBuilder builder(context.problem, context.domain, options);
+  builder.run(context.start.x, summary);
 
   // The mesh: the dual of the polygons, with the places where the charts disagree closed.
   AtlasCells cells;
-  cells.ambient_dimension = problem.ambient_dimension();
+  cells.ambient_dimension = context.problem.ambient_dimension();
   cells.chart_count = builder.chart_count();
   cells.center = [&builder](int c) { return Eigen::VectorXd(builder.center(c)); };
   cells.tangent = [&builder](int c) { return Eigen::MatrixXd(builder.tangent(c)); };
@@ -122,7 +76,7 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
     summary.termination = CoveringTermination::TriangulationFailed;
     summary.message = triangulation.message;
   }
-  double min_radius = options.max_radius;
+  double min_radius = options.step;
   double max_radius = 0.0;
   for (int c = 0; c < builder.chart_count(); ++c) {
     min_radius = std::min(min_radius, builder.chart(c).radius);
@@ -133,115 +87,47 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
   summary.step = max_radius;
 
   if (options.placement == AtlasPlacement::Hexagonal && result.mesh.triangle_count() > 0) {
-    improve_mesh(result.mesh, problem, ImprovementOptions{}, 3);
+    improve_mesh(result.mesh, context.problem, ImprovementOptions{}, 3);
   } else if (options.swap_edges && result.mesh.triangle_count() > 0) {
     ImprovementOptions swaps;
-    improve_by_edge_swaps(result.mesh, problem, swaps);
+    improve_by_edge_swaps(result.mesh, context.problem, swaps);
   }
-  {
-    // The radius follows the curvature at the chart's centre; where the curvature changes
-    // across a triangle (its charts' radii differ) or vertices were moved by smoothing, the
-    // quadratic model behind the radius no longer bounds the triangle: check and bisect there.
-    std::vector<int> to_check;
-    for (int t = 0; t < result.mesh.triangle_count(); ++t) {
-      const Triangle& tri = result.mesh.triangle(t);
-      const double small = std::min({triangulation.radius[tri[0]], triangulation.radius[tri[1]],
-                                     triangulation.radius[tri[2]]});
-      const double large = std::max({triangulation.radius[tri[0]], triangulation.radius[tri[1]],
-                                     triangulation.radius[tri[2]]});
-      if (options.placement == AtlasPlacement::Hexagonal || large > 1.05 * small) {
-        to_check.push_back(t);
-      }
-    }
-    summary.refined_edges += refine_where(problem, domain, result.mesh, to_check, options);
-  }
-  double boundary_scale = min_radius;  // median radius of the charts near ∂S (set below)
-  if (!domain.is_unbounded() && result.mesh.triangle_count() > 0) {
-    ClipOptions clip;
+  if (!context.domain.is_unbounded()) {
     // Snap and collapse lengths follow the charts near the boundary: the median radius of the
-    // charts outside or within one radius of ∂S.
+    // charts outside or within one radius of ∂S. Clipping leaves poor angles at ∂S that
+    // Delaunay swaps in the tangent planes repair (the interior is a weighted Delaunay
+    // triangulation already; measured: cut sphere 22° → 28°).
     std::vector<double> boundary_radii;
     for (int c = 0; c < builder.chart_count(); ++c) {
-      if (domain.boundary_distance(builder.center(c)).signed_distance < builder.chart(c).radius) {
+      if (context.domain.boundary_distance(builder.center(c)).signed_distance <
+          builder.chart(c).radius) {
         boundary_radii.push_back(builder.chart(c).radius);
       }
     }
-    double& scale = boundary_scale;
+    double scale = min_radius;
     if (!boundary_radii.empty()) {
       std::nth_element(boundary_radii.begin(), boundary_radii.begin() + boundary_radii.size() / 2,
                        boundary_radii.end());
       scale = boundary_radii[boundary_radii.size() / 2];
     }
-    clip.snap_distance = 0.35 * scale;
-    clip.min_boundary_edge = 0.2 * scale;
-    clip.corrector = options.corrector;
-    const ClipSummary clipped = clip_to_domain(problem, domain, result.mesh, clip);
-    summary.clipped_half_spaces = clipped.half_spaces_crossed;
-    clipping_failed = !clipped.message.empty();
-    if (!clipped.message.empty() && summary.is_complete()) {
-      summary.termination = CoveringTermination::ProjectionFailed;
-      summary.message = clipped.message;
-    }
+    context.boundary_edge_length = scale;
+    context.swap_after_clipping = true;
+    context.retry_if_clipping_fails = options.boundary_snap > 0;
   }
-  // Clipping leaves poor angles at ∂S that Delaunay swaps in the tangent planes repair (the
-  // interior is a weighted Delaunay triangulation already; measured: cut sphere 22° → 28°).
-  // Snapping, cutting and swapping reshape the triangles near ∂S: those are then bisected
-  // until their sampled points are within ε of M again.
-  if (!domain.is_unbounded() && result.mesh.triangle_count() > 0) {
-    improve_by_edge_swaps(result.mesh, problem, ImprovementOptions{});
-    // Swaps stay within a triangle or two of ∂S: check the band of two boundary radii.
-    const auto near_boundary = [&] {
-      std::vector<int> band;
-      for (int t = 0; t < result.mesh.triangle_count(); ++t) {
-        for (int v : result.mesh.triangle(t)) {
-          if (domain.boundary_distance(result.mesh.point(v)).signed_distance <=
-              2.0 * boundary_scale) {
-            band.push_back(t);
-            break;
-          }
-        }
-      }
-      return band;
-    };
-    const int split = refine_where(problem, domain, result.mesh, near_boundary(), options);
-    summary.refined_edges += split;
-    if (split > 0) {
-      // Bisection can leave a poor angle next to the split edge: swap once more, and check
-      // again, so that the last word is the distance bound's.
-      improve_by_edge_swaps(result.mesh, problem, ImprovementOptions{});
-      summary.refined_edges += refine_where(problem, domain, result.mesh, near_boundary(), options);
-    }
-  }
-  check_coverage(domain, result.mesh, summary);
-  summary.notes.push_back("covered the component of M that contains the start point; other "
-                          "components, if any, need their own start points");
-  return result;
+  summary.notes.push_back(
+      "covered the component of M that contains the start point; other "
+      "components, if any, need their own start points");
 }
 
 }  // namespace
 
-CoveringResult cover_by_atlas(const ImplicitProblem& user_problem, const Eigen::VectorXd& start,
+CoveringResult cover_by_atlas(const ImplicitProblem& problem, const Eigen::VectorXd& start,
                               const Domain& domain, const AtlasOptions& options) {
   options.validate();
-  check_domain_dimension(domain, user_problem);
-  const auto clock_start = std::chrono::steady_clock::now();
-  CountedProblem problem(user_problem);
-  const double max_start_distance =
-      options.max_start_distance > 0 ? options.max_start_distance : 10.0 * options.max_radius;
-  const StartPoint start_point = project_start_point(problem, start, domain, max_start_distance);
-  bool clipping_failed = false;
-  CoveringResult result = cover_once(problem, start_point, domain, options, clipping_failed);
-  if (clipping_failed && options.boundary_snap > 0) {
-    // Charts snapped onto ∂S can leave the clipping a configuration it refuses (seen where M
-    // meets a face at a shallow angle); the atlas is then computed again without snapping.
-    AtlasOptions unsnapped = options;
-    unsnapped.boundary_snap = 0.0;
-    result = cover_once(problem, start_point, domain, unsnapped, clipping_failed);
-    result.summary.notes.push_back("charts snapped onto the domain boundary left a mesh the "
-                                   "clipping refused; computed again without snapping");
-  }
-  finish_summary(result.mesh, result.summary, problem, clock_start);
-  return result;
+  return run_covering("atlas", problem, start, domain, options,
+                      [&options](CoveringContext& context, CoveringResult& result) {
+                        build_atlas(context, options, result);
+                      });
 }
 
 }  // namespace tessera

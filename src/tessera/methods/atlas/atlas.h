@@ -9,7 +9,7 @@
 #include "tessera/core/corrector.h"
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
-#include "tessera/methods/covering_result.h"
+#include "tessera/methods/covering.h"
 
 namespace tessera {
 
@@ -24,12 +24,16 @@ enum class AtlasPlacement {
   Hexagonal,
 };
 
-struct AtlasOptions {
-  /// ε: the mesh (every point of every triangle) should lie within this distance of M. Chart
-  /// radii are R = sqrt(2ε/κ) with κ the largest normal curvature at the centre (section 2.4).
-  double tolerance = 1e-3;
-  /// Largest chart radius, in ambient units: the step where M is flat.
-  double max_radius = 0.5;
+/// The atlas's own options; the shared ones (tolerance, step = the largest chart radius,
+/// max_vertices, max_start_distance, corrector, progress) are in CoveringOptions.
+struct AtlasOptions : CoveringOptions {
+  /// ε defaults to 1e-3 (every point of every triangle within it of M; chart radii are
+  /// R = sqrt(2ε/κ) with κ the largest normal curvature at the centre, section 2.4); the step
+  /// is the largest chart radius, used where M is flat.
+  AtlasOptions() {
+    tolerance = 1e-3;
+    step = 0.5;
+  }
   /// Where new charts are centred (see AtlasPlacement).
   AtlasPlacement placement = AtlasPlacement::Disk;
   /// Hexagonal placement: the side of the triangles it aims for, in radii (√3 ≈ 1.73 would be
@@ -50,17 +54,12 @@ struct AtlasOptions {
   /// Chart centres closer than this many radii to a face of the domain are moved onto
   /// M ∩ face, giving a row of charts on ∂S (0 disables; clipping then does all the work).
   double boundary_snap = 0.45;
-  /// Radii below max_radius·this mean the corrector cannot converge: ProjectionFailed.
+  /// Radii below step·this mean the corrector cannot converge: ProjectionFailed.
   double min_radius_fraction = 1.0 / 4096.0;
-  /// The start must project onto M within this distance (0: ten times max_radius).
-  double max_start_distance = 0.0;
   /// Delaunay-type edge swaps in the tangent planes after the mesh is assembled. Off: the dual
   /// of the power cells is already a weighted Delaunay triangulation, and measured swaps
   /// changed nothing on the catalogue while costing 2× the run time.
   bool swap_edges = false;
-  int max_vertices = 2'000'000;  ///< hard stop on the number of charts; VertexLimit
-  ProgressCallback progress;     ///< called every ~1000 charts when set
-  CorrectorOptions corrector;
 
   /// \throw InvalidArgument naming the first option out of range.
   void validate() const;
@@ -71,10 +70,11 @@ struct AtlasOptions {
 ///
 /// \param start n-vector near M. \param domain S; if unbounded, M must be closed and bounded
 ///        (or the run ends at max_vertices).
-/// \return a valid mesh whenever summary.termination is Completed; a valid partial mesh when
-///         the run stops early (the summary says where and why).
-/// \throw InvalidArgument for bad options or sizes; ComputationFailed if the start point cannot
-///        be projected onto M inside the domain.
+/// Runs the shared skeleton (covering.h): clipping, refinement to options.tolerance and the
+/// geometric validation are done there.
+/// \return a valid mesh whatever the termination: complete when summary.termination is
+///         Completed, partial otherwise (the summary says where and why, StartFailed included).
+/// \throw InvalidArgument for bad options or sizes.
 CoveringResult cover_by_atlas(const ImplicitProblem& problem, const Eigen::VectorXd& start,
                               const Domain& domain, const AtlasOptions& options);
 

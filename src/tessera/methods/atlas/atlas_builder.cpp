@@ -88,7 +88,7 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
     for (const auto& w : weights) {
       curvature = std::max(curvature, (w[0] * q.col(0) + w[1] * q.col(1) + w[2] * q.col(2)).norm());
     }
-    double chosen = std::min(options_.max_radius, r);
+    double chosen = std::min(options_.step, r);
     if (curvature > 0) {
       chosen = std::min({chosen, std::sqrt(2.0 * options_.tolerance / curvature),
                          options_.max_turning_angle / curvature});
@@ -135,8 +135,9 @@ double AtlasBuilder::jacobian_scale() const {
     return J.norm();
   }
   const Eigen::MatrixXd gram = J * J.transpose();
-  return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram,
-                                     Eigen::EigenvaluesOnly).eigenvalues()(0)));
+  return std::sqrt(
+      std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram, Eigen::EigenvaluesOnly)
+                        .eigenvalues()(0)));
 }
 
 signed char AtlasBuilder::orientation_sign(const Eigen::Ref<const Eigen::MatrixXd>& T) const {
@@ -173,8 +174,8 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
     return -1;  // the projection jumped to another sheet; the caller tries another point
   }
   const double trial =
-      parent >= 0 ? std::min(options_.max_radius, options_.radius_growth * charts_[parent].radius)
-                  : options_.max_radius;
+      parent >= 0 ? std::min(options_.step, options_.radius_growth * charts_[parent].radius)
+                  : options_.step;
   double radius = 0.0;
   if (!choose_radius(linearization, trial, radius)) {
     return -2;
@@ -346,7 +347,7 @@ void AtlasBuilder::enqueue(int c) {
 }
 
 void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
-  min_radius_ = options_.max_radius * options_.min_radius_fraction;
+  min_radius_ = options_.step * options_.min_radius_fraction;
   {
     Linearization linearization;
     const int first = add_chart(start, -1, linearization);
@@ -382,19 +383,19 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     int children = 0;
     Eigen::Vector2d last_target(std::nan(""), std::nan(""));
     double smallest_child = charts_[c].radius;
-    for (int vertex = next_open_vertex(c); vertex >= 0 && !stopped_;
-         vertex = next_open_vertex(c)) {
+    for (int vertex = next_open_vertex(c); vertex >= 0 && !stopped_; vertex = next_open_vertex(c)) {
       if (chart_count() >= options_.max_vertices) {
         fail(summary, CoveringTermination::VertexLimit,
              "stopped at " + std::to_string(chart_count()) + " charts (max_vertices)");
         break;
       }
       // A chart next to much smaller ones needs about (R/r)² of them around it.
-      if (++children > kMaxChildrenPerChart * std::max(1.0, std::pow(charts_[c].radius /
-                                                                        smallest_child, 2))) {
+      if (++children >
+          kMaxChildrenPerChart * std::max(1.0, std::pow(charts_[c].radius / smallest_child, 2))) {
         fail(summary, CoveringTermination::ProjectionFailed,
-             "the chart at " + describe_point(xc) + " could not be closed: its neighbours do not "
-             "cut away the uncovered corners of its polygon");
+             "the chart at " + describe_point(xc) +
+                 " could not be closed: its neighbours do not "
+                 "cut away the uncovered corners of its polygon");
         break;
       }
       const auto& v = charts_[c].polygon.vertices()[vertex];

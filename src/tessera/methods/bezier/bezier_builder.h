@@ -77,12 +77,12 @@ class BezierBuilder {
         domain_(domain),
         options_(options),
         n_(problem.ambient_dimension()),
-        max_step_(options.max_step > 0 ? options.max_step : 8.0 * options.initial_step),
-        min_step_(options.min_step_fraction * options.initial_step),
+        max_step_(options.max_step > 0 ? options.max_step : 8.0 * options.step),
+        min_step_(options.min_step_fraction * options.step),
         search_radius_(3.0 * max_step_),
         grid_(problem.ambient_dimension(), search_radius_) {
-    corrector_.tolerance = options.corrector_tolerance;
-    corrector_.max_iterations = options.max_corrector_iterations;
+    corrector_.tolerance = options.corrector.tolerance;
+    corrector_.max_iterations = options.corrector.max_iterations;
     corrector_.max_contraction = options.max_contraction;
   }
 
@@ -92,7 +92,7 @@ class BezierBuilder {
   int connections() const { return connections_; }
   int step_reductions() const { return step_reductions_; }
   // The final mesh and patches, with non-manifold vertices of a partial run removed.
-  void extract(BezierResult& result) const;
+  void extract(CoveringResult& result) const;
   int vertex_count() const { return static_cast<int>(vertices_.size()); }
 
  private:

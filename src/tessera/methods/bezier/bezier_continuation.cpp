@@ -32,13 +32,11 @@
 namespace tessera {
 
 void BezierOptions::validate() const {
-  TESSERA_CHECK(std::isfinite(initial_step) && initial_step > 0,
-                "BezierOptions::initial_step = " << initial_step << " must be > 0");
+  validate_common("BezierOptions");
   TESSERA_CHECK(std::isfinite(max_step) && max_step >= 0,
-                "BezierOptions::max_step = " << max_step << " must be >= 0 (0: 8 × initial_step)");
-  TESSERA_CHECK(
-      max_step == 0 || max_step >= initial_step,
-      "BezierOptions::max_step = " << max_step << " must be >= initial_step = " << initial_step);
+                "BezierOptions::max_step = " << max_step << " must be >= 0 (0: 8 × step)");
+  TESSERA_CHECK(max_step == 0 || max_step >= step,
+                "BezierOptions::max_step = " << max_step << " must be >= step = " << step);
   TESSERA_CHECK(
       min_step_fraction > 0 && min_step_fraction < 1,
       "BezierOptions::min_step_fraction = " << min_step_fraction << " must lie in (0, 1)");
@@ -68,14 +66,6 @@ void BezierOptions::validate() const {
   TESSERA_CHECK(boundary_snap_fraction >= 0 && boundary_snap_fraction < 0.5,
                 "BezierOptions::boundary_snap_fraction = " << boundary_snap_fraction
                                                            << " must lie in [0, 0.5)");
-  TESSERA_CHECK(std::isfinite(tolerance) && tolerance >= 0,
-                "BezierOptions::tolerance = " << tolerance << " must be >= 0 (0: off)");
-  TESSERA_CHECK(corrector_tolerance > 0,
-                "BezierOptions::corrector_tolerance = " << corrector_tolerance << " must be > 0");
-  TESSERA_CHECK(max_corrector_iterations >= 2, "BezierOptions::max_corrector_iterations = "
-                                                   << max_corrector_iterations << " must be >= 2");
-  TESSERA_CHECK(std::isfinite(max_start_distance) && max_start_distance >= 0,
-                "BezierOptions::max_start_distance = " << max_start_distance << " must be >= 0");
   TESSERA_CHECK(max_vertices >= 3,
                 "BezierOptions::max_vertices = " << max_vertices << " must be >= 3");
 }
@@ -124,7 +114,6 @@ struct PlaneFrame {
     return (d - d.dot(e1) * e1 - d.dot(e2) * e2).norm();
   }
 };
-
 
 // Barycentric coordinates of p with respect to the 2-D triangle (A, B, C).
 Eigen::Vector3d barycentric(const Eigen::Vector2d& p, const Eigen::Vector2d& A,
@@ -201,7 +190,7 @@ bool BezierBuilder::project_onto_faces(Eigen::VectorXd& y, std::vector<int>& fac
   Eigen::MatrixXd J(m, n_), A(rows, n_);
   double previous = 0.0;
   theta = 0.0;
-  for (int k = 0; k < 2 * options_.max_corrector_iterations; ++k) {
+  for (int k = 0; k < 2 * options_.corrector.max_iterations; ++k) {
     problem_.evaluate(y, F);
     if (!F.allFinite()) {
       return false;
@@ -223,11 +212,11 @@ bool BezierBuilder::project_onto_faces(Eigen::VectorXd& y, std::vector<int>& fac
       theta = norm / previous;
     }
     if (k > 0 && previous > 0 && norm > 0.9 * previous &&
-        norm > options_.corrector_tolerance * (1.0 + y.norm())) {
+        norm > options_.corrector.tolerance * (1.0 + y.norm())) {
       return false;  // not contracting
     }
     previous = norm;
-    if (norm <= options_.corrector_tolerance * (1.0 + y.norm())) {
+    if (norm <= options_.corrector.tolerance * (1.0 + y.norm())) {
       problem_.evaluate(y, F);
       return F.allFinite() && F.norm() <= 1e-9;
     }
@@ -262,7 +251,7 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
   point.linearization.solve_minimum_norm(-F, dx_bar);
   const double norm0 = dx0.norm();
   const double theta =
-      norm0 > options_.corrector_tolerance * (1.0 + y.norm()) ? dx_bar.norm() / norm0 : 0.0;
+      norm0 > options_.corrector.tolerance * (1.0 + y.norm()) ? dx_bar.norm() / norm0 : 0.0;
   const auto reduction = [&](double th) {
     return std::clamp(std::sqrt(options_.target_contraction / th), 0.25, 0.7);
   };
@@ -746,7 +735,7 @@ void BezierBuilder::build_initial_triangle(const StartPoint& start) {
   VertexData first;
   first.x = start.x;
   first.T = start.linearization.tangent_basis();
-  first.step = options_.initial_step;
+  first.step = options_.step;
   // The start's own contraction reflects the user's guess, not the surface: use θ̄, so the
   // first predicted steps are the initial step itself.
   first.theta = options_.target_contraction;
@@ -756,7 +745,7 @@ void BezierBuilder::build_initial_triangle(const StartPoint& start) {
   add_vertex(std::move(first));
   // Tangent continuation in two directions 60° apart (the paper: "two linearly independent
   // tangents"; 60° gives an equilateral start).
-  double s = options_.initial_step;
+  double s = options_.step;
   std::string why;
   for (int attempt = 0; attempt < 24; ++attempt) {
     std::vector<NewPoint> points;
@@ -859,32 +848,33 @@ void BezierBuilder::run() {
 using detail::BezierBuilder;
 using detail::StopRun;
 
-BezierResult triangulate_by_bezier_continuation(const ImplicitProblem& user_problem,
-                                                const Eigen::VectorXd& start, const Domain& domain,
-                                                const BezierOptions& options) {
+CoveringResult triangulate_by_bezier_continuation(const ImplicitProblem& problem,
+                                                  const Eigen::VectorXd& start,
+                                                  const Domain& domain,
+                                                  const BezierOptions& options) {
   options.validate();
-  check_domain_dimension(domain, user_problem);
-  const auto clock_start = std::chrono::steady_clock::now();
-  CountedProblem problem(user_problem);
-  const double max_start_distance =
-      options.max_start_distance > 0 ? options.max_start_distance : 10.0 * options.initial_step;
-  const StartPoint start_point = project_start_point(problem, start, domain, max_start_distance);
-  BezierResult result;
-  result.summary.method = "bezier";
-  result.summary.step = options.initial_step;
-  BezierBuilder builder(problem, domain, options);
-  builder.build_initial_triangle(start_point);
-  try {
-    builder.run();
-  } catch (const StopRun& stop) {
-    result.summary.termination = stop.termination;
-    result.summary.message = stop.message;
-  }
-  builder.extract(result);
-  result.summary.merges = builder.connections();
-  result.summary.step_reductions = builder.step_reductions();
-  finish_summary(result.mesh, result.summary, problem, clock_start);
-  return result;
+  return run_covering("bezier", problem, start, domain, options,
+                      [&options](CoveringContext& context, CoveringResult& result) {
+                        result.summary.step = options.step;
+                        result.patch_edge_length_factor = options.edge_length_factor;
+                        BezierBuilder builder(context.problem, context.domain, options);
+                        try {
+                          builder.build_initial_triangle(context.start);
+                        } catch (const ComputationFailed& failure) {
+                          result.summary.termination = CoveringTermination::StartFailed;
+                          result.summary.message = failure.what();
+                          return;
+                        }
+                        try {
+                          builder.run();
+                        } catch (const StopRun& stop) {
+                          result.summary.termination = stop.termination;
+                          result.summary.message = stop.message;
+                        }
+                        builder.extract(result);
+                        result.summary.merges = builder.connections();
+                        result.summary.step_reductions = builder.step_reductions();
+                      });
 }
 
 }  // namespace tessera

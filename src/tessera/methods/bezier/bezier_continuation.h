@@ -10,19 +10,20 @@
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/geometry/bezier_patch.h"
-#include "tessera/methods/covering_result.h"
+#include "tessera/methods/covering.h"
 
 namespace tessera {
 
 /// Every constant of the method. Defaults are the paper's values where the paper gives one
 /// (section and equation in the comment), otherwise tessera's choice with its reason.
-struct BezierOptions {
-  /// s of the initial triangle (tangent continuation from the first solution), ambient units.
-  double initial_step = 0.1;
+/// The shared options are in CoveringOptions: step is s of the initial triangle (tangent
+/// continuation from the first solution), tolerance ε (see below), corrector the Gauss–Newton
+/// stopping rule of every vertex.
+struct BezierOptions : CoveringOptions {
   /// Upper bound on any step. The paper has none; without one a flat region (θ ≈ 0) would let
-  /// s grow without limit. 0 means 8 × initial_step.
+  /// s grow without limit. 0 means 8 × step.
   double max_step = 0.0;
-  /// Steps below min_step_fraction × initial_step are not tried: the edge cannot be realised.
+  /// Steps below min_step_fraction × step are not tried: the edge cannot be realised.
   double min_step_fraction = 1.0 / 64.0;
   /// θ̄ of section 2/5: the target contraction of the first Gauss–Newton step; the predictor is
   /// s = min(√(θ̄/θ_j) s_j, √(θ̄/θ_k) s_k). Paper: 0.25 (as in ALCON).
@@ -54,44 +55,30 @@ struct BezierOptions {
   /// no sliver is left between it and the boundary (tessera's choice; the paper only fixes a
   /// coordinate for points outside the box).
   double boundary_snap_fraction = 0.3;
-  /// tolerance ε > 0: the distance to M of the midpoints of new edges (estimated by one
-  /// simplified Gauss–Newton step) is kept ≤ ε by reducing s, and the next steps are limited
-  /// by s·√(ε/d) (a flat triangle's distance to M grows like s²). 0: the paper's control only.
-  double tolerance = 0.0;
-  /// Gauss–Newton stopping rule for every vertex (the start uses its own, looser, rule).
-  double corrector_tolerance = 1e-10;
-  int max_corrector_iterations = 25;
-  /// The start must project onto M within this distance of the guess; 0 means 10 × initial_step.
-  double max_start_distance = 0.0;
-  int max_vertices = 2'000'000;  ///< hard stop; VertexLimit
-  ProgressCallback progress;     ///< called every ~1000 vertices when set
+  // tolerance ε > 0 (CoveringOptions): the distance to M of the midpoints of new edges
+  // (estimated by one simplified Gauss–Newton step) is kept ≤ ε by reducing s, and the next
+  // steps are limited by s·√(ε/d) (a flat triangle's distance to M grows like s²); the skeleton
+  // then checks every triangle and bisects where the estimate was short. 0: the paper's
+  // control only.
 
   /// \throw InvalidArgument naming the first option that is out of range.
   void validate() const;
-};
-
-/// The triangulation and the piecewise cubic surface through it.
-struct BezierResult {
-  TriangleMesh mesh;        ///< valid even when the run stops early (see summary)
-  CoveringSummary summary;  ///< method "bezier"; merges counts connections to existing vertices
-  /// One cubic patch per triangle, patches[t] over mesh.triangle(t) in the same vertex order
-  /// (the patch's corners b_300, b_030, b_003 are the triangle's vertices 0, 1, 2). Patches of
-  /// neighbouring triangles share their edge curve, so the surface is continuous.
-  std::vector<CubicBezierPatch> patches;
 };
 
 /// Covers the component of M ∩ S containing (the projection of) `start` by Hohmann's method.
 ///
 /// \param start n-vector near M; \param domain S: unbounded (then M must be closed and bounded)
 ///        or a polyhedron; on its faces points are computed on M ∩ face (paper, example 3).
-/// \return the mesh, the patches and a summary. When an imaginary triangle cannot be realised
-///         the run stops (summary.termination, summary.message says where and why) and the
-///         mesh built so far is returned, cleaned to be valid.
-/// \throw InvalidArgument for bad options or sizes; ComputationFailed if the start point cannot
-///        be projected onto M inside the domain or the initial triangle cannot be built.
+/// \return the mesh, the patches (one per triangle, patches[t] over mesh.triangle(t) in its
+///         vertex order; neighbours share their edge curves) and a summary. When an imaginary
+///         triangle cannot be realised the run stops (summary.termination, summary.message says
+///         where and why) and the mesh built so far is returned, cleaned to be valid; a start
+///         or initial triangle that cannot be built ends with StartFailed.
+/// \throw InvalidArgument for bad options or sizes.
 /// \see Hohmann, An adaptive continuation method for implicitly defined surfaces, ZIB SC 91-20.
-BezierResult triangulate_by_bezier_continuation(const ImplicitProblem& problem,
-                                                const Eigen::VectorXd& start, const Domain& domain,
-                                                const BezierOptions& options);
+CoveringResult triangulate_by_bezier_continuation(const ImplicitProblem& problem,
+                                                  const Eigen::VectorXd& start,
+                                                  const Domain& domain,
+                                                  const BezierOptions& options);
 
 }  // namespace tessera

@@ -208,11 +208,10 @@ std::vector<int> BezierBuilder::front_vertices_near(const Eigen::VectorXd& x, do
                     [&](int id) -> const Eigen::VectorXd& { return vertices_[id].x; });
 }
 
-void BezierBuilder::extract(BezierResult& result) const {
+void BezierBuilder::extract(CoveringResult& result) const {
   // A partial run may leave pinched vertices (two fans meeting at a vertex, a state the
   // completed run always resolves): keep the largest fan there, so that the mesh is valid.
-  const std::vector<bool> keep =
-      keep_largest_fans(static_cast<int>(vertices_.size()), triangles_);
+  const std::vector<bool> keep = keep_largest_fans(static_cast<int>(vertices_.size()), triangles_);
   std::vector<int> new_index(vertices_.size(), -1);
   std::vector<Triangle> triangles;
   for (std::size_t t = 0; t < triangles_.size(); ++t) {

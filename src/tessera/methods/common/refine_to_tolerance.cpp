@@ -63,6 +63,42 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     }
     return (x - point).norm();
   };
+  // The largest sampled distance of triangle t to M, and where it is.
+  Eigen::VectorXd where;
+  auto sample = [&](int t) {
+    const Triangle tri = mesh.triangle(t);
+    const Eigen::VectorXd a = mesh.point(tri[0]);
+    const Eigen::VectorXd b = mesh.point(tri[1]);
+    const Eigen::VectorXd c = mesh.point(tri[2]);
+    frozen_ok = frozen.factor(problem, a);
+    double worst = -1.0;
+    auto consider = [&](const Eigen::VectorXd& point) {
+      const double d = distance_to_m(point);
+      if (!(d <= worst)) {
+        worst = d;
+        where = point;
+      }
+    };
+    consider((a + b + c) / 3.0);
+    consider(0.5 * (a + b));
+    consider(0.5 * (b + c));
+    consider(0.5 * (c + a));
+    // On a surface of constant curvature the farthest point is the circumcentre (when it
+    // lies inside the triangle); sampling it makes the estimate nearly exact.
+    const Eigen::VectorXd ab = b - a;
+    const Eigen::VectorXd ac = c - a;
+    const double uu = ab.squaredNorm(), ww = ac.squaredNorm(), uw = ab.dot(ac);
+    const double det = 2.0 * (uu * ww - uw * uw);
+    if (det > 0) {
+      const double beta = ww * (uu - uw) / det;
+      const double gamma = uu * (ww - uw) / det;
+      if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) {
+        consider(a + beta * ab + gamma * ac);
+      }
+    }
+    return worst;
+  };
+  bool exhausted = true;  // false once a round finds nothing to split
   for (summary.rounds = 0; summary.rounds < options.max_rounds && !candidates.empty();
        ++summary.rounds) {
     // 1. Which edges to split: the longest edge of every candidate that is too far from M.
@@ -70,26 +106,9 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     std::vector<std::pair<int, int>> to_split;
     for (int t : candidates) {
       const Triangle tri = mesh.triangle(t);
-      const Eigen::VectorXd a = mesh.point(tri[0]);
-      const Eigen::VectorXd b = mesh.point(tri[1]);
-      const Eigen::VectorXd c = mesh.point(tri[2]);
-      frozen_ok = frozen.factor(problem, a);
-      double worst = std::max({distance_to_m((a + b + c) / 3.0), distance_to_m(0.5 * (a + b)),
-                               distance_to_m(0.5 * (b + c)), distance_to_m(0.5 * (c + a))});
-      // On a surface of constant curvature the farthest point is the circumcentre (when it
-      // lies inside the triangle); sampling it makes the estimate nearly exact.
-      const Eigen::VectorXd ab = b - a;
-      const Eigen::VectorXd ac = c - a;
-      const double uu = ab.squaredNorm(), ww = ac.squaredNorm(), uw = ab.dot(ac);
-      const double det = 2.0 * (uu * ww - uw * uw);
-      if (det > 0) {
-        const double beta = ww * (uu - uw) / det;
-        const double gamma = uu * (ww - uw) / det;
-        if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) {
-          worst = std::max(worst, distance_to_m(a + beta * ab + gamma * ac));
-        }
-      }
+      const double worst = sample(t);
       if (worst <= threshold) {
+        summary.max_distance = std::max(summary.max_distance, worst);
         continue;
       }
       int longest = 0;
@@ -109,6 +128,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     }
     if (to_split.empty()) {
       candidates.clear();
+      exhausted = false;
       break;
     }
     // 2. The new vertices: midpoints projected onto M (∩ the faces the edge lies on).
@@ -179,7 +199,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
         } else if (m_bc >= 0) {
           result.push_back({m, b, m_bc});
           // The quadrilateral a, m, m_bc, c by its diagonal of larger smallest angle.
-          const double via_a = std::min(min_angle(mesh, {a, m, m_bc}), min_angle(mesh, {a, m_bc, c}));
+          const double via_a =
+              std::min(min_angle(mesh, {a, m, m_bc}), min_angle(mesh, {a, m_bc, c}));
           const double via_m = std::min(min_angle(mesh, {a, m, c}), min_angle(mesh, {m, m_bc, c}));
           if (via_a >= via_m) {
             result.push_back({a, m, m_bc});
@@ -191,7 +212,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
         } else {
           result.push_back({a, m, m_ca});
           const double via_b = std::min(min_angle(mesh, {m, b, c}), min_angle(mesh, {m, c, m_ca}));
-          const double via_m = std::min(min_angle(mesh, {m, b, m_ca}), min_angle(mesh, {b, c, m_ca}));
+          const double via_m =
+              std::min(min_angle(mesh, {m, b, m_ca}), min_angle(mesh, {b, c, m_ca}));
           if (via_b >= via_m) {
             result.push_back({m, b, c});
             result.push_back({m, c, m_ca});
@@ -207,7 +229,22 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     }
     mesh.set_triangles(std::move(result));
   }
-  summary.remaining = static_cast<int>(candidates.size());
+  // Rounds exhausted, or a round could not split anything: the candidates left are measured
+  // once more, so that `remaining` and `max_distance` describe the mesh returned.
+  if (exhausted) {
+    double worst_remaining = -1.0;
+    for (int t : candidates) {
+      const double worst = sample(t);
+      summary.max_distance = std::max(summary.max_distance, worst);
+      if (!(worst <= threshold)) {
+        if (!(worst <= worst_remaining)) {
+          worst_remaining = worst;
+          summary.worst_point = where;
+        }
+        ++summary.remaining;
+      }
+    }
+  }
   return summary;
 }
 

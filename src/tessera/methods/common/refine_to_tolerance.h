@@ -18,7 +18,10 @@ struct ToleranceRefinementOptions {
   /// The samples include the farthest point of a triangle on a surface of constant curvature
   /// (the circumcentre, or a midpoint for obtuse triangles); 0.97 covers the rest.
   double sample_safety = 0.97;
-  int max_rounds = 6;
+  /// Each round bisects the longest edge of every triangle still too far; a flat triangle's
+  /// distance to M scales like its edge length squared, so two rounds divide it by about 4 and
+  /// 12 rounds by about 4000.
+  int max_rounds = 12;
   /// Points within this of a domain face count as lying on it (boundary edges stay on ∂S).
   double face_tolerance = 1e-8;
   CorrectorOptions corrector;
@@ -28,6 +31,12 @@ struct ToleranceRefinement {
   int rounds = 0;
   int split_edges = 0;
   int remaining = 0;  ///< triangles still above the threshold after max_rounds
+  /// The largest sampled distance to M over the triangles checked last (all candidates and
+  /// their offspring); +infinity if a sample could not be projected.
+  double max_distance = 0.0;
+  /// The sample where the distance is largest among the triangles still above the threshold
+  /// (empty if remaining == 0), for messages.
+  Eigen::VectorXd worst_point;
 };
 
 /// For the triangles whose index is in `candidates` (all if empty), and for the triangles made

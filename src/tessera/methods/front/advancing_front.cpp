@@ -7,10 +7,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <limits>
-#include <set>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <set>
 #include <sstream>
 
 #include "tessera/core/corrector.h"
@@ -25,25 +25,22 @@
 namespace tessera {
 
 void FrontOptions::validate() const {
-  TESSERA_CHECK(std::isfinite(step) && step > 0, "FrontOptions::step = " << step << " must be > 0");
-  TESSERA_CHECK(min_gap_angle > 0 && min_gap_angle < std::numbers::pi / 2,
-                "FrontOptions::min_gap_angle = " << min_gap_angle
-                                                 << " must lie in (0, π/2) radians");
+  validate_common("FrontOptions");
+  TESSERA_CHECK(
+      min_gap_angle > 0 && min_gap_angle < std::numbers::pi / 2,
+      "FrontOptions::min_gap_angle = " << min_gap_angle << " must lie in (0, π/2) radians");
   TESSERA_CHECK(max_valence >= 6 && max_valence <= 12,
                 "FrontOptions::max_valence = " << max_valence << " must lie in [6, 12]");
   TESSERA_CHECK(min_step_fraction > 0 && min_step_fraction < 1,
-                "FrontOptions::min_step_fraction = " << min_step_fraction
-                                                     << " must lie in (0, 1)");
+                "FrontOptions::min_step_fraction = " << min_step_fraction << " must lie in (0, 1)");
   TESSERA_CHECK(collision_distance_fraction > 0 && collision_distance_fraction < 1,
                 "FrontOptions::collision_distance_fraction = " << collision_distance_fraction
                                                                << " must lie in (0, 1)");
   TESSERA_CHECK(boundary_snap_fraction >= 0 && boundary_snap_fraction < 0.5,
                 "FrontOptions::boundary_snap_fraction = " << boundary_snap_fraction
                                                           << " must lie in [0, 0.5)");
-  TESSERA_CHECK(max_start_distance_steps > 0, "FrontOptions::max_start_distance_steps = "
-                                                  << max_start_distance_steps << " must be > 0");
-  TESSERA_CHECK(max_vertices >= 7, "FrontOptions::max_vertices = " << max_vertices
-                                                                   << " must be >= 7");
+  TESSERA_CHECK(max_vertices >= 7,
+                "FrontOptions::max_vertices = " << max_vertices << " must be >= 7");
 }
 
 namespace {
@@ -60,7 +57,6 @@ struct StopRun {
   CoveringTermination termination;
   std::string message;
 };
-
 
 // A gap in the neighbourhood of a frontal vertex: counterclockwise from open edge (x_c, last)
 // to open edge (x_c, first), `angle` radians wide in the tangent plane.
@@ -87,8 +83,7 @@ class FrontBuilder {
   void process(int center);
   std::vector<Gap> find_gaps(int center, const std::vector<FanChain>& chains,
                              const Eigen::MatrixXd& U) const;
-  void close_gap(int center, const Linearization& frame, const Eigen::MatrixXd& U,
-                 const Gap& gap);
+  void close_gap(int center, const Linearization& frame, const Eigen::MatrixXd& U, const Gap& gap);
   std::optional<int> colliding_front_vertex(int center, int previous, const Eigen::VectorXd& x,
                                             const Eigen::MatrixXd& U);
   void connect_to_front_vertex(int center, int previous, int w, const Eigen::MatrixXd& U);
@@ -128,11 +123,11 @@ class FrontBuilder {
   int merges_ = 0;
   int step_reductions_ = 0;
   int connections_ = 0;
-  std::set<std::pair<double, int>> by_gap_;  // (gap angle, vertex), smallest first
-  std::vector<double> gap_key_;              // key of each vertex in by_gap_, NaN if absent
+  std::set<std::pair<double, int>> by_gap_;     // (gap angle, vertex), smallest first
+  std::vector<double> gap_key_;                 // key of each vertex in by_gap_, NaN if absent
   std::vector<Eigen::MatrixXd> tangent_cache_;  // n×2 tangent basis per vertex, empty if unknown
-  Linearization center_frame_;  // at the vertex being processed
-  Linearization gap_frame_;     // for the gap angles of the priority order
+  Linearization center_frame_;                  // at the vertex being processed
+  Linearization gap_frame_;                     // for the gap angles of the priority order
 };
 
 std::optional<int> FrontBuilder::next_frontal() {
@@ -242,8 +237,8 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
         }
       }
       if (options_.progress && (++processed % 1000) == 0) {
-        options_.progress({state_.live_vertex_count(), state_.live_triangle_count(),
-                           state_.front_size()});
+        options_.progress(
+            {state_.live_vertex_count(), state_.live_triangle_count(), state_.front_size()});
       }
       if (state_.live_vertex_count() >= options_.max_vertices) {
         throw StopRun{CoveringTermination::VertexLimit,
@@ -294,7 +289,9 @@ void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,
   int first_vertex = -1;
   int previous = -1;
   for (int i = 0; i < 6; ++i) {
-    Eigen::VectorXd x = i == 0 ? corners[0] : new_point(c, frame, U, std::numbers::pi / 6 + i * std::numbers::pi / 3);
+    Eigen::VectorXd x =
+        i == 0 ? corners[0]
+               : new_point(c, frame, U, std::numbers::pi / 6 + i * std::numbers::pi / 3);
     const int v = add_point(x);
     if (i == 0) {
       first_vertex = v;
@@ -451,8 +448,8 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
       std::ostringstream message;
       message << "the triangles around frontal vertex " << center << " "
               << describe_point(state_.point(center))
-              << " overlap (no room is left between open edges " << gap.last << " and "
-              << gap.first << ") and the open edges cannot be merged";
+              << " overlap (no room is left between open edges " << gap.last << " and " << gap.first
+              << ") and the open edges cannot be merged";
       throw StopRun{CoveringTermination::FrontCollision, message.str()};
     }
     add_closing_triangle(center, gap.last, gap.first, U);
@@ -511,8 +508,8 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
 }
 
 std::optional<int> FrontBuilder::colliding_front_vertex(int center, int previous,
-                                                         const Eigen::VectorXd& x,
-                                                         const Eigen::MatrixXd& U) {
+                                                        const Eigen::VectorXd& x,
+                                                        const Eigen::MatrixXd& U) {
   // Vertices within two edges of x_c are the local overlap that PITMAN resolves itself: the
   // next frontal vertex sees a small gap and merges the pair.
   const double radius = options_.collision_distance_fraction * step_;
@@ -572,8 +569,7 @@ void FrontBuilder::require_fit(const Triangle& t, const Eigen::MatrixXd& U) {
   throw StopRun{CoveringTermination::FrontCollision, message.str()};
 }
 
-void FrontBuilder::add_closing_triangle(int center, int last, int first,
-                                        const Eigen::MatrixXd& U) {
+void FrontBuilder::add_closing_triangle(int center, int last, int first, const Eigen::MatrixXd& U) {
   // The new edge last→first must be free on this side, and the triangle must not overlap the
   // triangles already at last and first, else the mesh would fold.
   if (!state_.can_add_edge(last, first) || !state_.triangle_fits({center, last, first}, U)) {
@@ -587,8 +583,7 @@ void FrontBuilder::add_closing_triangle(int center, int last, int first,
 }
 
 bool FrontBuilder::try_merge(int /*center*/, int first, int last, const Linearization& frame) {
-  if (first == last || state_.are_adjacent(first, last) ||
-      !state_.can_identify(first, last)) {
+  if (first == last || state_.are_adjacent(first, last) || !state_.can_identify(first, last)) {
     return false;
   }
   // Paper's Merge: replace both endpoints by the projection of their average (chord at x_c).
@@ -602,7 +597,8 @@ bool FrontBuilder::try_merge(int /*center*/, int first, int last, const Lineariz
   if (tangent_cache_.size() > static_cast<std::size_t>(first)) {
     tangent_cache_[first].resize(0, 0);  // it moved
   }
-  state_.identify(first, last, average, inside ? std::nullopt : std::optional(VertexType::Exterior));
+  state_.identify(first, last, average,
+                  inside ? std::nullopt : std::optional(VertexType::Exterior));
   ++merges_;
   return true;
 }
@@ -625,33 +621,17 @@ bool FrontBuilder::close_small_loop(int center, const Eigen::MatrixXd& U) {
 
 }  // namespace
 
-CoveringResult triangulate_by_front(const ImplicitProblem& user_problem,
-                                    const Eigen::VectorXd& start, const Domain& domain,
-                                    const FrontOptions& options) {
+CoveringResult triangulate_by_front(const ImplicitProblem& problem, const Eigen::VectorXd& start,
+                                    const Domain& domain, const FrontOptions& options) {
   options.validate();
-  check_domain_dimension(domain, user_problem);
-  const auto clock_start = std::chrono::steady_clock::now();
-  CountedProblem problem(user_problem);
-  StartPoint start_point = project_start_point(problem, start, domain,
-                                               options.max_start_distance_steps * options.step);
-  CoveringResult result;
-  result.summary.method = "front";
-  FrontBuilder builder(problem, domain, options);
-  builder.run(start_point.x, start_point.linearization, result.summary);
-  result.mesh = builder.state().to_mesh();
-  if (!domain.is_unbounded()) {
-    ClipOptions clip;
-    clip.snap_distance = options.boundary_snap_fraction * result.summary.step;
-    clip.min_boundary_edge = 0.2 * result.summary.step;
-    const ClipSummary clipped = clip_to_domain(problem, domain, result.mesh, clip);
-    result.summary.clipped_half_spaces = clipped.half_spaces_crossed;
-    if (!clipped.message.empty() && result.summary.is_complete()) {
-      result.summary.termination = CoveringTermination::ProjectionFailed;
-      result.summary.message = clipped.message;
-    }
-  }
-  finish_summary(result.mesh, result.summary, problem, clock_start);
-  return result;
+  return run_covering("front", problem, start, domain, options,
+                      [&options](CoveringContext& context, CoveringResult& result) {
+                        FrontBuilder builder(context.problem, context.domain, options);
+                        builder.run(context.start.x, context.start.linearization, result.summary);
+                        result.mesh = builder.state().to_mesh();
+                        context.boundary_edge_length = result.summary.step;
+                        context.boundary_snap_fraction = options.boundary_snap_fraction;
+                      });
 }
 
 }  // namespace tessera

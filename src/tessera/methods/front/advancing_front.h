@@ -7,7 +7,7 @@
 
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
-#include "tessera/methods/covering_result.h"
+#include "tessera/methods/covering.h"
 
 namespace tessera {
 
@@ -21,9 +21,10 @@ enum class FrontOrder {
   SmallestGapFirst,
 };
 
-struct FrontOptions {
-  /// h, the edge length of the projected hexagons, in ambient units (paper: "suggested step").
-  double step = 0.1;
+/// The front's own options; the shared ones are in CoveringOptions: step is h, the edge length
+/// of the projected hexagons (paper: "suggested step"); tolerance, when > 0, bounds the
+/// distance of the finished mesh to M by bisection (the front's steps do not depend on it).
+struct FrontOptions : CoveringOptions {
   /// α_min: gaps below this are closed by merging the two open edges; sectors are never made
   /// narrower than this. 0.8 rad (46°): sectors then lie in [46°, 92°) around the ideal 60°.
   double min_gap_angle = 0.8;
@@ -37,11 +38,7 @@ struct FrontOptions {
   /// Vertices within this fraction of h of a domain face are snapped onto it when clipping, so
   /// that no needle triangles appear at the boundary (see clip_to_domain).
   double boundary_snap_fraction = 0.35;
-  /// The start must project onto M within this many steps of the guess.
-  double max_start_distance_steps = 10.0;
   FrontOrder order = FrontOrder::SmallestGapFirst;
-  int max_vertices = 2'000'000;  ///< hard stop; VertexLimit
-  ProgressCallback progress;     ///< called every ~1000 vertices when set
 
   /// \throw InvalidArgument naming the first option that is out of range.
   void validate() const;
@@ -50,9 +47,10 @@ struct FrontOptions {
 /// Covers the component of M ∩ S that contains (the projection of) `start` by PITMAN.
 ///
 /// \param start n-vector near M; \param domain S (unbounded: M must be closed and bounded).
-/// \return the mesh (valid even when the run stops early: see summary.termination) and a summary.
-/// \throw InvalidArgument for bad options or sizes; ComputationFailed if the start point cannot
-///        be projected onto M inside the domain.
+/// Runs the shared skeleton (covering.h), which clips, refines and validates.
+/// \return the mesh (valid even when the run stops early: see summary.termination, StartFailed
+///         included) and a summary.
+/// \throw InvalidArgument for bad options or sizes.
 CoveringResult triangulate_by_front(const ImplicitProblem& problem, const Eigen::VectorXd& start,
                                     const Domain& domain, const FrontOptions& options);
 

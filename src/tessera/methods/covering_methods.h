@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The covering methods the command line offers, by name: `tessera mesh --method NAME` and
-// `tessera compare` go through this one list. Adding a method = one entry in covering_methods().
+// The covering methods by name: `tessera mesh --method NAME`, `tessera compare` and the
+// bindings go through this one list. Adding a method = one folder and one entry in
+// covering_methods().
 #pragma once
 
 #include <functional>
@@ -10,13 +11,15 @@
 #include "tessera/methods/covering_result.h"
 #include "tessera/problems/problem_setup.h"
 
-namespace tessera::app {
+namespace tessera {
 
 /// What the user asked for, in method-neutral terms plus each method's own knobs.
 /// A value of 0 (or empty) means "the method's default".
 struct MethodSettings {
-  double step = 0.0;       ///< edge length h; 0: the problem's suggested step
-  double tolerance = 0.0;  ///< bound on the distance of the mesh to M (adaptive methods)
+  double step = 0.0;  ///< the method's length scale; 0: derived from the problem's suggestion
+  /// Bound on the distance of every output triangle to M, for every method (refinement by
+  /// bisection enforces it); 0: atlas step/50·…, see each method; front and bezier: no bound.
+  double tolerance = 0.0;
   int max_vertices = 2'000'000;
   double max_start_distance = 0.0;  ///< in ambient units; 0: the method's default
   ProgressCallback progress;
@@ -35,8 +38,8 @@ struct MethodSettings {
 struct CoveringMethod {
   std::string name;     ///< e.g. "front"
   std::string summary;  ///< one line for --help and `tessera compare`
-  bool uses_tolerance = false;  ///< --tolerance applies (adaptive step); else it is refused
-  /// Covers setup's manifold from setup.start in setup.domain.
+  /// Covers setup's manifold from setup.start in setup.domain (the method's own entry point,
+  /// with options derived from the settings and the problem's suggested step).
   std::function<CoveringResult(const ProblemSetup&, const MethodSettings&)> run;
 };
 
@@ -49,4 +52,11 @@ std::vector<std::string> covering_method_names();
 /// \throw InvalidArgument naming the unknown method and the known ones.
 const CoveringMethod& find_covering_method(const std::string& name);
 
-}  // namespace tessera::app
+/// Runs `method` on `setup` and holds the result to what is known of M: a run that reports
+/// Completed but whose mesh has another Euler characteristic than the one expected of the
+/// component (setup.expected_euler_characteristic) is turned into TriangulationFailed, with the
+/// counts in the message. This is what the command line and the bindings call.
+CoveringResult cover(const ProblemSetup& setup, const CoveringMethod& method,
+                     const MethodSettings& settings);
+
+}  // namespace tessera

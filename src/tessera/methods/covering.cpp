@@ -1,0 +1,313 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/methods/covering.h"
+
+#include <chrono>
+#include <cmath>
+#include <new>
+#include <optional>
+#include <sstream>
+
+#include "tessera/core/counted_problem.h"
+#include "tessera/core/describe.h"
+#include "tessera/core/domain.h"
+#include "tessera/core/error.h"
+#include "tessera/core/linearization.h"
+#include "tessera/geometry/bezier_patch.h"
+#include "tessera/geometry/mesh_topology.h"
+#include "tessera/geometry/mesh_validation.h"
+#include "tessera/geometry/pinched_vertices.h"
+#include "tessera/methods/common/clip_to_domain.h"
+#include "tessera/methods/common/refine_to_tolerance.h"
+#include "tessera/methods/improvement/edge_swap.h"
+#include "tessera/methods/start_point.h"
+
+namespace tessera {
+
+void CoveringOptions::validate_common(const char* owner) const {
+  TESSERA_CHECK(std::isfinite(tolerance) && tolerance >= 0,
+                owner << "::tolerance = " << tolerance << " must be a finite number >= 0");
+  TESSERA_CHECK(std::isfinite(step) && step > 0,
+                owner << "::step = " << step << " must be a finite number > 0");
+  TESSERA_CHECK(max_vertices >= 3,
+                owner << "::max_vertices = " << max_vertices << " must be at least 3");
+  TESSERA_CHECK(
+      std::isfinite(max_start_distance) && max_start_distance >= 0,
+      owner << "::max_start_distance = " << max_start_distance << " must be a finite number >= 0");
+}
+
+namespace {
+
+void fail(CoveringSummary& summary, CoveringTermination termination, const std::string& message) {
+  if (summary.is_complete()) {
+    summary.termination = termination;
+    summary.message = message;
+  } else {
+    summary.notes.push_back(message);
+  }
+}
+
+// Step 5: the mesh clipped to S, snapping and collapsing at the build's boundary edge length.
+void clip(const CoveringContext& context, const CoveringOptions& options, CoveringResult& result,
+          std::string& refusal) {
+  ClipOptions clip;
+  clip.snap_distance = context.boundary_snap_fraction * context.boundary_edge_length;
+  clip.min_boundary_edge = 0.2 * context.boundary_edge_length;
+  clip.corrector = options.corrector;
+  const ClipSummary clipped = clip_to_domain(context.problem, context.domain, result.mesh, clip);
+  result.summary.clipped_half_spaces = clipped.half_spaces_crossed;
+  refusal = clipped.message;
+}
+
+// Post-condition of a completed run, checked rather than assumed: on a closed surface the mesh
+// has no boundary; in a bounded domain every boundary vertex lies on ∂S. Anything else is a
+// hole in the covering, reported with its place.
+void check_coverage(const Domain& domain, double step, CoveringResult& result) {
+  if (!result.summary.is_complete() || result.mesh.triangle_count() == 0) {
+    return;
+  }
+  const TriangleMesh& mesh = result.mesh;
+  const MeshTopology topology(mesh);
+  const double tolerance = 1e-6 * (1.0 + step);
+  for (int e : topology.boundary_edges()) {
+    for (int v : {topology.edge(e)[0], topology.edge(e)[1]}) {
+      const bool on_boundary =
+          !domain.is_unbounded() &&
+          std::abs(domain.boundary_distance(mesh.point(v)).signed_distance) <= tolerance;
+      if (!on_boundary) {
+        fail(result.summary, CoveringTermination::TriangulationFailed,
+             "the mesh has a hole: its boundary passes through " + describe_point(mesh.point(v)) +
+                 (domain.is_unbounded() ? ", but M is closed" : ", inside the domain"));
+        return;
+      }
+    }
+  }
+}
+
+// The cubic patches of a method that has them, rebuilt for the final triangles: refinement and
+// repair change triangles, and a patch depends only on its triangle's vertices and tangent
+// planes (Hohmann eq. 3.5), so patches of neighbours still share their edge curves.
+void rebuild_patches(const ImplicitProblem& problem, CoveringResult& result) {
+  const TriangleMesh& mesh = result.mesh;
+  std::vector<Eigen::MatrixXd> tangents(mesh.vertex_count());
+  Linearization linearization;
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    if (linearization.factor(problem, mesh.point(v))) {
+      tangents[v] = linearization.tangent_basis();
+    }
+  }
+  result.patches.clear();
+  result.patches.reserve(mesh.triangle_count());
+  for (const Triangle& triangle : mesh.triangles()) {
+    Eigen::MatrixXd corners(mesh.ambient_dimension(), 3);
+    std::array<Eigen::MatrixXd, 3> bases;
+    for (int i = 0; i < 3; ++i) {
+      corners.col(i) = mesh.point(triangle[i]);
+      bases[i] = tangents[triangle[i]];
+    }
+    result.patches.push_back(CubicBezierPatch::interpolate_triangle_on_manifold(
+        corners, bases, result.patch_edge_length_factor));
+  }
+}
+
+std::string describe_triangle(const TriangleMesh& mesh, int t) {
+  const Triangle& triangle = mesh.triangle(t);
+  const Eigen::VectorXd centroid =
+      (mesh.point(triangle[0]) + mesh.point(triangle[1]) + mesh.point(triangle[2])) / 3.0;
+  return "near " + describe_point(centroid);
+}
+
+// Step 7: geometric validation. Triangles that are flipped or cover M twice, and triangles
+// with a vertex outside S, are removed (with the fans that removal pinches); the rest is a
+// valid partial mesh. A defect is never returned as a success.
+void validate_and_repair(const ImplicitProblem& problem, const Domain& domain,
+                         CoveringResult& result) {
+  TriangleMesh& mesh = result.mesh;
+  if (mesh.triangle_count() == 0) {
+    return;
+  }
+  const MeshValidation validation = validate(mesh, problem, domain);
+  if (validation.is_valid()) {
+    return;
+  }
+  if (validation.flipped_triangles.empty() && validation.overlapping_triangle_pairs.empty() &&
+      validation.vertices_outside_domain.empty()) {
+    // A combinatorial defect: a method's bug, not repairable here. Report it, never hide it.
+    const MeshDefect& defect = validation.defects.front();
+    fail(result.summary, CoveringTermination::TriangulationFailed,
+         "the final check found the mesh not valid: " + std::to_string(defect.count) + " " +
+             std::string(to_string(defect.kind)) +
+             (defect.examples.empty() ? "" : ", e.g. " + defect.examples.front()));
+    return;
+  }
+  std::vector<bool> keep(mesh.triangle_count(), true);
+  std::vector<std::string> places;
+  auto drop = [&](int t, const char* why) {
+    if (keep[t]) {
+      keep[t] = false;
+      if (places.size() < 3) {
+        places.push_back(std::string(why) + " triangle " + describe_triangle(mesh, t));
+      }
+    }
+  };
+  for (int t : validation.flipped_triangles) {
+    drop(t, "a flipped");
+  }
+  for (const auto& [s, t] : validation.overlapping_triangle_pairs) {
+    drop(s, "an overlapping");
+    drop(t, "an overlapping");
+  }
+  if (!validation.vertices_outside_domain.empty()) {
+    std::vector<bool> outside(mesh.vertex_count(), false);
+    for (int v : validation.vertices_outside_domain) {
+      outside[v] = true;
+    }
+    for (int t = 0; t < mesh.triangle_count(); ++t) {
+      for (int v : mesh.triangle(t)) {
+        if (outside[v]) {
+          drop(t, "a");
+          break;
+        }
+      }
+    }
+  }
+  const int before = mesh.triangle_count();
+  std::vector<bool> kept_fans = keep_largest_fans(mesh.vertex_count(), mesh.triangles());
+  for (int t = 0; t < before; ++t) {
+    keep[t] = keep[t] && kept_fans[t];
+  }
+  if (!result.patches.empty()) {
+    std::vector<CubicBezierPatch> patches;
+    for (int t = 0; t < before; ++t) {
+      if (keep[t]) {
+        patches.push_back(result.patches[t]);
+      }
+    }
+    result.patches = std::move(patches);
+  }
+  mesh.keep_triangles(keep);
+  // A drop can pinch a vertex again; keep_largest_fans repeats until none is left, so one
+  // more pass over the kept triangles only confirms.
+  const int removed = before - mesh.triangle_count();
+  result.summary.removed_triangles += removed;
+  std::ostringstream message;
+  message << "the final check found " << validation.flipped_triangle_count
+          << " flipped triangle(s), " << validation.overlapping_pair_count
+          << " overlapping pair(s) and " << validation.vertex_outside_domain_count
+          << " vertex(es) outside the domain; " << removed
+          << " triangle(s) were removed, leaving holes: ";
+  for (std::size_t i = 0; i < places.size(); ++i) {
+    message << (i ? "; " : "") << places[i];
+  }
+  fail(result.summary, CoveringTermination::TriangulationFailed, message.str());
+}
+
+}  // namespace
+
+CoveringResult run_covering(const std::string& method, const ImplicitProblem& user_problem,
+                            const Eigen::VectorXd& start, const Domain& domain,
+                            const CoveringOptions& options, const CoveringBuild& build) {
+  // 1. Input.
+  options.validate_common(method.c_str());
+  const int n = user_problem.ambient_dimension();
+  TESSERA_CHECK(
+      domain.is_unbounded() || domain.ambient_dimension() == n,
+      "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^" << n);
+  const auto clock_start = std::chrono::steady_clock::now();
+  // 2. Counting.
+  const CountedProblem problem(user_problem);
+  CoveringResult result;
+  result.mesh = TriangleMesh(n);
+  CoveringSummary& summary = result.summary;
+  auto finish = [&] {
+    summary.method = method;
+    summary.tolerance = options.tolerance;
+    summary.vertex_count = result.mesh.vertex_count();
+    summary.triangle_count = result.mesh.triangle_count();
+    summary.function_evaluations = problem.function_evaluations();
+    summary.jacobian_evaluations = problem.jacobian_evaluations();
+    summary.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  };
+  // 3. The start on M inside S: a failure there is an outcome (StartFailed), not an exception,
+  //    so that callers always get a summary.
+  std::optional<StartPoint> start_point;
+  try {
+    const double max_start_distance =
+        options.max_start_distance > 0 ? options.max_start_distance : 10.0 * options.step;
+    start_point = project_start_point(problem, start, domain, max_start_distance);
+  } catch (const ComputationFailed& failure) {
+    summary.termination = CoveringTermination::StartFailed;
+    summary.message = failure.what();
+    finish();
+    return result;
+  }
+  // 4. The method's build, and 5. clipping to S.
+  CoveringContext context{problem, domain, *start_point};
+  try {
+    summary.method = method;
+    build(context, result);
+    if (!domain.is_unbounded() && context.boundary_edge_length > 0 &&
+        result.mesh.triangle_count() > 0) {
+      std::string refusal;
+      clip(context, options, result, refusal);
+      if (!refusal.empty() && context.retry_if_clipping_fails) {
+        context.attempt = 1;
+        result = CoveringResult();
+        result.mesh = TriangleMesh(n);
+        summary.method = method;
+        build(context, result);
+        clip(context, options, result, refusal);
+        summary.notes.push_back(
+            "the first mesh left a configuration at the domain boundary "
+            "that the clipping refused; built again without snapping");
+      }
+      if (!refusal.empty()) {
+        fail(summary, CoveringTermination::ProjectionFailed, refusal);
+      }
+      if (context.swap_after_clipping && result.mesh.triangle_count() > 0) {
+        // Clipping leaves poor angles at ∂S that swaps in the tangent planes repair.
+        improve_by_edge_swaps(result.mesh, problem, ImprovementOptions{});
+      }
+    }
+  } catch (const std::bad_alloc&) {
+    // Whatever the build held is gone; the summary still says what happened.
+    result.mesh = TriangleMesh(n);
+    result.patches.clear();
+    fail(summary, CoveringTermination::ProjectionFailed,
+         "out of memory (n = " + std::to_string(n) +
+             "): the problem's Jacobian factorisation or the mesh did not fit; try a coarser "
+             "tolerance or step, or fewer unknowns");
+  }
+  // 6. The distance bound, checked on every triangle and enforced by bisection on M.
+  const int triangles_built = result.mesh.triangle_count();
+  if (options.tolerance > 0 && result.mesh.triangle_count() > 0) {
+    ToleranceRefinementOptions refine;
+    refine.tolerance = options.tolerance;
+    refine.corrector = options.corrector;
+    const ToleranceRefinement refined =
+        refine_to_tolerance(problem, domain, result.mesh, {}, refine);
+    summary.refined_edges += refined.split_edges;
+    summary.max_sampled_distance = refined.max_distance;
+    if (refined.remaining > 0) {
+      std::ostringstream message;
+      message << refined.remaining << " triangle(s) are still farther than the tolerance "
+              << options.tolerance << " from M after " << refined.rounds
+              << " rounds of bisection; the farthest sample, " << refined.max_distance
+              << " from M, is at " << describe_point(refined.worst_point);
+      fail(summary, CoveringTermination::ProjectionFailed, message.str());
+    }
+  }
+  // 7. Geometric validity, no holes, then the patches for the final triangles.
+  validate_and_repair(problem, domain, result);
+  check_coverage(domain, options.step, result);
+  if (!result.patches.empty() &&
+      (result.mesh.triangle_count() != triangles_built || summary.refined_edges > 0 ||
+       static_cast<int>(result.patches.size()) != result.mesh.triangle_count())) {
+    rebuild_patches(problem, result);
+  }
+  // 8. The summary.
+  finish();
+  return result;
+}
+
+}  // namespace tessera

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: MIT
+// The shared run skeleton (methods/covering.h) and the registry (methods/covering_methods.h):
+// what every method promises, checked the same way for each.
+#include "tessera/methods/covering.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "geometry/mesh_examples.h"
+#include "tessera/core/counted_problem.h"
+#include "tessera/geometry/mesh_quality.h"
+#include "tessera/geometry/mesh_validation.h"
+#include "tessera/methods/covering_methods.h"
+#include "tessera/methods/start_point.h"
+#include "tessera/problems/catalogue.h"
+
+namespace tessera {
+namespace {
+
+struct MethodProblem {
+  std::string method;
+  std::string problem;
+};
+
+std::string name_of(const ::testing::TestParamInfo<MethodProblem>& info) {
+  return info.param.method + "_" + info.param.problem;
+}
+
+// --tolerance means one thing for every method: every sampled point of every output triangle
+// (centroids and edge midpoints, measured here independently of the method by projecting
+// them onto M) lies within it of M, and the summary reports the distance it measured.
+class ToleranceBound : public ::testing::TestWithParam<MethodProblem> {};
+
+TEST_P(ToleranceBound, HoldsForEveryTriangle) {
+  const MethodProblem& param = GetParam();
+  const ProblemSetup setup = make_catalogue_problem(param.problem);
+  MethodSettings settings;
+  settings.tolerance = 0.004;
+  const CoveringResult result = cover(setup, find_covering_method(param.method), settings);
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  const MeshValidation validation = validate(result.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+  ASSERT_TRUE(setup.expected_euler_characteristic);
+  EXPECT_EQ(validation.euler_characteristic, *setup.expected_euler_characteristic);
+  const MeshQuality quality = measure_quality(result.mesh, *setup.problem);
+  EXPECT_LT(quality.vertex_distance.max, 1e-8);
+  // The check samples centroids, midpoints and circumcentres and refines above 0.97 ε; the
+  // independent measurement here is of centroids and midpoints, so it stays below ε.
+  EXPECT_LE(quality.centroid_distance.max, settings.tolerance);
+  EXPECT_LE(quality.midpoint_distance.max, settings.tolerance);
+  EXPECT_LE(result.summary.max_sampled_distance, settings.tolerance);
+  EXPECT_GE(result.summary.max_sampled_distance,
+            std::max(quality.centroid_distance.max, quality.midpoint_distance.max) * 0.99);
+  EXPECT_EQ(result.summary.tolerance, settings.tolerance);
+  if (param.method == "bezier") {
+    EXPECT_EQ(static_cast<int>(result.patches.size()), result.mesh.triangle_count());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Methods, ToleranceBound,
+    ::testing::Values(MethodProblem{"atlas", "torus"}, MethodProblem{"front", "sphere"},
+                      MethodProblem{"front", "torus"}, MethodProblem{"bezier", "sphere"},
+                      MethodProblem{"bezier", "torus"}, MethodProblem{"bezier", "cstr"}),
+    name_of);
+
+// Without --tolerance the front keeps its own step and no bound is claimed.
+TEST(Covering, WithoutToleranceNoBoundIsClaimed) {
+  const ProblemSetup setup = make_catalogue_problem("sphere");
+  const CoveringResult result = cover(setup, find_covering_method("front"), MethodSettings{});
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  EXPECT_EQ(result.summary.tolerance, 0.0);
+  EXPECT_EQ(result.summary.max_sampled_distance, -1.0);
+  EXPECT_EQ(result.summary.refined_edges, 0);
+}
+
+// A start that cannot be projected is an outcome with a summary, for every method.
+TEST(Covering, StartFailureIsAnOutcomeForEveryMethod) {
+  ProblemSetup setup = make_catalogue_problem("sphere");
+  setup.start = Eigen::VectorXd::Constant(3, 100.0);
+  for (const CoveringMethod& method : covering_methods()) {
+    SCOPED_TRACE(method.name);
+    const CoveringResult result = cover(setup, method, MethodSettings{});
+    EXPECT_EQ(result.summary.termination, CoveringTermination::StartFailed);
+    EXPECT_NE(result.summary.message.find("(100, 100, 100)"), std::string::npos)
+        << result.summary.message;
+    EXPECT_EQ(result.mesh.triangle_count(), 0);
+    EXPECT_EQ(result.summary.method, method.name);
+    EXPECT_GT(result.summary.function_evaluations, 0);
+  }
+}
+
+// A completed run whose mesh has another topology than M's is a failure, not a success.
+TEST(Covering, WrongTopologyIsAFailure) {
+  ProblemSetup setup = make_catalogue_problem("sphere");
+  setup.expected_euler_characteristic = 0;  // claims a torus
+  const CoveringResult result = cover(setup, find_covering_method("front"), MethodSettings{});
+  EXPECT_EQ(result.summary.termination, CoveringTermination::TriangulationFailed);
+  EXPECT_NE(result.summary.message.find("Euler characteristic 2"), std::string::npos)
+      << result.summary.message;
+}
+
+// The skeleton's last word on validity: a build that returns a flipped triangle (here an
+// icosphere with one vertex moved across its neighbours) does not end as a success; the
+// flipped triangles are removed, the rest is valid, and the message gives coordinates.
+TEST(Covering, FlippedTrianglesAreRemovedAndReported) {
+  const ProblemSetup setup = make_catalogue_problem("sphere");
+  CoveringOptions options;
+  options.step = 0.3;
+  const CoveringResult result =
+      run_covering("planted", *setup.problem, setup.start, setup.domain, options,
+                   [](CoveringContext&, CoveringResult& built) {
+                     built.mesh = examples::icosphere(2);
+                     // Vertex 0 lies on the sphere; reflecting it through the centroid of one of
+                     // its neighbours' opposite edges folds its fan over.
+                     const Eigen::VectorXd p = built.mesh.point(0);
+                     Eigen::VectorXd q;
+                     for (const Triangle& t : built.mesh.triangles()) {
+                       if (t[0] == 0 || t[1] == 0 || t[2] == 0) {
+                         const int a = t[0] == 0 ? t[1] : t[0];
+                         const int b = t[2] == 0 ? t[1] : t[2];
+                         q = 0.5 * (built.mesh.point(a) + built.mesh.point(b));
+                         break;
+                       }
+                     }
+                     Eigen::VectorXd moved = p + 2.2 * (q - p);
+                     moved.normalize();  // back onto M
+                     built.mesh.mutable_point(0) = moved;
+                   });
+  EXPECT_EQ(result.summary.termination, CoveringTermination::TriangulationFailed);
+  EXPECT_GT(result.summary.removed_triangles, 0);
+  EXPECT_NE(result.summary.message.find("flipped"), std::string::npos) << result.summary.message;
+  EXPECT_NE(result.summary.message.find("near ("), std::string::npos) << result.summary.message;
+  const MeshValidation validation = validate(result.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+}
+
+}  // namespace
+}  // namespace tessera
