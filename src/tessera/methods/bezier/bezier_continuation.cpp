@@ -25,6 +25,7 @@
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
+#include "tessera/core/face_projection.h"
 #include "tessera/core/linearization.h"
 #include "tessera/methods/common/point_grid.h"
 #include "tessera/methods/start_point.h"
@@ -181,47 +182,11 @@ double BezierBuilder::predicted_step(int a, int b) const {
 
 bool BezierBuilder::project_onto_faces(Eigen::VectorXd& y, std::vector<int>& faces,
                                        double& theta) const {
-  // Example 3: on a face the point is computed for F restricted to it. For a general
-  // half-space b·(x − p) ≥ 0 this is Gauss–Newton on the bordered system F(x) = 0,
-  // b·(x − p) = 0 with minimum-norm corrections; for a box face b = ±e_i it fixes x_i.
-  const int m = n_ - 2;
-  const int rows = m + static_cast<int>(faces.size());
-  Eigen::VectorXd F(m), r(rows), dx(n_);
-  Eigen::MatrixXd J(m, n_), A(rows, n_);
-  double previous = 0.0;
-  theta = 0.0;
-  for (int k = 0; k < 2 * options_.corrector.max_iterations; ++k) {
-    problem_.evaluate(y, F);
-    if (!F.allFinite()) {
-      return false;
-    }
-    problem_.jacobian(y, J);
-    A.topRows(m) = J;
-    r.head(m) = F;
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-      const HalfSpace& h = domain_.half_spaces()[faces[f]];
-      A.row(m + static_cast<int>(f)) = h.normal.transpose();
-      r(m + static_cast<int>(f)) = h.normal.dot(y - h.point);
-    }
-    if (!solve_minimum_norm_dense(A, -r, dx)) {
-      return false;
-    }
-    y += dx;
-    const double norm = dx.norm();
-    if (k == 1 && previous > 0) {
-      theta = norm / previous;
-    }
-    if (k > 0 && previous > 0 && norm > 0.9 * previous &&
-        norm > options_.corrector.tolerance * (1.0 + y.norm())) {
-      return false;  // not contracting
-    }
-    previous = norm;
-    if (norm <= options_.corrector.tolerance * (1.0 + y.norm())) {
-      problem_.evaluate(y, F);
-      return F.allFinite() && F.norm() <= 1e-9;
-    }
-  }
-  return false;
+  // Example 3: on a face the point is computed for F restricted to it, i.e. Gauss–Newton on
+  // F(x) = 0, b·(x − p) = 0 with minimum-norm corrections (for a box face b = ±e_i it fixes
+  // x_i); the shared corrector does this with DF's own factorisation, dense or sparse.
+  return tessera::project_onto_faces(problem_, domain_, faces, y,
+                                     std::numeric_limits<double>::infinity(), corrector_, &theta);
 }
 
 std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& prediction, double s,

@@ -3,68 +3,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <map>
+#include <numbers>
 #include <set>
 #include <sstream>
 
+#include "tessera/core/face_projection.h"
 #include "tessera/core/linearization.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
 
 namespace tessera {
-
-// Minimum-norm Gauss–Newton on F(x) = 0 together with the linear constraints of the faces in
-// `faces` (g_f(x) = b_f·(x − p_f) = 0). The step reuses the linearisation of F alone, so it
-// costs what an unconstrained step costs, dense or sparse: write dx = J⁺(−F) + T z with T the
-// tangent basis; then J dx = −F for every z, the faces require (BᵀT) z = −g − Bᵀ J⁺(−F), and
-// since J⁺(−F) ⟂ T z, the minimum-norm dx has the minimum-norm z of that c×2 system.
-bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
-                        const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
-                        const CorrectorOptions& options) {
-  const int n = problem.ambient_dimension();
-  const int c = static_cast<int>(faces.size());
-  if (c > 2) {
-    return false;  // more faces than the surface has dimensions: no such point in general
-  }
-  const Eigen::VectorXd start = x;
-  Eigen::VectorXd F(n - 2);
-  Eigen::VectorXd dx(n);
-  Linearization linearization;
-  for (int k = 0; k < options.max_iterations; ++k) {
-    problem.evaluate(x, F);
-    const Eigen::MatrixXd reference =
-        linearization.is_factored() ? linearization.tangent_basis() : Eigen::MatrixXd();
-    if (!F.allFinite() ||
-        !linearization.factor(problem, x, reference.size() ? &reference : nullptr)) {
-      return false;
-    }
-    linearization.solve_minimum_norm(-F, dx);
-    const Eigen::MatrixXd& T = linearization.tangent_basis();
-    Eigen::MatrixXd BT(c, 2);
-    Eigen::VectorXd rhs(c);
-    for (int f = 0; f < c; ++f) {
-      const HalfSpace& h = domain.half_spaces()[faces[f]];
-      BT.row(f) = h.normal.transpose() * T;
-      rhs(f) = -h.normal.dot(x - h.point) - h.normal.dot(dx);
-    }
-    Eigen::VectorXd z(2);
-    if (!solve_minimum_norm_dense(BT, rhs, z)) {
-      return false;  // a face tangent to M: the constrained point is not isolated
-    }
-    dx += T * z;
-    x += dx;
-    if ((x - start).norm() > max_move) {
-      return false;
-    }
-    if (dx.norm() <= options.tolerance * (1.0 + x.norm())) {
-      problem.evaluate(x, F);
-      return F.norm() <= options.residual_tolerance;
-    }
-  }
-  return false;
-}
 
 namespace {
 
@@ -93,9 +43,9 @@ namespace {
 using FaceSets = std::vector<std::vector<int>>;  // per vertex: sorted faces it lies on
 
 // Clips to face k. Returns false (with `message` set) if a cut point cannot be found.
-bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k,
-                  double snap_distance, const CorrectorOptions& corrector, TriangleMesh& mesh,
-                  FaceSets& on_faces, ClipSummary& summary) {
+bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, double snap_distance,
+                  const CorrectorOptions& corrector, TriangleMesh& mesh, FaceSets& on_faces,
+                  ClipSummary& summary) {
   ClipOptions options;
   options.snap_distance = snap_distance;
   options.corrector = corrector;
@@ -195,7 +145,8 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k,
         }
         // A cut point that lands next to an earlier face belongs at the corner where the two
         // faces meet (left where it is, it would make a needle with that corner).
-        if (static_cast<int>(faces.size()) + problem.equation_count() < problem.ambient_dimension()) {
+        if (static_cast<int>(faces.size()) + problem.equation_count() <
+            problem.ambient_dimension()) {
           for (int j = 0; j < k; ++j) {
             if (std::binary_search(faces.begin(), faces.end(), j) ||
                 std::abs(domain.signed_distance(j, x)) >= options.snap_distance) {
@@ -205,8 +156,8 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k,
             corner_faces.push_back(j);
             std::sort(corner_faces.begin(), corner_faces.end());
             Eigen::VectorXd corner = x;
-            if (project_onto_faces(problem, domain, corner_faces, corner,
-                                   3 * options.snap_distance, options.corrector) &&
+            if (project_onto_faces(problem, domain, corner_faces, corner, 3 * options.snap_distance,
+                                   options.corrector) &&
                 domain.contains(corner, 1e-9)) {
               x = corner;
               faces = corner_faces;
@@ -307,8 +258,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k,
 // Collapses boundary edges shorter than `min_length`: the vertex on fewer faces moves into the
 // other (a corner or face vertex stays where it is, on M ∩ ∂S). A collapse is kept only if it
 // raises the smallest angle among the triangles around the moved vertex and the result is valid.
-int collapse_short_boundary_edges(TriangleMesh& mesh, const FaceSets& on_faces,
-                                  double min_length) {
+int collapse_short_boundary_edges(TriangleMesh& mesh, const FaceSets& on_faces, double min_length) {
   int collapsed = 0;
   bool changed = true;
   std::set<std::pair<int, int>> rejected;  // each edge is judged once: O(N) per collapse
@@ -317,8 +267,7 @@ int collapse_short_boundary_edges(TriangleMesh& mesh, const FaceSets& on_faces,
     const MeshTopology topology(mesh);
     for (int e : topology.boundary_edges()) {
       auto [a, b] = topology.edge(e);
-      if ((mesh.point(a) - mesh.point(b)).norm() >= min_length ||
-          !rejected.insert({a, b}).second) {
+      if ((mesh.point(a) - mesh.point(b)).norm() >= min_length || !rejected.insert({a, b}).second) {
         continue;
       }
       if (on_faces[b].size() > on_faces[a].size()) {
@@ -365,8 +314,8 @@ int collapse_short_boundary_edges(TriangleMesh& mesh, const FaceSets& on_faces,
 
 }  // namespace
 
-ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
-                           TriangleMesh& mesh, const ClipOptions& options) {
+ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain, TriangleMesh& mesh,
+                           const ClipOptions& options) {
   ClipSummary summary;
   const int face_count = static_cast<int>(domain.half_spaces().size());
   FaceSets on_faces(mesh.vertex_count());

@@ -7,6 +7,7 @@
 
 #include "tessera/core/corrector.h"
 #include "tessera/core/domain.h"
+#include "tessera/core/face_projection.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/geometry/triangle_mesh.h"
 
@@ -30,13 +31,6 @@ struct ClipSummary {
   std::string message;  ///< non-empty if a face could not be clipped (mesh left unclipped there)
 };
 
-/// Projects x onto M ∩ {the bounding hyperplanes of `faces`} (at most two of them) by
-/// minimum-norm Gauss–Newton. \return false if it does not converge, moves farther than
-/// max_move, or a face is tangent to M there (x is then unspecified).
-bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
-                        const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
-                        const CorrectorOptions& options);
-
 /// Clips `mesh` (vertices on M) to S = ∩ half-spaces, one face at a time ("snap, then cut"):
 ///  1. vertices within snap_distance of the face are projected onto M ∩ face (Gauss–Newton on
 ///     F = 0, b·(x − p) = 0, plus the faces the vertex already lies on);
@@ -47,7 +41,7 @@ bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
 /// This resolves what Brodzik & Rheinboldt leave open ("adjust the exterior points onto the
 /// boundary"): the boundary of the result lies on M ∩ ∂S up to the corrector tolerance, and
 /// snapping before cutting keeps cut points away from vertices, so no needles are created.
-ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
-                           TriangleMesh& mesh, const ClipOptions& options);
+ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain, TriangleMesh& mesh,
+                           const ClipOptions& options);
 
 }  // namespace tessera

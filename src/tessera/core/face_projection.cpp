@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/core/face_projection.h"
+
+#include "tessera/core/linearization.h"
+
+namespace tessera {
+
+// Minimum-norm Gauss–Newton on F(x) = 0 together with the linear constraints of the faces in
+// `faces` (g_f(x) = b_f·(x − p_f) = 0). The step reuses the linearisation of F alone: write
+// dx = J⁺(−F) + T z with T the tangent basis; then J dx = −F for every z, the faces require
+// (BᵀT) z = −g − Bᵀ J⁺(−F), and since J⁺(−F) ⟂ T z, the minimum-norm dx of the whole bordered
+// system has the minimum-norm z of that c×2 system (Hohmann's example 3 solves the same system
+// densely).
+bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
+                        const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
+                        const CorrectorOptions& options, double* first_contraction) {
+  const int n = problem.ambient_dimension();
+  const int c = static_cast<int>(faces.size());
+  if (first_contraction != nullptr) {
+    *first_contraction = 0.0;
+  }
+  if (c > 2) {
+    return false;  // more faces than the surface has dimensions: no such point in general
+  }
+  const Eigen::VectorXd start = x;
+  Eigen::VectorXd F(n - 2);
+  Eigen::VectorXd dx(n);
+  Linearization linearization;
+  double previous = 0.0;
+  for (int k = 0; k < 2 * options.max_iterations; ++k) {
+    problem.evaluate(x, F);
+    const Eigen::MatrixXd reference =
+        linearization.is_factored() ? linearization.tangent_basis() : Eigen::MatrixXd();
+    if (!F.allFinite() ||
+        !linearization.factor(problem, x, reference.size() ? &reference : nullptr)) {
+      return false;
+    }
+    linearization.solve_minimum_norm(-F, dx);
+    const Eigen::MatrixXd& T = linearization.tangent_basis();
+    Eigen::MatrixXd BT(c, 2);
+    Eigen::VectorXd rhs(c);
+    for (int f = 0; f < c; ++f) {
+      const HalfSpace& h = domain.half_spaces()[faces[f]];
+      BT.row(f) = h.normal.transpose() * T;
+      rhs(f) = -h.normal.dot(x - h.point) - h.normal.dot(dx);
+    }
+    Eigen::VectorXd z(2);
+    if (!solve_minimum_norm_dense(BT, rhs, z)) {
+      return false;  // a face tangent to M: the constrained point is not isolated
+    }
+    dx += T * z;
+    x += dx;
+    if ((x - start).norm() > max_move) {
+      return false;
+    }
+    const double norm = dx.norm();
+    const bool small = norm <= options.tolerance * (1.0 + x.norm());
+    if (k == 1 && previous > 0 && first_contraction != nullptr) {
+      *first_contraction = norm / previous;
+    }
+    if (k > 0 && previous > 0 && norm > 0.9 * previous && !small) {
+      return false;  // not contracting: outside the region of convergence
+    }
+    previous = norm;
+    if (small) {
+      problem.evaluate(x, F);
+      return F.allFinite() && F.norm() <= options.residual_tolerance;
+    }
+  }
+  return false;
+}
+
+}  // namespace tessera

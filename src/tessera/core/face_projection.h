@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+// Projection onto M ∩ (bounding hyperplanes of a domain): the corrector for points on ∂S,
+// shared by clipping, refinement and the methods that put vertices on faces themselves.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "tessera/core/corrector.h"
+#include "tessera/core/domain.h"
+#include "tessera/core/implicit_problem.h"
+
+namespace tessera {
+
+/// Projects x onto M ∩ {the bounding hyperplanes of `faces`} (at most two of them, as M is a
+/// surface) by minimum-norm Gauss–Newton on F(x) = 0, b_f·(x − p_f) = 0. Each step factors DF
+/// alone (dense or sparse, through Linearization), so it costs what an unconstrained step
+/// costs and never forms a dense n×n matrix.
+///
+/// \param x  n-vector, moved in place (unspecified on failure).
+/// \param max_move  the projection fails if x moves farther than this from where it started.
+/// \param first_contraction  if not null, receives Deuflhard's θ = ‖dx₁‖/‖dx₀‖ of the first
+///        two steps (0 if the first step already converged): the step-size controls use it.
+/// \return false if it does not converge within 2·options.max_iterations steps, stops
+///         contracting (θ > 0.9), moves farther than max_move, F is not finite, DF loses rank,
+///         or a face is tangent to M there (the constrained point is then not isolated).
+bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
+                        const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
+                        const CorrectorOptions& options, double* first_contraction = nullptr);
+
+}  // namespace tessera
