@@ -67,9 +67,12 @@ OutputFile::OutputFile(std::string_view format, std::string path)
     : format_(format), path_(std::move(path)), target_(path_) {
   namespace fs = std::filesystem;
   std::error_code error;
-  // /dev/stdout and the like name streams, not files to replace: with `> out.json` the link
-  // resolves to a regular file, and a rename over it would leave the shell's stream unchanged.
-  const bool is_stream = path_.rfind("/dev/", 0) == 0 || path_.rfind("/proc/", 0) == 0;
+  // /dev/stdout, /dev/fd/N and /proc/... name streams, not files to replace: with `> out.json`
+  // the link resolves to a regular file, and a rename over it would leave the shell's stream
+  // unchanged. (A file in a folder such as /dev/shm is replaced as anywhere else.)
+  const bool is_stream =
+      path_.rfind("/proc/", 0) == 0 ||
+      (path_.rfind("/dev/", 0) == 0 && fs::is_symlink(fs::symlink_status(path_, error)));
   if (!is_stream && fs::is_symlink(fs::symlink_status(path_, error))) {
     // Replace what the link names, not the link: writing through it is what fopen did.
     const fs::path resolved = fs::canonical(path_, error);

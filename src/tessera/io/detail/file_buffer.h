@@ -49,8 +49,9 @@ std::string read_file(std::string_view format, const std::string& path);
 /// before close() leaves a file that existed at `path` untouched; on failure the temporary is
 /// removed (a SIGKILL can leave it behind, never a damaged target). An existing target keeps
 /// its permission bits. A symbolic link is followed: the file it points to is replaced, the
-/// link stays. A target that exists and is not a regular file (a FIFO), and any path under /dev/
-/// or /proc/ (/dev/stdout), is written in place, where a temporary and a rename make no sense.
+/// link stays. A target that exists and is not a regular file (a device, a FIFO), a link under
+/// /dev/ (/dev/stdout) and a path under /proc/ are written in place, where a temporary and a
+/// rename make no sense.
 ///
 /// fdatasync before the rename: without it a crash of the machine (not of the program) soon
 /// after the rename may leave an empty target on file systems that commit the rename before the
