@@ -5,6 +5,8 @@
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -142,6 +144,43 @@ TEST(FileReplacement, WriterLeftByAnExceptionKeepsThePreviousFile) {
   }
   EXPECT_EQ(file_text(path), "previous");
   EXPECT_EQ(entries(folder), std::vector<std::string>{"m.ply"});
+}
+
+// A process killed in the middle of writing (here: with 8 MiB written, before close) leaves the
+// previous file whole; only the hidden temporary remains.
+TEST(FileReplacement, KillMidwayKeepsThePreviousFile) {
+  const auto folder = fresh_folder("kill");
+  const auto path = folder + "/m.vtu";
+  write_text(path, "previous");
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    io_detail::OutputFile file("VTU", path);
+    const std::string block(1 << 20, 'x');
+    for (int i = 0; i < 8; ++i) {
+      file.text(block);
+    }
+    file.text("y");  // pushes the 8th block out of the buffer
+    pause();         // killed here, before close()
+    _exit(0);
+  }
+  // Wait until the child has written its 8 MiB to the temporary.
+  std::string temporary;
+  for (int attempt = 0; attempt < 2000 && temporary.empty(); ++attempt) {
+    for (const auto& name : entries(folder)) {
+      if (name.rfind(".m.vtu.tmp.", 0) == 0 && fs::file_size(folder + "/" + name) >= (8u << 20)) {
+        temporary = name;
+      }
+    }
+    usleep(10'000);
+  }
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_FALSE(temporary.empty()) << "the child never wrote its temporary";
+  EXPECT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(file_text(path), "previous");
+  EXPECT_EQ(entries(folder), (std::vector<std::string>{temporary, "m.vtu"}));
 }
 
 TEST(FileReplacement, MissingFolderIsAnErrorNamingTheFile) {

@@ -28,6 +28,19 @@ TEST_P(CheckReadsWhatMeshWrites, TorusAndCstr) {
   }
 }
 
+TEST(CheckCommand, MalformedVtuIsAUsageErrorNamingFileAndLine) {
+  const std::string path = test_path("cli_broken.vtu");
+  ASSERT_EQ(run_cli("mesh torus -q -o '" + path + "'").exit_code, 0);
+  std::string text = file_text(path);
+  text.replace(text.find("</Points>"), 9, "</Point>");
+  write_text(path, text);
+  const auto check = run_cli("check '" + path + "' --problem torus");
+  EXPECT_EQ(check.exit_code, 2) << check.output;
+  EXPECT_NE(check.output.find("VTU file '" + path + "', line "), std::string::npos) << check.output;
+  EXPECT_NE(check.output.find("'</Point>' does not match '<Points>'"), std::string::npos)
+      << check.output;
+}
+
 INSTANTIATE_TEST_SUITE_P(Formats, CheckReadsWhatMeshWrites,
                          ::testing::Values(".vtu", ".vtk", ".ply"),
                          [](const auto& info) { return info.param.substr(1); });

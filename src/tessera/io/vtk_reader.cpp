@@ -575,7 +575,8 @@ class XmlDocument {
           fail("unterminated '<?'");
         }
       } else if (at("<!--")) {
-        const std::size_t begin = position_ + 4;
+        advance(4);  // "<!-->" is not a whole comment: its "-->" starts inside "<!--"
+        const std::size_t begin = position_;
         if (!skip_past("-->")) {
           fail("unterminated comment");
         }
