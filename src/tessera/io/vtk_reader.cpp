@@ -175,6 +175,21 @@ class LegacyReader {
     return value;
   }
 
+  // `describe` builds the name of the value only when it is needed for a message: cells are read
+  // by the million.
+  template <class Describe>
+  std::int64_t integer_of(const Describe& describe) {
+    const std::string_view token = cursor_.next_token();
+    std::int64_t value = 0;
+    if (token.empty()) {
+      fail("unexpected end of file: expected " + describe());
+    }
+    if (!io_detail::parse_integer(token, value)) {
+      fail("expected an integer for " + describe() + ", found " + io_detail::quoted_excerpt(token));
+    }
+    return value;
+  }
+
   std::int64_t integer(const std::string& what) {
     const std::string_view token = required_token(what);
     std::int64_t value = 0;
@@ -351,7 +366,8 @@ TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string&
       std::int64_t read = 0;
       std::vector<std::int64_t> polygon;
       for (std::int64_t c = 0; c < cells; ++c) {
-        const std::int64_t k = reader.integer(name + " cell " + std::to_string(c) + " (its size)");
+        const std::int64_t k =
+            reader.integer_of([&] { return name + " cell " + std::to_string(c) + " (its size)"; });
         read += 1 + std::max<std::int64_t>(k, 0);
         if (k < 1 || read > size) {
           reader.fail(
@@ -364,7 +380,8 @@ TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string&
         }
         polygon.clear();
         for (std::int64_t i = 0; i < k; ++i) {
-          const std::int64_t v = reader.integer(name + " cell " + std::to_string(c));
+          const std::int64_t v =
+              reader.integer_of([&] { return name + " cell " + std::to_string(c); });
           if (v < 0 || v >= vertex_count) {
             reader.fail(name + " cell " + std::to_string(c) + " has vertex index " +
                         std::to_string(v) + "; the file has " + std::to_string(vertex_count) +
