@@ -17,7 +17,7 @@ namespace tessera::io_detail {
 // Far above any ambient dimension tessera meets; bounds what a comment can make us expect.
 inline constexpr std::int64_t kMaxVtkDimension = 1 << 16;
 
-// The n of "... triangle mesh in R^n" at `text`'s start after `prefix`, or 0.
+/// The n of "... triangle mesh in R^n" at `text`'s start after `prefix`, or 0.
 inline int dimension_after(std::string_view text, std::string_view prefix) {
   if (text.substr(0, prefix.size()) != prefix) {
     return 0;
@@ -28,14 +28,14 @@ inline int dimension_after(std::string_view text, std::string_view prefix) {
   return error == std::errc() && n >= 1 && n <= kMaxVtkDimension ? static_cast<int>(n) : 0;
 }
 
-// One named array of point data with one value per vertex (and component).
+/// One named array of point data with one value per vertex (and component).
 struct PointArray {
   std::string name;
   int components = 1;
   std::vector<double> values;  // vertex-major: values[v * components + c]
 };
 
-// Turns polygons (a first vertex and a fan) into triangles, keeping their orientation.
+/// Turns polygons (a first vertex and a fan) into triangles, keeping their orientation.
 inline void append_fan(const std::vector<std::int64_t>& polygon, std::vector<Triangle>& triangles) {
   for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
     triangles.push_back({static_cast<int>(polygon[0]), static_cast<int>(polygon[i]),
@@ -43,9 +43,9 @@ inline void append_fan(const std::vector<std::int64_t>& polygon, std::vector<Tri
   }
 }
 
-// The mesh from the 3-column points, the point-data arrays and n (0: not known from the file).
-// The first n arrays are the coordinates, as write_vtk / write_vtu put them; their first three
-// must agree with the points bit for bit, which both writers guarantee.
+/// The mesh from the 3-column points, the point-data arrays and n (0: not known from the file).
+/// The first n arrays are the coordinates, as write_vtk / write_vtu put them; their first three
+/// must agree with the points bit for bit, which both writers guarantee.
 template <class Fail>
 TriangleMesh assemble(int dimension, const std::vector<double>& xyz,
                       const std::vector<PointArray>& arrays, std::vector<Triangle> triangles,
