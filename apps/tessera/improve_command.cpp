@@ -4,7 +4,6 @@
 #include "output_checks.h"
 
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -12,6 +11,7 @@
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/io/mesh_io.h"
+#include "tessera/io/text_file.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/methods/improvement/tangential_smoothing.h"
 #include "tessera/problems/catalogue.h"
@@ -46,7 +46,7 @@ void print_line(const char* label, const MeshQuality& quality, const MeshValidat
 CLI::App* add_improve_command(CLI::App& app, ImproveCommand& command) {
   auto* improve = app.add_subcommand(
       "improve", "improve a mesh of M by edge swaps judged in the tangent plane of M");
-  improve->add_option("mesh", command.mesh, "mesh file (.ply or .obj)")->required();
+  improve->add_option("mesh", command.mesh, "mesh file (.ply, .obj, .vtk or .vtu)")->required();
   improve->add_option("--problem,-p", command.problem, "catalogue name or problem file")
       ->required();
   improve
@@ -120,9 +120,7 @@ int run_improve(const ImproveCommand& command) {
                                  {"rejected_projection_failed", summary.rejected_projection_failed},
                                  {"before", to_json(quality_before, validation_before)},
                                  {"after", to_json(quality_after, validation_after)}};
-    std::ofstream out(command.summary);
-    TESSERA_CHECK(out.good(), "cannot write '" << command.summary << "'");
-    out << json.dump(2) << "\n";
+    write_text_file(command.summary, json.dump(2) + "\n", "JSON summary");
   }
   std::cout << "wrote " << command.output
             << (command.summary.empty() ? "" : " and " + command.summary) << "\n";

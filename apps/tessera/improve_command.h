@@ -8,7 +8,7 @@
 namespace tessera::app {
 
 struct ImproveCommand {
-  std::string mesh;                 ///< input mesh file (.ply or .obj)
+  std::string mesh;                 ///< input mesh file (.ply, .obj, .vtk, .vtu)
   std::string problem;              ///< catalogue name or problem file
   std::string criterion = "angle";  ///< angle, normal or distance
   std::string output;               ///< improved mesh (.ply, .obj, .vtk, .vtu)

@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
   std::string check_problem;
   bool check_json = false;
   auto* check_app = app.add_subcommand("check", "validate a mesh and measure it against M");
-  check_app->add_option("mesh", check_mesh, "mesh file (.ply or .obj)")->required();
+  check_app->add_option("mesh", check_mesh, "mesh file (.ply, .obj, .vtk or .vtu)")->required();
   check_app->add_option("--problem,-p", check_problem, "catalogue name or problem file")
       ->required();
   check_app->add_flag("--json", check_json, "print the report as JSON");

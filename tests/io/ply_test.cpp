@@ -28,13 +28,16 @@ INSTANTIATE_TEST_SUITE_P(DimensionAndEncoding, PlyRoundTrip,
                          ::testing::Combine(::testing::Values(2, 3, 5),
                                             ::testing::Values(true, false)));
 
-TEST(Ply, HeaderNamesCoordinatesAsCoreDoes) {
+// meshio and VTK take the position only from x, y, z (VTK's PLY reader crashed on x0 ...): the
+// first three coordinates are always x, y, z, the rest extra properties.
+TEST(Ply, HeaderNamesTheFirstThreeCoordinatesXyzForEveryN) {
   const auto path = test_path("names5.ply");
   write_ply(path, random_mesh(5, 4, 2), {.binary = false});
   const std::string text = file_text(path);
   EXPECT_NE(text.find("format ascii 1.0\n"), std::string::npos);
-  EXPECT_NE(text.find("element vertex 4\nproperty double x0\nproperty double x1\nproperty "
-                      "double x2\nproperty double x3\nproperty double x4\nelement face 2\n"
+  EXPECT_NE(text.find("comment written by tessera: triangle mesh in R^5\n"), std::string::npos);
+  EXPECT_NE(text.find("element vertex 4\nproperty double x\nproperty double y\nproperty "
+                      "double z\nproperty double x3\nproperty double x4\nelement face 2\n"
                       "property list uchar int vertex_indices\nend_header\n"),
             std::string::npos)
       << text;
@@ -62,15 +65,82 @@ TEST(Ply, BinaryLayoutIsLittleEndianDoublesThenUcharIntFaces) {
   }
 }
 
-TEST(Ply, ViewerNamesAndCustomNamesReadBack) {
-  const auto mesh = random_mesh(5, 20, 10);
+TEST(Ply, ProblemNamesBeyondTheThirdBecomePropertiesWhenTheyAreIdentifiers) {
+  const auto mesh = random_mesh(6, 20, 10);
   const auto path = test_path("named.ply");
-  // x, y, z, x3, x4: what ParaView and meshio need to place the points; detected without help.
-  write_ply(path, mesh, {.coordinate_names = {"x", "y", "z", "x3", "x4"}});
+  write_ply(path, mesh, {.binary = false, .coordinate_names = {"u", "v", "s", "t", "Da", "B"}});
+  std::string text = file_text(path);
+  EXPECT_NE(text.find("property double x\nproperty double y\nproperty double z\nproperty double "
+                      "t\nproperty double Da\nproperty double B\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("comment coordinate names: u v s t Da B\n"), std::string::npos);
   expect_identical(mesh, read_ply(path));
-  write_ply(path, mesh, {.coordinate_names = {"u", "v", "s", "t", "w"}});
-  expect_identical(mesh, read_ply(path, {"u", "v", "s", "t", "w"}));
-  expect_invalid_argument([&] { read_ply(path); }, {path, "no coordinate properties", "u, v, s"});
+  expect_identical(mesh, read_ply(path, {"x", "y", "z", "t", "Da", "B"}));
+
+  // Names that are no identifiers, or that clash with x, y, z or a scalar field, are replaced.
+  write_ply(path, mesh,
+            {.binary = false,
+             .coordinate_names = {"a", "b", "c", "x", "d-e", "coordinate_3"},
+             .vertex_scalars = {{"r", std::vector<double>(20, 1.0)}}});
+  text = file_text(path);
+  EXPECT_NE(text.find("property double z\nproperty double coordinate_3\nproperty double "
+                      "coordinate_4\nproperty double coordinate_5\nproperty double r\n"),
+            std::string::npos)
+      << text;
+  expect_identical(mesh, read_ply(path));
+  expect_invalid_argument(
+      [&] {
+        write_ply(path, mesh, {.vertex_scalars = {{"y", std::vector<double>(20, 1.0)}}});
+      },
+      {"'y'", "x, y, z"});
+}
+
+// Files written before x, y, z were used for every n: x0 ... x{n-1}, with or without the comment
+// that gives n, and with the names x, y, z, coordinate_3 ... that other tools may write.
+TEST(Ply, ReadsEveryCoordinateLayoutInOrder) {
+  const auto mesh = random_mesh(4, 3, 1);
+  auto file = [&](const std::string& comment, const std::vector<std::string>& names) {
+    std::string text = "ply\nformat ascii 1.0\n" + comment + "element vertex 3\n";
+    for (const auto& name : names) {
+      text += "property double " + name + "\n";
+    }
+    text += "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    for (int v = 0; v < 3; ++v) {
+      for (int k = 0; k < 4; ++k) {
+        char buffer[32];
+        text += std::string(buffer, std::to_chars(buffer, buffer + 32, mesh.point(v)(k)).ptr);
+        text += k < 3 ? " " : " 7\n";  // 7: a scalar property after the coordinates
+      }
+    }
+    const auto& triangle = mesh.triangle(0);
+    text += "3 " + std::to_string(triangle[0]) + " " + std::to_string(triangle[1]) + " " +
+            std::to_string(triangle[2]) + "\n";
+    const auto path =
+        test_path("layout_" + std::to_string(std::hash<std::string>{}(text)) + ".ply");
+    write_text(path, text);
+    return path;
+  };
+  const std::string marker = "comment written by tessera: triangle mesh in R^4\n";
+  for (const auto& [comment, names] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {marker, {"x0", "x1", "x2", "x3", "residual"}},
+           {"", {"x0", "x1", "x2", "x3", "residual"}},
+           {marker, {"x", "y", "z", "x3", "residual"}},
+           {"", {"x", "y", "z", "x3", "residual"}},
+           {"", {"x", "y", "z", "coordinate_3", "residual"}},
+           {marker, {"x", "y", "z", "B", "residual"}},
+           {marker, {"a", "b", "c", "d", "residual"}}}) {
+    SCOPED_TRACE(comment + names[0] + " " + names[3]);
+    expect_identical(mesh, read_ply(file(comment, names)));
+  }
+  // Without the comment, an unknown fourth name is a scalar field: the mesh is in R^3.
+  EXPECT_EQ(read_ply(file("", {"x", "y", "z", "B", "residual"})).ambient_dimension(), 3);
+  expect_invalid_argument(
+      [&] {
+        read_ply(file("comment written by tessera: triangle mesh in R^9\n",
+                      {"x", "y", "z", "B", "residual"}));
+      },
+      {"R^9", "only 5 properties"});
 }
 
 TEST(Ply, VertexScalarsAreWrittenAfterCoordinatesAndIgnoredOnRead) {

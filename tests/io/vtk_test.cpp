@@ -23,7 +23,7 @@ TEST(Vtk, LegacyFileHasPointsPolygonsAndOneArrayPerCoordinateAndScalar) {
   std::getline(in, line);
   EXPECT_EQ(line, "# vtk DataFile Version 4.2");
   std::getline(in, line);
-  EXPECT_EQ(line, "torus");
+  EXPECT_EQ(line, "tessera triangle mesh in R^5; torus");  // read_vtk takes n from here
   std::getline(in, line);
   EXPECT_EQ(line, "ASCII");
   std::getline(in, line);

@@ -2,11 +2,11 @@
 #include "tessera/io/bezier_patches.h"
 
 #include <fstream>
-#include <iomanip>
 #include <nlohmann/json.hpp>
 
 #include "tessera/core/error.h"
 #include "tessera/core/implicit_problem.h"
+#include "tessera/io/text_file.h"
 
 namespace tessera {
 namespace {
@@ -72,10 +72,8 @@ void write_bezier_patches(const std::string& path, const BezierSurfaceFile& surf
   }
   file["triangles"] = std::move(triangles);
   file["control_points"] = std::move(control_points);
-  std::ofstream out(path);
-  TESSERA_CHECK(out.good(), "cannot open '" << path << "' for writing");
-  out << std::setprecision(17) << file.dump() << "\n";
-  TESSERA_CHECK(out.good(), "writing '" << path << "' failed");
+  // nlohmann::json writes doubles in their shortest round-trip form: the patches read back exactly.
+  write_text_file(path, file.dump() + "\n", "Bezier patches");
 }
 
 BezierSurfaceFile read_bezier_patches(const std::string& path) {

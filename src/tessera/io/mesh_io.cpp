@@ -53,8 +53,14 @@ TriangleMesh read_mesh(const std::string& path) {
   if (extension == ".obj") {
     return read_obj(path);
   }
+  if (extension == ".vtk") {
+    return read_vtk(path);
+  }
+  if (extension == ".vtu") {
+    return read_vtu(path);
+  }
   TESSERA_CHECK(false, "cannot read '" << path << "': unknown extension '" << extension
-                                       << "'; supported: .ply, .obj");
+                                       << "'; supported: .ply, .obj, .vtk, .vtu");
   return {};
 }
 

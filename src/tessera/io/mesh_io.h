@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Mesh files by extension: write_mesh / read_mesh choose PLY, OBJ, VTK or VTU from the path.
+// Every format written can be read back; all but OBJ keep the n coordinates bit for bit.
 #pragma once
 
 #include <array>
@@ -30,15 +31,16 @@ struct MeshFileOptions {
 };
 
 /// Writes `mesh` in the format named by the extension of `path` (case-insensitive):
-/// .ply (write_ply), .obj (write_obj), .vtk (write_vtk), .vtu (write_vtu).
+/// .ply (write_ply), .obj (write_obj), .vtk (write_vtk), .vtu (write_vtu). Every writer
+/// replaces the file atomically: a failed write leaves the previous file and no temporary.
 ///
 /// \throw InvalidArgument for another extension (the message lists the supported ones), and
 ///        whatever the chosen writer throws.
 void write_mesh(const std::string& path, const TriangleMesh& mesh,
                 const MeshFileOptions& options = {});
 
-/// Reads a mesh from .ply (read_ply, any n) or .obj (read_obj, n = 3), by extension
-/// (case-insensitive).
+/// Reads a mesh from .ply (read_ply, any n), .obj (read_obj, n = 3), .vtk (read_vtk, any n) or
+/// .vtu (read_vtu, any n), by extension (case-insensitive).
 ///
 /// \throw InvalidArgument for another extension (the message lists the supported ones), and
 ///        whatever the chosen reader throws.

@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <bit>
+#include <charconv>
 #include <climits>
 #include <cstdint>
 #include <limits>
 
 #include "tessera/io/detail/file_buffer.h"
+#include "tessera/io/detail/mesh_parsers.h"
 #include "tessera/io/detail/ply_header.h"
 
 namespace tessera {
@@ -17,6 +19,8 @@ namespace tessera {
 namespace {
 
 constexpr std::string_view kFormat = "PLY";
+// Far above any ambient dimension tessera meets; bounds what a comment can make us allocate.
+constexpr std::int64_t kMaxDimension = 1 << 16;
 
 using io_detail::PlyElement;
 using io_detail::PlyEncoding;
@@ -50,14 +54,34 @@ std::string property_list(const PlyElement& element) {
   return names.empty() ? "(none)" : names;
 }
 
-// x0, x1, ... if x0 is present, else x, y, z, x3, x4, ...: each list stops at the first gap.
+// The n of "written by tessera: triangle mesh in R^n" among the comments, or 0.
+int tessera_dimension(const std::vector<std::string>& comments) {
+  constexpr std::string_view kMarker = "written by tessera: triangle mesh in R^";
+  for (const auto& comment : comments) {
+    if (comment.compare(0, kMarker.size(), kMarker) != 0) {
+      continue;
+    }
+    const std::string_view digits = std::string_view(comment).substr(kMarker.size());
+    std::int64_t n = 0;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+    if (error == std::errc() && n >= 1 && n <= kMaxDimension) {
+      return static_cast<int>(n);
+    }
+  }
+  return 0;
+}
+
+// x0, x1, ... if x0 is present (earlier tessera versions, n != 3), else x, y, z followed by x3,
+// x4, ... or by coordinate_3, coordinate_4, ...: each list stops at the first gap.
 std::vector<int> detect_coordinates(const PlyElement& vertex) {
   std::vector<int> found;
   const bool indexed = find_property(vertex, "x0") >= 0;
   for (int k = 0;; ++k) {
-    const std::string name =
-        (indexed || k >= 3) ? "x" + std::to_string(k) : std::string(1, "xyz"[k]);
-    const int p = find_property(vertex, name);
+    const std::string index = std::to_string(k);
+    int p = find_property(vertex, indexed || k >= 3 ? "x" + index : std::string(1, "xyz"[k]));
+    if (p < 0 && !indexed && k >= 3) {
+      p = find_property(vertex, "coordinate_" + index);
+    }
     if (p < 0) {
       return found;
     }
@@ -86,7 +110,21 @@ ReadPlan make_plan(const PlyHeader& header, const std::vector<std::string>& requ
                                     " vertices; at most 2^31 - 1 are supported");
   }
   std::vector<int> coordinates;
-  if (requested.empty()) {
+  const int dimension = requested.empty() ? tessera_dimension(header.comments) : 0;
+  if (dimension > 0) {
+    // tessera writes the n coordinates first, whatever their names (x, y, z, then the names of
+    // the problem; x0 ... before; any names given to write_ply).
+    if (static_cast<std::size_t>(dimension) > vertex.properties.size()) {
+      io_detail::throw_file_error(kFormat, path,
+                                  "the comment says the mesh is in R^" + std::to_string(dimension) +
+                                      " but the vertex has only " +
+                                      std::to_string(vertex.properties.size()) +
+                                      " properties: " + property_list(vertex));
+    }
+    for (int k = 0; k < dimension; ++k) {
+      coordinates.push_back(k);
+    }
+  } else if (requested.empty()) {
     coordinates = detect_coordinates(vertex);
     if (coordinates.empty()) {
       io_detail::throw_file_error(
@@ -390,7 +428,11 @@ void read_records(Source& source, const PlyHeader& header, const ReadPlan& plan,
 }  // namespace
 
 TriangleMesh read_ply(const std::string& path, const std::vector<std::string>& coordinate_names) {
-  const std::string content = io_detail::read_file(kFormat, path);
+  return io_detail::parse_ply(io_detail::read_file(kFormat, path), path, coordinate_names);
+}
+
+TriangleMesh io_detail::parse_ply(const std::string& content, const std::string& path,
+                                  const std::vector<std::string>& coordinate_names) {
   const PlyHeader header = io_detail::parse_ply_header(content, path);
   const ReadPlan plan = make_plan(header, coordinate_names, path);
   const std::string_view data = std::string_view(content).substr(header.data_offset);

@@ -2,11 +2,11 @@
 #include "tessera/io/summary_json.h"
 
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "tessera/core/error.h"
+#include "tessera/io/text_file.h"
 
 namespace tessera {
 namespace {
@@ -88,10 +88,7 @@ std::string to_json(const MeshReport& report) {
 }
 
 void write_summary_json(const std::string& path, const MeshReport& report) {
-  std::ofstream out(path);
-  TESSERA_CHECK(out.good(), "cannot write the summary file '" << path << "'");
-  out << to_json(report);
-  TESSERA_CHECK(out.good(), "error while writing the summary file '" << path << "'");
+  write_text_file(path, to_json(report), "JSON summary");
 }
 
 std::string to_text(const MeshReport& report) {

@@ -105,12 +105,10 @@ void write_vtk(const std::string& path, const TriangleMesh& mesh, const VtkOptio
   io_detail::check_comments(options.comments, "VtkOptions");
   io_detail::check_triangle_indices(mesh, path);
 
-  std::string title;
+  // read_vtk takes n from the start of the title, which the cut below never reaches.
+  std::string title = "tessera triangle mesh in R^" + std::to_string(mesh.ambient_dimension());
   for (const auto& comment : options.comments) {
-    title += (title.empty() ? "" : "; ") + comment;
-  }
-  if (title.empty()) {
-    title = "tessera triangle mesh in R^" + std::to_string(mesh.ambient_dimension());
+    title += "; " + comment;
   }
   constexpr std::size_t kMaxTitleLength = 255;  // the legacy format reads at most 256 characters
   title.resize(std::min(title.size(), kMaxTitleLength));

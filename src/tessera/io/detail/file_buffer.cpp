@@ -1,7 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/io/detail/file_buffer.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <cerrno>
+#include <filesystem>
 #include <system_error>
 
 #include "tessera/core/error.h"
@@ -48,18 +54,100 @@ std::string read_file(std::string_view format, const std::string& path) {
   return content;
 }
 
+namespace {
+
+// Distinguishes the temporaries of several OutputFiles of one process writing into one folder.
+std::atomic<unsigned> temporary_counter{0};
+
+std::string reason(int error) { return std::generic_category().message(error); }
+
+}  // namespace
+
 OutputFile::OutputFile(std::string_view format, std::string path)
-    : format_(format), path_(std::move(path)), buffer_(kBufferSize) {
-  file_ = std::fopen(path_.c_str(), "wb");
-  if (file_ == nullptr) {
-    throw_file_error(format_, path_, "cannot open for writing: " + system_reason());
+    : format_(format), path_(std::move(path)), target_(path_) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  // /dev/stdout, /dev/fd/N and /proc/... name streams, not files to replace: with `> out.json`
+  // the link resolves to a regular file, and a rename over it would leave the shell's stream
+  // unchanged. (A file in a folder such as /dev/shm is replaced as anywhere else.)
+  const bool is_stream =
+      path_.rfind("/proc/", 0) == 0 ||
+      (path_.rfind("/dev/", 0) == 0 && fs::is_symlink(fs::symlink_status(path_, error)));
+  if (!is_stream && fs::is_symlink(fs::symlink_status(path_, error))) {
+    // Replace what the link names, not the link: writing through it is what fopen did.
+    const fs::path resolved = fs::canonical(path_, error);
+    if (!error) {
+      target_ = resolved.string();
+    }
   }
+  const fs::file_status status = fs::status(target_, error);
+  if (is_stream || (fs::exists(status) && !fs::is_regular_file(status))) {
+    if (fs::is_directory(status)) {
+      throw_file_error(format_, path_, "cannot open for writing: it is a folder");
+    }
+    // A device or a FIFO: no folder to put a temporary in that could be renamed over it. As
+    // fopen(path, "wb") would: a regular file behind /dev/stdout is truncated first.
+    descriptor_ = ::open(target_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (descriptor_ < 0) {
+      throw_file_error(format_, path_, "cannot open for writing: " + system_reason());
+    }
+    buffer_.resize(kBufferSize);
+    return;
+  }
+  const fs::path target(target_);
+  temporary_ = (target.parent_path() /
+                ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()) + "." +
+                 std::to_string(temporary_counter++)))
+                   .string();
+  descriptor_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (descriptor_ < 0) {
+    const std::string why = system_reason();
+    temporary_.clear();
+    throw_file_error(format_, path_,
+                     "cannot open for writing (temporary file in its folder): " + why);
+  }
+  if (fs::is_regular_file(status)) {
+    // The replacement keeps the permissions of the file it replaces, as writing in place did.
+    struct stat existing {};
+    if (::stat(target_.c_str(), &existing) == 0) {
+      ::fchmod(descriptor_, existing.st_mode & 07777);
+    }
+  }
+  buffer_.resize(kBufferSize);
 }
 
 OutputFile::~OutputFile() {
-  if (file_ != nullptr) {
-    // Only reached when an exception left the writer early; the caller already has an error.
-    std::fclose(file_);
+  // Only reached with the descriptor open when the writer left early by an exception; the
+  // caller already has an error, and the target must stay as it was.
+  abandon();
+}
+
+void OutputFile::abandon() {
+  if (descriptor_ >= 0) {
+    ::close(descriptor_);
+    descriptor_ = -1;
+  }
+  if (!temporary_.empty()) {
+    ::unlink(temporary_.c_str());
+    temporary_.clear();
+  }
+}
+
+void OutputFile::write_all(const char* data, std::size_t size) {
+  while (size > 0 && error_ == 0) {
+    const ssize_t written = ::write(descriptor_, data, size);
+    if (written < 0) {
+      if (errno != EINTR) {
+        error_ = errno;
+      }
+      continue;
+    }
+    if (written == 0) {
+      error_ = EIO;  // write(2) makes no progress only on a broken device
+      continue;
+    }
+    data += written;
+    size -= static_cast<std::size_t>(written);
   }
 }
 
@@ -67,7 +155,7 @@ void OutputFile::bytes(const void* data, std::size_t size) {
   if (used_ + size > buffer_.size()) {
     flush();
     if (size > buffer_.size()) {
-      failed_ = failed_ || std::fwrite(data, 1, size, file_) != size;
+      write_all(static_cast<const char*>(data), size);
       return;
     }
   }
@@ -91,19 +179,43 @@ void OutputFile::little_endian_int32(std::int32_t value) {
 
 void OutputFile::flush() {
   if (used_ > 0) {
-    failed_ = failed_ || std::fwrite(buffer_.data(), 1, used_, file_) != used_;
+    write_all(buffer_.data(), used_);
     used_ = 0;
   }
 }
 
 void OutputFile::close() {
+  TESSERA_ASSERT(descriptor_ >= 0);
   flush();
-  const bool failed = failed_ || std::ferror(file_) != 0;
-  const bool close_failed = std::fclose(file_) != 0;
-  file_ = nullptr;
-  if (failed || close_failed) {
-    throw_file_error(format_, path_, "write failed: " + system_reason());
+  const bool in_place = temporary_.empty();
+  auto fail = [&](int error, const std::string& step) {
+    abandon();
+    throw_file_error(format_, path_,
+                     step + ": " + reason(error) + (in_place ? "" : "; the file was not changed"));
+  };
+  if (error_ != 0) {
+    fail(error_, "write failed");
   }
+  if (!in_place && ::fdatasync(descriptor_) != 0) {
+    fail(errno, "write failed (fdatasync)");
+  }
+  const int descriptor = descriptor_;
+  descriptor_ = -1;
+  if (::close(descriptor) != 0 && errno != EINTR) {
+    fail(errno, "write failed (close)");
+  }
+  if (!in_place) {
+    if (std::rename(temporary_.c_str(), target_.c_str()) != 0) {
+      fail(errno, "cannot replace the file by the temporary '" + temporary_ + "'");
+    }
+    temporary_.clear();
+  }
+}
+
+void write_whole_file(std::string_view format, const std::string& path, std::string_view content) {
+  OutputFile file(format, path);
+  file.text(content);
+  file.close();
 }
 
 void write_triangle_lines(OutputFile& file, const std::vector<Triangle>& triangles) {

@@ -40,14 +40,28 @@ T byte_swapped(T value) {
 /// The whole content of `path`, byte for byte. \throw InvalidArgument naming the file.
 std::string read_file(std::string_view format, const std::string& path);
 
-/// Writes a file through one large buffer; numbers are formatted with std::to_chars.
+/// Writes a file through one large buffer, numbers formatted with std::to_chars, and replaces
+/// the target only once the whole file is written.
 ///
-/// Writing goes through fwrite in blocks of `kBufferSize` bytes, so a mesh with 10^6 vertices is
-/// written without per-value stream formatting.
+/// The bytes go to a temporary file in the folder of `path` (".<name>.tmp.<pid>.<k>", created
+/// exclusively), which close() flushes, syncs to disk (fdatasync) and renames over `path`. So a
+/// failed write (disk full, file size limit, I/O error), an exception in the writer or a kill
+/// before close() leaves a file that existed at `path` untouched; on failure the temporary is
+/// removed (a SIGKILL can leave it behind, never a damaged target). An existing target keeps
+/// its permission bits. A symbolic link is followed: the file it points to is replaced, the
+/// link stays. A target that exists and is not a regular file (a device, a FIFO), a link under
+/// /dev/ (/dev/stdout) and a path under /proc/ are written in place, where a temporary and a
+/// rename make no sense.
+///
+/// fdatasync before the rename: without it a crash of the machine (not of the program) soon
+/// after the rename may leave an empty target on file systems that commit the rename before the
+/// data. It costs one wait for the disk per file, small next to computing a mesh.
 class OutputFile {
  public:
-  /// Opens (and truncates) `path`. \throw InvalidArgument naming the file if it cannot be opened.
+  /// Creates the temporary next to `path`.
+  /// \throw InvalidArgument naming `path` if it cannot be created (no folder, no permission).
   OutputFile(std::string_view format, std::string path);
+  /// Without a successful close(): removes the temporary, leaves `path` as it was.
   ~OutputFile();
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
@@ -75,7 +89,10 @@ class OutputFile {
   void little_endian_double(double value);
   void little_endian_int32(std::int32_t value);
 
-  /// Writes the rest of the buffer and closes. \throw InvalidArgument if any write failed.
+  /// Writes the rest of the buffer, syncs, closes and renames the temporary over the target.
+  /// \throw InvalidArgument naming the target and the system's reason (e.g. "No space left on
+  ///        device") if any step failed; the temporary is then removed and the target is as it
+  ///        was before.
   void close();
 
  private:
@@ -87,14 +104,23 @@ class OutputFile {
     }
   }
   void flush();
+  void write_all(const char* data, std::size_t size);
+  /// Closes the descriptor and removes the temporary, keeping the first error seen.
+  void abandon();
 
   std::string format_;
-  std::string path_;
-  std::FILE* file_ = nullptr;
-  bool failed_ = false;
+  std::string path_;       ///< as given, for messages
+  std::string target_;     ///< the file replaced: path_, or what its symbolic link names
+  std::string temporary_;  ///< empty when writing in place
+  int descriptor_ = -1;
+  int error_ = 0;  ///< errno of the first failed write, 0 if none
   std::vector<char> buffer_;
   std::size_t used_ = 0;
 };
+
+/// Writes `content` to `path` through OutputFile (so the same atomic replacement); `format`
+/// names the kind of file in messages. \throw InvalidArgument as OutputFile.
+void write_whole_file(std::string_view format, const std::string& path, std::string_view content);
 
 /// Parses the whole token as a double (std::from_chars, correctly rounded, so text written by
 /// OutputFile::real reads back bit for bit). Accepts a leading '+', "inf" and "nan".
@@ -102,10 +128,10 @@ bool parse_real(std::string_view token, double& value);
 /// Parses the whole token as a decimal integer (a leading '+' is accepted).
 bool parse_integer(std::string_view token, std::int64_t& value);
 
-/// Whitespace-separated tokens of a text, with the line number of each token.
 /// Writes one line "3 a b c" per triangle: the face list of ASCII PLY and of legacy VTK.
 void write_triangle_lines(OutputFile& file, const std::vector<Triangle>& triangles);
 
+/// Whitespace-separated tokens of a text, with the line number of each token.
 class TextCursor {
  public:
   TextCursor(std::string_view text, std::size_t first_line) : text_(text), line_(first_line) {}

@@ -88,7 +88,14 @@ PlyHeader parse_ply_header(const std::string& content, const std::string& path) 
       }
       continue;
     }
-    if (tokens.empty() || tokens[0] == "comment" || tokens[0] == "obj_info") {
+    if (!tokens.empty() && tokens[0] == "comment") {
+      const std::size_t text = line.find("comment") + 7;
+      const std::size_t first = line.find_first_not_of(" \t", text);
+      header.comments.emplace_back(first == std::string_view::npos ? std::string_view()
+                                                                   : line.substr(first));
+      continue;
+    }
+    if (tokens.empty() || tokens[0] == "obj_info") {
       continue;
     }
     const std::string_view keyword = tokens[0];

@@ -37,9 +37,10 @@ enum class PlyEncoding { Ascii, BinaryLittleEndian, BinaryBigEndian };
 
 struct PlyHeader {
   PlyEncoding encoding = PlyEncoding::Ascii;
-  std::vector<PlyElement> elements;  ///< in file order, which is the order of the data
-  std::size_t data_offset = 0;       ///< first byte after the "end_header" line
-  std::size_t data_line = 0;         ///< line number (from 1) of that byte
+  std::vector<PlyElement> elements;   ///< in file order, which is the order of the data
+  std::vector<std::string> comments;  ///< text after "comment ", in file order
+  std::size_t data_offset = 0;        ///< first byte after the "end_header" line
+  std::size_t data_line = 0;          ///< line number (from 1) of that byte
 };
 
 /// Parses the header at the start of `content`, the whole file `path` (named in errors).

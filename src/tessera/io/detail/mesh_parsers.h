@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: MIT
+// Internal to the io layer: the mesh readers on a file's content in memory, for fuzz targets and
+// exhaustive tests that must not touch the disk. read_ply / read_vtk / read_vtu read the file
+// and call these.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tessera/geometry/triangle_mesh.h"
+
+namespace tessera::io_detail {
+
+/// read_ply on `content`, the whole file; `path` only names it in messages.
+TriangleMesh parse_ply(const std::string& content, const std::string& path,
+                       const std::vector<std::string>& coordinate_names = {});
+/// read_vtk on `content`, the whole file; `path` only names it in messages.
+TriangleMesh parse_vtk(const std::string& content, const std::string& path);
+/// read_vtu on `content`, the whole file; `path` only names it in messages.
+TriangleMesh parse_vtu(const std::string& content, const std::string& path);
+
+}  // namespace tessera::io_detail
