@@ -156,7 +156,7 @@ TEST(MeshValidation, DetectsBowTieVertex) {
   EXPECT_EQ(validation.non_manifold_vertex_count, 1);
   expect_defect_named(
       validation, MeshDefectKind::NonManifoldVertex,
-      "vertex 0 is shared by 2 fans of triangles that share no edge there: {0}, {1}");
+      "vertex 0 near (0, 0) is shared by 2 fans of triangles that share no edge there: {0}, {1}");
   EXPECT_FALSE(validation.is_manifold());
 }
 
@@ -184,7 +184,7 @@ TEST(MeshValidation, DetectsDoubleConeApex) {
   const MeshValidation validation = validate(mesh);
   EXPECT_EQ(validation.non_manifold_vertex_count, 1) << validation.report();
   expect_defect_named(validation, MeshDefectKind::NonManifoldVertex,
-                      "vertex 4 is shared by 2 fans");
+                      "vertex 4 near (0, 0, 1) is shared by 2 fans");
 }
 
 TEST(MeshValidation, DetectsThreeTrianglesOnAnEdge) {
@@ -197,7 +197,7 @@ TEST(MeshValidation, DetectsThreeTrianglesOnAnEdge) {
   expect_defect_kinds(validation, {MeshDefectKind::NonManifoldEdge});
   EXPECT_EQ(validation.non_manifold_edge_count, 1);
   expect_defect_named(validation, MeshDefectKind::NonManifoldEdge,
-                      "edge (0, 1) has 3 triangles: 0, 1, 2");
+                      "edge (0, 1) near (0.5, 0, 0) has 3 triangles: 0, 1, 2");
 }
 
 TEST(MeshValidation, DetectsFlippedTriangle) {
@@ -223,7 +223,8 @@ TEST(MeshValidation, DetectsDuplicateTriangle) {
   const MeshValidation validation = validate(mesh);
   EXPECT_EQ(validation.duplicate_triangle_count, 1);
   std::ostringstream expected;
-  expected << "triangle 8 = (" << t[1] << ", " << t[0] << ", " << t[2] << ") repeats triangle 2";
+  expected << "triangle 8 = (" << t[1] << ", " << t[0] << ", " << t[2]
+           << ") near (0.3333, -0.3333, 0.3333) repeats triangle 2";
   expect_defect_named(validation, MeshDefectKind::DuplicateTriangle, expected.str());
   EXPECT_EQ(validation.non_manifold_edge_count, 3);  // a duplicate also overloads its edges
 }
@@ -235,9 +236,9 @@ TEST(MeshValidation, DetectsIndexOutOfRangeAndStillReportsTheRest) {
   const MeshValidation validation = validate(mesh);
   EXPECT_EQ(validation.index_out_of_range_count, 2);
   expect_defect_named(validation, MeshDefectKind::IndexOutOfRange,
-                      "triangle 8 = (0, 2, 17) has index 17 outside [0, 6)");
+                      "triangle 8 = (0, 2, 17) near (0.5, 0.5, 0) has index 17 outside [0, 6)");
   expect_defect_named(validation, MeshDefectKind::IndexOutOfRange,
-                      "triangle 9 = (-1, 2, 4) has index -1 outside [0, 6)");
+                      "triangle 9 = (-1, 2, 4) near (0, 0.5, 0.5) has index -1 outside [0, 6)");
   EXPECT_EQ(validation.triangle_count, 10);
   EXPECT_EQ(validation.euler_characteristic, 2);  // of the 8 well-formed triangles
   EXPECT_EQ(validation.genus, -1);
@@ -249,7 +250,7 @@ TEST(MeshValidation, DetectsRepeatedIndex) {
   const MeshValidation validation = validate(mesh);
   expect_defect_kinds(validation, {MeshDefectKind::RepeatedIndex});
   expect_defect_named(validation, MeshDefectKind::RepeatedIndex,
-                      "triangle 8 = (3, 1, 3) repeats vertex 3");
+                      "triangle 8 = (3, 1, 3) near (-0.3333, -0.6667, 0) repeats vertex 3");
 }
 
 TEST(MeshValidation, DetectsCollinearTriangleInR5ButNotAThinOne) {
@@ -286,7 +287,8 @@ TEST(MeshValidation, DetectsUnreferencedVertex) {
   EXPECT_EQ(validation.vertex_count, 7);
   EXPECT_EQ(validation.referenced_vertex_count, 6);
   EXPECT_EQ(validation.euler_characteristic, 2);  // V counts referenced vertices only
-  expect_defect_named(validation, MeshDefectKind::UnreferencedVertex, "vertex 6 is in no triangle");
+  expect_defect_named(validation, MeshDefectKind::UnreferencedVertex,
+                      "vertex 6 at (5, 5, 5) is in no triangle");
 }
 
 TEST(MeshValidation, DetectsNaNCoordinate) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -595,6 +596,19 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
   result.ambient_dimension = mesh.ambient_dimension();
   result.vertex_count = vertex_count;
   result.triangle_count = mesh.triangle_count();
+  // " near (x, y, z)": the mean of the given vertices that exist and are finite, so that every
+  // message names a place, not only indices ("" if there is none).
+  auto near = [&](std::initializer_list<int> vertices) -> std::string {
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(result.ambient_dimension);
+    int used = 0;
+    for (int v : vertices) {
+      if (v >= 0 && v < vertex_count && points.col(v).allFinite()) {
+        sum += points.col(v);
+        ++used;
+      }
+    }
+    return used == 0 ? std::string() : " near " + describe_point(sum / used);
+  };
 
   // Malformed triangles (index out of range, repeated index) have no well-defined edges; they
   // are reported and left out of the topology. `kept` maps topology triangles back to mesh
@@ -628,14 +642,15 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
     if (is_out_of_range) {
       recorder.record(Kind::IndexOutOfRange, [&] {
         std::ostringstream out;
-        out << triangle_text(t, tri) << " has index " << bad_index << " outside [0, "
-            << vertex_count << ")";
+        out << triangle_text(t, tri) << near({tri[0], tri[1], tri[2]}) << " has index " << bad_index
+            << " outside [0, " << vertex_count << ")";
         return out.str();
       });
     } else if (is_repeated) {
       recorder.record(Kind::RepeatedIndex, [&] {
         const int v = tri[0] == tri[1] || tri[0] == tri[2] ? tri[0] : tri[1];
-        return triangle_text(t, tri) + " repeats vertex " + std::to_string(v);
+        return triangle_text(t, tri) + near({tri[0], tri[1], tri[2]}) + " repeats vertex " +
+               std::to_string(v);
       });
     }
   }
@@ -677,8 +692,10 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
   }
   for (int v = 0; v < vertex_count; ++v) {
     if (!is_referenced[v]) {
-      recorder.record(Kind::UnreferencedVertex,
-                      [&] { return "vertex " + std::to_string(v) + " is in no triangle"; });
+      recorder.record(Kind::UnreferencedVertex, [&] {
+        return "vertex " + std::to_string(v) + " at " + describe_point(points.col(v)) +
+               " is in no triangle";
+      });
     }
   }
 
@@ -687,8 +704,9 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
       recorder.record(Kind::NonManifoldEdge, [&] {
         const auto on_edge = topology.edge_triangles(e);
         std::ostringstream out;
-        out << "edge (" << topology.edge(e)[0] << ", " << topology.edge(e)[1] << ") has "
-            << on_edge.size() << " triangles: " << index_list(on_edge, original);
+        out << "edge (" << topology.edge(e)[0] << ", " << topology.edge(e)[1] << ")"
+            << near({topology.edge(e)[0], topology.edge(e)[1]}) << " has " << on_edge.size()
+            << " triangles: " << index_list(on_edge, original);
         return out.str();
       });
     }
@@ -708,7 +726,8 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
       }
       if (sorted(topology_triangles[u]) == vertices) {
         recorder.record(Kind::DuplicateTriangle, [&] {
-          return triangle_text(original(t), topology_triangles[t]) + " repeats " +
+          const Triangle& tri = topology_triangles[t];
+          return triangle_text(original(t), tri) + near({tri[0], tri[1], tri[2]}) + " repeats " +
                  triangle_text(original(u), topology_triangles[u]);
         });
         break;
@@ -743,7 +762,7 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
         }
         std::sort(fan_and_triangle.begin(), fan_and_triangle.end());
         std::ostringstream out;
-        out << "vertex " << v << " is shared by " << fan_count[v]
+        out << "vertex " << v << near({v}) << " is shared by " << fan_count[v]
             << " fans of triangles that share no edge there: ";
         for (std::size_t i = 0; i < fan_and_triangle.size(); ++i) {
           const bool is_new_fan =
@@ -777,8 +796,9 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
                               (tri[2] == a && tri[0] == b);
       std::ostringstream out;
       out << "triangles " << original(on_edge[0]) << " and " << original(on_edge[1])
-          << " both traverse edge (" << a << ", " << b << ") from " << (is_forward ? a : b)
-          << " to " << (is_forward ? b : a) << "; orient_consistently() repairs this";
+          << " both traverse edge (" << a << ", " << b << ")" << near({a, b}) << " from "
+          << (is_forward ? a : b) << " to " << (is_forward ? b : a)
+          << "; orient_consistently() repairs this";
       return out.str();
     });
   }
@@ -799,8 +819,8 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
     if (shapes.is_degenerate[t]) {
       recorder.record(Kind::DegenerateTriangle, [&] {
         std::ostringstream out;
-        out << triangle_text(original(t), tri) << " has area " << area << " (longest edge "
-            << std::sqrt(longest_squared) << ")";
+        out << triangle_text(original(t), tri) << near({tri[0], tri[1], tri[2]}) << " has area "
+            << area << " (longest edge " << std::sqrt(longest_squared) << ")";
         return out.str();
       });
     }
