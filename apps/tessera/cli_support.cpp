@@ -44,7 +44,8 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
       ++used;
     }
     if (item.empty() || used != item.size()) {
-      throw InvalidArgument(option + ": '" + item + "' is not a number (expected a "
+      throw InvalidArgument(option + ": '" + item +
+                            "' is not a number (expected a "
                             "comma-separated list such as 0,0,1)");
     }
     values.push_back(value);
@@ -84,7 +85,9 @@ MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
   MeshReport report;
   report.problem = problem_argument;  // as the user spelled it, e.g. "torus:R=2"
   report.ambient_dimension = setup.problem->ambient_dimension();
-  report.validation = validate(mesh);
+  // The geometric checks (orientation along M, overlaps on M, vertices in S) need the problem,
+  // which every caller of make_report has.
+  report.validation = validate(mesh, *setup.problem, setup.domain);
   report.quality = measure_quality(mesh, *setup.problem);
   report.expected_euler_characteristic = setup.expected_euler_characteristic;
   report.exact_area = setup.exact_area;

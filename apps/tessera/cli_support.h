@@ -26,7 +26,8 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
 /// \throw InvalidArgument for a wrong number of values.
 void apply_start_and_box(ProblemSetup& setup, const std::string& start, const std::string& box);
 
-/// Validation and quality of `mesh` against the problem, for printing or JSON.
+/// Validation (combinatorial and geometric: orientation along M, overlaps on M, vertices in the
+/// setup's domain) and quality of `mesh` against the problem, for printing or JSON.
 MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
                        const std::string& problem_argument);
 

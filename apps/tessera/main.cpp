@@ -51,19 +51,20 @@ int run_check(const std::string& mesh_path, const std::string& problem, bool jso
   // M (1e-6 leaves room for meshes written by other tools in single precision).
   bool passes = report.validation.is_valid();
   if (!passes) {
-    std::cerr << "tessera: check failed: the mesh is not valid\n";
+    // Every defect kind with its examples (indices and coordinates), not only the first.
+    std::cerr << "tessera: check failed: the mesh is not valid:\n" << report.validation.report();
   }
   if (setup.expected_euler_characteristic &&
       report.validation.euler_characteristic != *setup.expected_euler_characteristic) {
-    std::cerr << "tessera: check failed: Euler characteristic " << report.validation.euler_characteristic
-              << ", but the surface of '" << problem << "' has "
-              << *setup.expected_euler_characteristic << "\n";
+    std::cerr << "tessera: check failed: Euler characteristic "
+              << report.validation.euler_characteristic << ", but the surface of '" << problem
+              << "' has " << *setup.expected_euler_characteristic << "\n";
     passes = false;
   }
   if (report.quality.vertex_distance.max > 1e-6 || report.quality.failed_projections > 0) {
     std::cerr << "tessera: check failed: vertices are not on M (max distance "
-              << report.quality.vertex_distance.max << ", "
-              << report.quality.failed_projections << " points could not be projected)\n";
+              << report.quality.vertex_distance.max << ", " << report.quality.failed_projections
+              << " points could not be projected)\n";
     passes = false;
   }
   return passes ? 0 : kComputationFailed;

@@ -81,6 +81,15 @@ MeshQuality measure_shape(const TriangleMesh& mesh) {
 
 double surface_area(const TriangleMesh& mesh) { return measure_shape(mesh).area; }
 
+bool project_onto_manifold(const ImplicitProblem& problem, Eigen::Ref<Eigen::VectorXd> x,
+                           Linearization& workspace) {
+  CorrectorOptions options;
+  options.tolerance = 1e-13;  // distances down to ~1e-12 must be resolved
+  options.residual_tolerance = 1e-11;
+  options.max_contraction = 0.9;
+  return project_gauss_newton(problem, x, options, workspace).is_success();
+}
+
 MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem) {
   TESSERA_CHECK(mesh.ambient_dimension() == problem.ambient_dimension(),
                 "the mesh is in R^" << mesh.ambient_dimension() << " but problem '"
@@ -90,14 +99,9 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& pro
   const int n = problem.ambient_dimension();
   Eigen::VectorXd F(n - 2);
   Linearization workspace;
-  CorrectorOptions options;
-  options.tolerance = 1e-13;  // distances down to ~1e-12 must be resolved
-  options.residual_tolerance = 1e-11;
-  options.max_contraction = 0.9;
   const auto distance = [&](const Eigen::VectorXd& x, Statistic& statistic) {
     Eigen::VectorXd y = x;
-    const auto summary = project_gauss_newton(problem, y, options, workspace);
-    if (!summary.is_success()) {
+    if (!project_onto_manifold(problem, y, workspace)) {
       ++quality.failed_projections;
       return;
     }
@@ -110,8 +114,7 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& pro
     distance(x, quality.vertex_distance);
   }
   for (const Triangle& t : mesh.triangles()) {
-    const Eigen::VectorXd centroid =
-        (mesh.point(t[0]) + mesh.point(t[1]) + mesh.point(t[2])) / 3.0;
+    const Eigen::VectorXd centroid = (mesh.point(t[0]) + mesh.point(t[1]) + mesh.point(t[2])) / 3.0;
     distance(centroid, quality.centroid_distance);
   }
   const MeshTopology topology(mesh);

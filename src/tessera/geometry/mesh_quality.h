@@ -4,6 +4,7 @@
 #pragma once
 
 #include "tessera/core/implicit_problem.h"
+#include "tessera/core/linearization.h"
 #include "tessera/geometry/triangle_mesh.h"
 
 namespace tessera {
@@ -16,15 +17,15 @@ struct Statistic {
 };
 
 struct MeshQuality {
-  Statistic vertex_residual;      ///< |F(x)| at the vertices
-  Statistic vertex_distance;      ///< distance of the vertices to M
-  Statistic centroid_distance;    ///< distance of the triangle centroids to M
-  Statistic midpoint_distance;    ///< distance of the edge midpoints to M
-  int failed_projections = 0;     ///< points whose projection onto M did not converge
+  Statistic vertex_residual;    ///< |F(x)| at the vertices
+  Statistic vertex_distance;    ///< distance of the vertices to M
+  Statistic centroid_distance;  ///< distance of the triangle centroids to M
+  Statistic midpoint_distance;  ///< distance of the edge midpoints to M
+  int failed_projections = 0;   ///< points whose projection onto M did not converge
   double min_angle_degrees = 0.0;
   double max_angle_degrees = 0.0;
   double fraction_angles_below_30 = 0.0;  ///< share of all triangle angles below 30°
-  double area = 0.0;                       ///< sum of the triangle areas in R^n
+  double area = 0.0;                      ///< sum of the triangle areas in R^n
   double min_edge_length = 0.0;
   double max_edge_length = 0.0;
 };
@@ -34,6 +35,16 @@ struct MeshQuality {
 /// normal to M up to O(‖x − P(x)‖²), so it measures the distance to that order. O(N) projections.
 /// \throw InvalidArgument if the mesh and the problem live in different dimensions.
 MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem);
+
+/// P(x): the projection onto M that measure_quality() and validate() use, Gauss–Newton with
+/// minimum-norm steps to ‖dx‖ ≤ 1e-13·(1 + ‖x‖) and ‖F‖ ≤ 1e-11 (distances down to ~1e-12 must
+/// be resolved). The offset x − P(x) is normal to M up to O(‖x − P(x)‖²).
+/// \param x n-vector, overwritten with P(x) (with the last iterate if it fails).
+/// \param workspace reused between calls; afterwards it holds DF and its tangent basis at the
+///        last iterate, within the tolerance of P(x).
+/// \return false if the iteration did not converge.
+bool project_onto_manifold(const ImplicitProblem& problem, Eigen::Ref<Eigen::VectorXd> x,
+                           Linearization& workspace);
 
 /// Angles, areas and edge lengths only (no problem needed).
 MeshQuality measure_shape(const TriangleMesh& mesh);

@@ -5,16 +5,27 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <deque>
+#include <initializer_list>
+#include <limits>
+#include <numbers>
 #include <sstream>
 #include <utility>
 
+#include <Eigen/LU>
+
+#include "tessera/core/describe.h"
 #include "tessera/core/error.h"
+#include "tessera/core/linearization.h"
+#include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
+#include "tessera/geometry/spatial_hash.h"
+#include "tessera/geometry/triangle_intersection.h"
 
 namespace tessera {
 namespace {
 
-constexpr int kind_count = static_cast<int>(MeshDefectKind::NonFiniteCoordinate) + 1;
+constexpr int kind_count = static_cast<int>(MeshDefectKind::VertexOutsideDomain) + 1;
 constexpr std::size_t max_listed_indices = 8;  // per example line, e.g. triangles of an edge
 
 std::string triangle_text(int t, const Triangle& tri) {
@@ -130,6 +141,342 @@ std::pair<double, double> area_and_longest_squared(const Eigen::Map<const Eigen:
   return {0.5 * std::sqrt(uu * ww), uu};
 }
 
+// ---------------------------------------------------------------------------------------------
+// Geometric checks (validate with a problem and a domain). The mathematics is in
+// docs/validation.md; the comments here say why each step is sound.
+
+struct GeometricInput {
+  const ImplicitProblem& problem;
+  const Domain& domain;
+};
+
+// Per topology triangle: what the combinatorial pass measured, and what the orientation pass
+// finds for the overlap pass.
+struct TriangleShapes {
+  explicit TriangleShapes(int count)
+      : area(count, 0.0),
+        longest_edge(count, 0.0),
+        is_finite(count, 0),
+        is_degenerate(count, 0),
+        oriented_cosine(count, std::numeric_limits<double>::quiet_NaN()) {}
+  std::vector<double> area;
+  std::vector<double> longest_edge;
+  std::vector<std::uint8_t> is_finite;      // all three vertices finite
+  std::vector<std::uint8_t> is_degenerate;  // a DegenerateTriangle defect
+  // s_t against M's orientation as the mesh's piece sees it (σ applied, mean over the
+  // corners); NaN if not judged.
+  std::vector<double> oriented_cosine;
+};
+
+struct MeshView {
+  const TriangleMesh& mesh;
+  const MeshTopology& topology;
+  const std::vector<int>& original;  // topology triangle -> mesh triangle
+  TriangleShapes& shapes;
+  const std::vector<std::uint8_t>& is_finite_vertex;
+};
+
+Eigen::VectorXd centroid(const Eigen::Map<const Eigen::MatrixXd>& points, const Triangle& tri) {
+  return (points.col(tri[0]) + points.col(tri[1]) + points.col(tri[2])) / 3.0;
+}
+
+// "triangle 17 (vertices 3, 8, 9)"
+std::string triangle_name(int t, const Triangle& tri) {
+  std::ostringstream out;
+  out << "triangle " << t << " (vertices " << tri[0] << ", " << tri[1] << ", " << tri[2] << ")";
+  return out.str();
+}
+
+double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+
+// Oriented cosine s = det(Tᵀe₁, Tᵀe₂) / |e₁ ∧ e₂| of the triangle against the oriented plane
+// spanned by the orthonormal columns of T (n×2). Tᵀ is the orthogonal projection onto that
+// plane in T's coordinates, so det(Tᵀe₁, Tᵀe₂)/2 is the signed area of the projected triangle
+// and s is the ratio of the projected to the true area: the cosine of the angle between the
+// two planes in R³, the product of the cosines of the two principal angles in R^n, with the
+// sign of the orientation. |s| ≤ 1.
+double oriented_cosine(const Eigen::Map<const Eigen::MatrixXd>& points, const Triangle& tri,
+                       double area, const Eigen::MatrixXd& T) {
+  const Eigen::Vector2d a = T.transpose() * (points.col(tri[1]) - points.col(tri[0]));
+  const Eigen::Vector2d b = T.transpose() * (points.col(tri[2]) - points.col(tri[0]));
+  return std::clamp((a.x() * b.y() - a.y() * b.x()) / (2.0 * area), -1.0, 1.0);
+}
+
+// 1. Orientation. M = F⁻¹(0) with F regular is orientable, so the mesh of a component of M
+// must have one orientation along M. Linearization gives at each point an orthonormal basis T
+// of ker DF with an arbitrary orientation; it is made consistent by a breadth-first search
+// over the vertices of each connected piece of the mesh, factoring DF at each vertex with its
+// BFS parent's T as reference (align_tangent_basis: det(TᵀT_parent) > 0). This is sound
+// because the two ends of an edge are close, so their tangent planes are close and the sign of
+// det(TᵀT_parent) is the one continuous transport along M gives; as M is orientable, no loop
+// can reverse it, and the propagated T is one orientation of M along the piece.
+//
+// Why the vertices and not the triangles' centroids: the vertices lie on M (to the corrector's
+// tolerance), where ker DF is M's tangent plane. A centroid lies off M by the chord error e,
+// where ker DF approximates the tangent plane only to O(‖D²F‖·e / σ_min(DF)); near a singular
+// curve of F (the `crossing` problem's circle, where DF → 0 on M) that is no approximation at
+// all, and projecting the centroid first can land on the other sheet. A vertex is shared by
+// about six triangles, so this is also half as many factorisations (V ≈ N/2).
+//
+// Each triangle's oriented cosine is the mean of s_t over its corners that could be factored
+// (a corner exactly on a singular curve cannot). Within each piece, the sign σ of the
+// area-weighted sum is M's orientation as the mesh sees it; a triangle with σ·s_t below
+// min_tangent_cosine is reversed (< 0) or stands across M. A whole piece of the other sign is
+// M's other orientation, not a defect.
+void check_orientation(const MeshView& view, const GeometricInput& geometry,
+                       const ValidationOptions& options, DefectRecorder& recorder,
+                       MeshValidation& result) {
+  const MeshTopology& topology = view.topology;
+  const std::vector<Triangle>& triangles = topology.triangles();
+  TriangleShapes& shapes = view.shapes;
+  const auto points = view.mesh.points();
+  const int count = topology.triangle_count();
+  const int vertex_count = view.mesh.vertex_count();
+  constexpr int unvisited = -1;
+  constexpr int unjudged = -2;  // not finite, or DF rank deficient at the vertex
+  std::vector<int> vertex_group(vertex_count, unvisited);
+  std::vector<double> cosine_sum(count, 0.0);
+  std::vector<int> corner_count(count, 0);
+  std::vector<int> triangle_group(count, unvisited);
+  int group_count = 0;
+  Linearization linearization;
+  // BFS queue of vertices with their (oriented) tangent basis; a basis is kept only while its
+  // vertex waits in the queue, so memory is O(frontier · n), not O(V · n).
+  std::deque<std::pair<int, Eigen::MatrixXd>> queue;
+  auto is_judged = [&](int t) { return shapes.is_finite[t] && !shapes.is_degenerate[t]; };
+  auto visit = [&](int v, int g, const Eigen::MatrixXd* reference) {
+    if (!view.is_finite_vertex[v] ||
+        !linearization.factor(geometry.problem, points.col(v), reference)) {
+      vertex_group[v] = unjudged;
+      return;
+    }
+    vertex_group[v] = g;
+    const Eigen::MatrixXd& T = linearization.tangent_basis();
+    for (int t : topology.vertex_triangles(v)) {
+      if (is_judged(t)) {
+        cosine_sum[t] += oriented_cosine(points, triangles[t], shapes.area[t], T);
+        ++corner_count[t];
+        triangle_group[t] = g;  // all judged corners of t are in one group: they are adjacent
+      }
+    }
+    queue.emplace_back(v, T);
+  };
+  for (int root = 0; root < vertex_count; ++root) {
+    if (vertex_group[root] != unvisited || topology.vertex_triangles(root).empty()) {
+      continue;
+    }
+    visit(root, group_count, nullptr);
+    while (!queue.empty()) {
+      const auto [v, T] = std::move(queue.front());
+      queue.pop_front();
+      for (int t : topology.vertex_triangles(v)) {
+        for (int w : triangles[t]) {
+          if (vertex_group[w] == unvisited) {
+            visit(w, group_count, &T);
+          }
+        }
+      }
+    }
+    ++group_count;
+  }
+  std::vector<double> group_weight(group_count, 0.0);  // Σ area·s over the group's triangles
+  std::vector<double> cosine(count, std::numeric_limits<double>::quiet_NaN());
+  for (int t = 0; t < count; ++t) {
+    if (corner_count[t] > 0) {
+      cosine[t] = cosine_sum[t] / corner_count[t];
+      group_weight[triangle_group[t]] += shapes.area[t] * cosine[t];
+    }
+  }
+  for (int t = 0; t < count; ++t) {
+    if (!is_judged(t)) {
+      continue;  // degenerate or not finite: reported as such
+    }
+    if (corner_count[t] == 0) {
+      ++result.unoriented_triangle_count;
+      continue;
+    }
+    const double sigma = group_weight[triangle_group[t]] >= 0 ? 1.0 : -1.0;
+    const double s = sigma * cosine[t];
+    shapes.oriented_cosine[t] = s;
+    if (s >= options.min_tangent_cosine) {
+      continue;
+    }
+    result.flipped_triangles.push_back(view.original[t]);
+    recorder.record(MeshDefectKind::FlippedTriangle, [&] {
+      std::ostringstream out;
+      out.precision(3);
+      const int n = view.mesh.ambient_dimension();
+      out << triangle_name(view.original[t], triangles[t]) << " near "
+          << describe_point(centroid(points, triangles[t])) << ": "
+          << (s < 0 ? "" : "stands across M, ") << (n == 3 ? "normal" : "oriented plane") << " at "
+          << degrees(std::acos(s)) << "° to M's" << (n == 3 ? "" : " tangent plane");
+      return out.str();
+    });
+  }
+}
+
+// Lifts the planar point x (coordinates in the orthonormal basis U at origin o) to R^n.
+Eigen::VectorXd lift(const Eigen::VectorXd& o, const Eigen::MatrixXd& U, const Eigen::Vector2d& x) {
+  return o + U * x;
+}
+
+// 2. Overlap. Two triangles that share no edge must not cover the same part of M. Candidates:
+// every pair within 0.25·(longest edge) of each other in R^n (nearby_triangle_pairs, expected
+// linear time); 0.25·h exceeds the chord errors of both triangles (≤ κh²/8), so two triangles
+// on opposite sides of M are found too. A candidate pair is projected onto the plane of the
+// better aligned of the two (larger |s_t|): within O(κh) of the tangent plane of M there and
+// needing no factorisation; the planar intersection is clipped exactly. If it exceeds
+// overlap_area_ratio of the smaller area, its centroid (inside both projections) is lifted to
+// q₁ on the reference triangle and projected onto M: p = P(q₁). The second triangle covers
+// p if M's normal space at p meets it, at q₂; it covers the same part of M, and not a close
+// sheet, if P(q₂) returns to p: |P(q₂) − p| ≤ overlap_same_point_ratio · |q₂ − p|.
+void check_overlaps(const MeshView& view, const GeometricInput& geometry,
+                    const ValidationOptions& options, DefectRecorder& recorder,
+                    MeshValidation& result) {
+  const MeshTopology& topology = view.topology;
+  const std::vector<Triangle>& triangles = topology.triangles();
+  const TriangleShapes& shapes = view.shapes;
+  const auto points = view.mesh.points();
+  const int count = topology.triangle_count();
+  const int n = view.mesh.ambient_dimension();
+  std::vector<double> margins(count, -1.0);
+  for (int t = 0; t < count; ++t) {
+    if (shapes.is_finite[t] && !shapes.is_degenerate[t]) {
+      margins[t] = 0.25 * shapes.longest_edge[t];
+    }
+  }
+  std::vector<std::pair<int, int>> pairs = nearby_triangle_pairs(points, triangles, margins);
+  std::sort(pairs.begin(), pairs.end());
+  // The barycentric slack for "q₂ lies in the second triangle": the overlap's centroid lies
+  // inside both projections, and lifting along M's normal at p instead of the reference
+  // plane's normal moves it by O(κ·e·h), a small fraction of the triangle; 1% allows for it.
+  constexpr double barycentric_slack = 0.01;
+  Linearization workspace;
+  // Scratch for the planar test, which runs for every candidate pair: no allocation in it.
+  Eigen::MatrixXd U(n, 2);
+  Eigen::VectorXd o(n);
+  Eigen::VectorXd d(n);
+  Eigen::Matrix<double, 2, 3> a;
+  Eigen::Matrix<double, 2, 3> b;
+  for (const auto& [s, t] : pairs) {
+    int shared = 0;
+    for (int v : triangles[s]) {
+      shared += (v == triangles[t][0] || v == triangles[t][1] || v == triangles[t][2]) ? 1 : 0;
+    }
+    if (shared >= 2) {
+      continue;  // neighbours across an edge (or a duplicate, reported as such)
+    }
+    const auto alignment = [&](int r) {
+      const double c = shapes.oriented_cosine[r];
+      return std::isnan(c) ? -1.0 : std::abs(c);
+    };
+    const int reference = alignment(s) >= alignment(t) ? s : t;
+    const int other = reference == s ? t : s;
+    // Orthonormal basis of the reference plane from its longest edge and the apex's offset
+    // from that edge (accurate for thin triangles; see area_and_longest_squared).
+    const Triangle& r = triangles[reference];
+    int k = 0;
+    for (int j = 1; j < 3; ++j) {
+      if ((points.col(r[(j + 1) % 3]) - points.col(r[j])).squaredNorm() >
+          (points.col(r[(k + 1) % 3]) - points.col(r[k])).squaredNorm()) {
+        k = j;
+      }
+    }
+    o = points.col(r[k]);
+    d = points.col(r[(k + 1) % 3]) - o;
+    U.col(0) = d / d.norm();
+    d = points.col(r[(k + 2) % 3]) - o;  // the apex
+    d -= d.dot(U.col(0)) * U.col(0);
+    U.col(1) = d / d.norm();
+    for (int j = 0; j < 3; ++j) {
+      d = points.col(r[j]) - o;
+      a.col(j).noalias() = U.transpose() * d;
+      d = points.col(triangles[other][j]) - o;
+      b.col(j).noalias() = U.transpose() * d;
+    }
+    const PlanarOverlap overlap = triangle_intersection(a, b);
+    const double smaller_area = std::min(shapes.area[s], shapes.area[t]);
+    if (!(overlap.area > options.overlap_area_ratio * smaller_area)) {
+      continue;
+    }
+    Eigen::VectorXd p = lift(o, U, overlap.centroid);
+    if (!project_onto_manifold(geometry.problem, p, workspace) || !workspace.is_factored()) {
+      continue;  // no point of M to compare at: left unjudged
+    }
+    const Eigen::MatrixXd& T = workspace.tangent_basis();
+    // q₂ = b₀ + E·w on the other triangle's plane with Tᵀ(q₂ − p) = 0.
+    const Triangle& o_tri = triangles[other];
+    const Eigen::VectorXd b0 = points.col(o_tri[0]);
+    Eigen::MatrixXd E(n, 2);
+    E.col(0) = points.col(o_tri[1]) - b0;
+    E.col(1) = points.col(o_tri[2]) - b0;
+    const Eigen::Matrix2d TE = T.transpose() * E;
+    if (std::abs(TE.determinant()) <= 1e-3 * 2.0 * shapes.area[other]) {
+      continue;  // the other triangle stands across M at p (a flipped triangle if anything)
+    }
+    const Eigen::Vector2d w = TE.inverse() * (T.transpose() * (p - b0));
+    if (std::min({1.0 - w.x() - w.y(), w.x(), w.y()}) < -barycentric_slack) {
+      continue;  // M's normal at p misses the other triangle: it does not cover p
+    }
+    const Eigen::VectorXd q2 = b0 + E * w;
+    Eigen::VectorXd p2 = q2;
+    if (!project_onto_manifold(geometry.problem, p2, workspace)) {
+      continue;
+    }
+    // The floor is the projection's accuracy (1e-13·(1 + ‖x‖)) with a margin.
+    const double floor = 1e-10 * (1.0 + p.lpNorm<Eigen::Infinity>());
+    if ((p2 - p).norm() > options.overlap_same_point_ratio * (q2 - p).norm() + floor) {
+      continue;  // another sheet of M (close sheets, the far side of a thin tube)
+    }
+    result.overlapping_triangle_pairs.emplace_back(view.original[s], view.original[t]);
+    recorder.record(MeshDefectKind::OverlappingTriangles, [&] {
+      std::ostringstream out;
+      out.precision(3);
+      out << triangle_name(view.original[s], triangles[s]) << " and "
+          << triangle_name(view.original[t], triangles[t]) << " both cover M near "
+          << describe_point(p) << ": overlap " << 100.0 * overlap.area / smaller_area
+          << "% of the smaller" << (shared == 1 ? " (they share one vertex: a folded fan)" : "");
+      return out.str();
+    });
+  }
+}
+
+// 3. Domain. Vertices on ∂S are placed there by a projection onto the faces, which rounds to
+// a few ulp of the coordinates; a vertex farther outside than domain_tolerance_ratio·(1 +
+// ‖x‖∞) was not put on ∂S at all.
+void check_domain(const MeshView& view, const GeometricInput& geometry,
+                  const ValidationOptions& options, DefectRecorder& recorder,
+                  MeshValidation& result) {
+  const Domain& domain = geometry.domain;
+  if (domain.is_unbounded()) {
+    return;
+  }
+  const auto points = view.mesh.points();
+  for (int v = 0; v < view.mesh.vertex_count(); ++v) {
+    if (!view.is_finite_vertex[v]) {
+      continue;  // reported as a non-finite coordinate
+    }
+    const auto x = points.col(v);
+    const double tolerance = options.domain_tolerance_ratio * (1.0 + x.lpNorm<Eigen::Infinity>());
+    if (domain.contains(x, tolerance)) {
+      continue;
+    }
+    result.vertices_outside_domain.push_back(v);
+    recorder.record(MeshDefectKind::VertexOutsideDomain, [&] {
+      const BoundaryDistance nearest = domain.boundary_distance(x);
+      const HalfSpace& face = domain.half_spaces()[nearest.nearest_half_space];
+      std::ostringstream out;
+      out.precision(3);
+      out << "vertex " << v << " at " << describe_point(x) << " is " << -nearest.signed_distance
+          << " outside the domain ("
+          << (face.label.empty() ? "half-space " + std::to_string(nearest.nearest_half_space)
+                                 : face.label)
+          << ")";
+      return out.str();
+    });
+  }
+}
+
 }  // namespace
 
 std::string_view to_string(MeshDefectKind kind) {
@@ -152,6 +499,12 @@ std::string_view to_string(MeshDefectKind kind) {
       return "degenerate triangle";
     case MeshDefectKind::NonFiniteCoordinate:
       return "non-finite coordinate";
+    case MeshDefectKind::FlippedTriangle:
+      return "flipped triangle";
+    case MeshDefectKind::OverlappingTriangles:
+      return "overlapping triangles";
+    case MeshDefectKind::VertexOutsideDomain:
+      return "vertex outside domain";
   }
   return "unknown defect";
 }
@@ -193,6 +546,17 @@ std::string MeshValidation::report() const {
     out << ", genus " << genus;
   }
   out << "\n";
+  if (is_geometry_checked) {
+    out << "geometry: orientation along M, overlaps on M and the domain checked";
+    if (unoriented_triangle_count > 0) {
+      out << " (" << unoriented_triangle_count
+          << (unoriented_triangle_count == 1 ? " triangle" : " triangles")
+          << " not oriented: DF singular at the centroid)";
+    }
+    out << "\n";
+  } else {
+    out << "geometry: not checked (no problem given)\n";
+  }
   if (is_valid()) {
     out << "valid: no defects\n";
     return out.str();
@@ -210,12 +574,19 @@ std::string MeshValidation::report() const {
   return out.str();
 }
 
-MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& options) {
+namespace {
+
+void check_options(const ValidationOptions& options) {
   TESSERA_CHECK(options.degenerate_area_ratio >= 0,
                 "ValidationOptions::degenerate_area_ratio = " << options.degenerate_area_ratio
                                                               << " must be >= 0");
   TESSERA_CHECK(options.max_examples >= 0,
                 "ValidationOptions::max_examples = " << options.max_examples << " must be >= 0");
+}
+
+// The combinatorial checks, then the geometric ones if `geometry` is given.
+MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& options,
+                             const GeometricInput* geometry) {
   using Kind = MeshDefectKind;
   DefectRecorder recorder(options.max_examples);
   MeshValidation result;
@@ -225,6 +596,19 @@ MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& optio
   result.ambient_dimension = mesh.ambient_dimension();
   result.vertex_count = vertex_count;
   result.triangle_count = mesh.triangle_count();
+  // " near (x, y, z)": the mean of the given vertices that exist and are finite, so that every
+  // message names a place, not only indices ("" if there is none).
+  auto near = [&](std::initializer_list<int> vertices) -> std::string {
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(result.ambient_dimension);
+    int used = 0;
+    for (int v : vertices) {
+      if (v >= 0 && v < vertex_count && points.col(v).allFinite()) {
+        sum += points.col(v);
+        ++used;
+      }
+    }
+    return used == 0 ? std::string() : " near " + describe_point(sum / used);
+  };
 
   // Malformed triangles (index out of range, repeated index) have no well-defined edges; they
   // are reported and left out of the topology. `kept` maps topology triangles back to mesh
@@ -258,14 +642,15 @@ MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& optio
     if (is_out_of_range) {
       recorder.record(Kind::IndexOutOfRange, [&] {
         std::ostringstream out;
-        out << triangle_text(t, tri) << " has index " << bad_index << " outside [0, "
-            << vertex_count << ")";
+        out << triangle_text(t, tri) << near({tri[0], tri[1], tri[2]}) << " has index " << bad_index
+            << " outside [0, " << vertex_count << ")";
         return out.str();
       });
     } else if (is_repeated) {
       recorder.record(Kind::RepeatedIndex, [&] {
         const int v = tri[0] == tri[1] || tri[0] == tri[2] ? tri[0] : tri[1];
-        return triangle_text(t, tri) + " repeats vertex " + std::to_string(v);
+        return triangle_text(t, tri) + near({tri[0], tri[1], tri[2]}) + " repeats vertex " +
+               std::to_string(v);
       });
     }
   }
@@ -307,8 +692,10 @@ MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& optio
   }
   for (int v = 0; v < vertex_count; ++v) {
     if (!is_referenced[v]) {
-      recorder.record(Kind::UnreferencedVertex,
-                      [&] { return "vertex " + std::to_string(v) + " is in no triangle"; });
+      recorder.record(Kind::UnreferencedVertex, [&] {
+        return "vertex " + std::to_string(v) + " at " + describe_point(points.col(v)) +
+               " is in no triangle";
+      });
     }
   }
 
@@ -317,8 +704,9 @@ MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& optio
       recorder.record(Kind::NonManifoldEdge, [&] {
         const auto on_edge = topology.edge_triangles(e);
         std::ostringstream out;
-        out << "edge (" << topology.edge(e)[0] << ", " << topology.edge(e)[1] << ") has "
-            << on_edge.size() << " triangles: " << index_list(on_edge, original);
+        out << "edge (" << topology.edge(e)[0] << ", " << topology.edge(e)[1] << ")"
+            << near({topology.edge(e)[0], topology.edge(e)[1]}) << " has " << on_edge.size()
+            << " triangles: " << index_list(on_edge, original);
         return out.str();
       });
     }
@@ -338,7 +726,8 @@ MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& optio
       }
       if (sorted(topology_triangles[u]) == vertices) {
         recorder.record(Kind::DuplicateTriangle, [&] {
-          return triangle_text(original(t), topology_triangles[t]) + " repeats " +
+          const Triangle& tri = topology_triangles[t];
+          return triangle_text(original(t), tri) + near({tri[0], tri[1], tri[2]}) + " repeats " +
                  triangle_text(original(u), topology_triangles[u]);
         });
         break;
@@ -373,7 +762,7 @@ MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& optio
         }
         std::sort(fan_and_triangle.begin(), fan_and_triangle.end());
         std::ostringstream out;
-        out << "vertex " << v << " is shared by " << fan_count[v]
+        out << "vertex " << v << near({v}) << " is shared by " << fan_count[v]
             << " fans of triangles that share no edge there: ";
         for (std::size_t i = 0; i < fan_and_triangle.size(); ++i) {
           const bool is_new_fan =
@@ -407,23 +796,31 @@ MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& optio
                               (tri[2] == a && tri[0] == b);
       std::ostringstream out;
       out << "triangles " << original(on_edge[0]) << " and " << original(on_edge[1])
-          << " both traverse edge (" << a << ", " << b << ") from " << (is_forward ? a : b)
-          << " to " << (is_forward ? b : a) << "; orient_consistently() repairs this";
+          << " both traverse edge (" << a << ", " << b << ")" << near({a, b}) << " from "
+          << (is_forward ? a : b) << " to " << (is_forward ? b : a)
+          << "; orient_consistently() repairs this";
       return out.str();
     });
   }
 
+  // Per topology triangle, for the geometric checks: area, longest edge, and whether it can be
+  // judged at all (finite and not degenerate).
+  TriangleShapes shapes(topology.triangle_count());
   for (int t = 0; t < topology.triangle_count(); ++t) {
     const Triangle& tri = topology_triangles[t];
     if (!is_finite[tri[0]] || !is_finite[tri[1]] || !is_finite[tri[2]]) {
       continue;  // reported as a non-finite coordinate
     }
+    shapes.is_finite[t] = 1;
     const auto [area, longest_squared] = area_and_longest_squared(points, tri);
-    if (area <= options.degenerate_area_ratio * longest_squared) {
+    shapes.area[t] = area;
+    shapes.longest_edge[t] = std::sqrt(longest_squared);
+    shapes.is_degenerate[t] = area <= options.degenerate_area_ratio * longest_squared ? 1 : 0;
+    if (shapes.is_degenerate[t]) {
       recorder.record(Kind::DegenerateTriangle, [&] {
         std::ostringstream out;
-        out << triangle_text(original(t), tri) << " has area " << area << " (longest edge "
-            << std::sqrt(longest_squared) << ")";
+        out << triangle_text(original(t), tri) << near({tri[0], tri[1], tri[2]}) << " has area "
+            << area << " (longest edge " << std::sqrt(longest_squared) << ")";
         return out.str();
       });
     }
@@ -438,6 +835,20 @@ MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& optio
   result.unreferenced_vertex_count = recorder.count(Kind::UnreferencedVertex);
   result.degenerate_triangle_count = recorder.count(Kind::DegenerateTriangle);
   result.non_finite_vertex_count = recorder.count(Kind::NonFiniteCoordinate);
+  if (geometry != nullptr) {
+    std::vector<int> original_index(topology.triangle_count());
+    for (int t = 0; t < topology.triangle_count(); ++t) {
+      original_index[t] = original(t);
+    }
+    const MeshView view{mesh, topology, original_index, shapes, is_finite};
+    check_orientation(view, *geometry, options, recorder, result);
+    check_overlaps(view, *geometry, options, recorder, result);
+    check_domain(view, *geometry, options, recorder, result);
+    result.is_geometry_checked = true;
+    result.flipped_triangle_count = recorder.count(Kind::FlippedTriangle);
+    result.overlapping_pair_count = recorder.count(Kind::OverlappingTriangles);
+    result.vertex_outside_domain_count = recorder.count(Kind::VertexOutsideDomain);
+  }
   result.defects = recorder.take_present();
 
   // For a closed orientable surface each component has chi_i = 2 - 2 g_i.
@@ -446,6 +857,39 @@ MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& optio
     result.genus = result.component_count - result.euler_characteristic / 2;
   }
   return result;
+}
+
+}  // namespace
+
+MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& options) {
+  check_options(options);
+  return validate_mesh(mesh, options, nullptr);
+}
+
+MeshValidation validate(const TriangleMesh& mesh, const ImplicitProblem& problem,
+                        const Domain& domain, const ValidationOptions& options) {
+  check_options(options);
+  TESSERA_CHECK(options.min_tangent_cosine >= 0 && options.min_tangent_cosine <= 1,
+                "ValidationOptions::min_tangent_cosine = " << options.min_tangent_cosine
+                                                           << " must lie in [0, 1]");
+  TESSERA_CHECK(
+      options.overlap_area_ratio >= 0,
+      "ValidationOptions::overlap_area_ratio = " << options.overlap_area_ratio << " must be >= 0");
+  TESSERA_CHECK(options.overlap_same_point_ratio >= 0,
+                "ValidationOptions::overlap_same_point_ratio = " << options.overlap_same_point_ratio
+                                                                 << " must be >= 0");
+  TESSERA_CHECK(options.domain_tolerance_ratio >= 0,
+                "ValidationOptions::domain_tolerance_ratio = " << options.domain_tolerance_ratio
+                                                               << " must be >= 0");
+  TESSERA_CHECK(mesh.ambient_dimension() == problem.ambient_dimension(),
+                "the mesh is in R^" << mesh.ambient_dimension() << " but problem '"
+                                    << problem.name() << "' is in R^"
+                                    << problem.ambient_dimension());
+  TESSERA_CHECK(domain.is_unbounded() || domain.ambient_dimension() == mesh.ambient_dimension(),
+                "the domain (" << domain.describe() << ") is in R^" << domain.ambient_dimension()
+                               << " but the mesh is in R^" << mesh.ambient_dimension());
+  const GeometricInput geometry{problem, domain};
+  return validate_mesh(mesh, options, &geometry);
 }
 
 }  // namespace tessera

@@ -1,12 +1,17 @@
 // SPDX-License-Identifier: MIT
 // Validation of a triangle mesh in R^n: counts, topology and every combinatorial or geometric
-// defect, each named with the indices where it occurs.
+// defect, each named with the indices where it occurs. Given the problem and the domain, also
+// the geometric validity of a mesh of M ∩ S: orientation along M, no overlap on M, vertices in
+// S (docs/validation.md).
 #pragma once
 
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
+#include "tessera/core/domain.h"
+#include "tessera/core/implicit_problem.h"
 #include "tessera/geometry/triangle_mesh.h"
 
 namespace tessera {
@@ -21,6 +26,11 @@ enum class MeshDefectKind {
   UnreferencedVertex,       ///< a vertex that no triangle refers to
   DegenerateTriangle,       ///< area <= degenerate_area_ratio * (longest edge)^2
   NonFiniteCoordinate,      ///< a vertex with a NaN or infinite coordinate
+  // Geometric defects, checked only by validate(mesh, problem, domain):
+  FlippedTriangle,       ///< its orientation disagrees with M's orientation around it (or it
+                         ///< stands across M)
+  OverlappingTriangles,  ///< two triangles that share no edge cover the same part of M
+  VertexOutsideDomain,   ///< a vertex outside the domain S by more than rounding
 };
 
 /// "index out of range", "non-manifold edge", ...
@@ -41,6 +51,30 @@ struct ValidationOptions {
   double degenerate_area_ratio = 1e-14;
   /// Examples kept per defect kind; the counts are always complete.
   int max_examples = 5;
+
+  // Geometric checks (validate with a problem); the reasons are in docs/validation.md.
+  /// A triangle whose oriented cosine s = det(Tᵀe₁, Tᵀe₂)/|e₁ ∧ e₂| against M's oriented tangent
+  /// basis T (mean over its corners) is below this is flipped: s < 0 is reversed, 0 ≤ s < 0.1 means
+  /// its plane stands across M at more than 84°. A triangle of size h on a surface of curvature
+  /// κ tilts by O(κh) from the tangent plane, so s ≥ cos(κh) ≈ 0.5 even at κh = 1, a coarser
+  /// mesh than any method makes; s < 0.1 is a fold, not a coarse triangle.
+  double min_tangent_cosine = 0.1;
+  /// Two triangles are tested on M when their projections onto the plane of the better aligned
+  /// one overlap in more than this fraction of the smaller triangle's area. Triangles sharing a
+  /// vertex overlap in area 0 up to rounding (1e-16); 1e-3 finds a fan folded by 0.1% of a
+  /// triangle and leaves the decision to the test on M.
+  double overlap_area_ratio = 1e-3;
+  /// They cover the same part of M if, for p = P(q₁) with q₁ a point of the overlap on the
+  /// first triangle and q₂ where M's normal space at p meets the second triangle's plane,
+  /// |P(q₂) − p| ≤ ratio · |q₂ − p|. On the same sheet P(q₂) returns to p up to O(κ|q₂ − p|²),
+  /// a ratio κ|q₂ − p| ≤ κ·(chord error) ≤ (κh)²/8; on another sheet (the trough's, 5e-5 away,
+  /// or the far side of a thin tube) P(q₂) stays on that sheet, a ratio near 1 (≥ 1/2 while the
+  /// chord error is below the sheets' separation). 0.25 lies between the two.
+  double overlap_same_point_ratio = 0.25;
+  /// A vertex x is outside the domain if a half-space's signed distance is below
+  /// −ratio·(1 + ‖x‖∞): rounding of a point placed on a face is a few ulp of its coordinates
+  /// (2e-16·‖x‖∞), so 1e-12 accepts every vertex snapped to ∂S and reports one 3.9e-7 outside.
+  double domain_tolerance_ratio = 1e-12;
 };
 
 /// The result of validate(): plain members, so that it can be written as JSON field by field.
@@ -74,6 +108,19 @@ struct MeshValidation {
   int degenerate_triangle_count = 0;       ///< triangles
   int non_finite_vertex_count = 0;         ///< vertices
 
+  // Geometric checks: set only by validate(mesh, problem, domain, options).
+  bool is_geometry_checked = false;  ///< the geometric checks ran
+  int flipped_triangle_count = 0;    ///< triangles reversed or standing across M
+  int overlapping_pair_count = 0;    ///< pairs of triangles that cover the same part of M
+  int vertex_outside_domain_count = 0;
+  /// Triangles whose orientation could not be judged: DF is rank deficient or not finite at
+  /// all three corners (e.g. on the crossing curve of two sheets). Not a defect.
+  int unoriented_triangle_count = 0;
+  /// Complete lists, ascending, so that a caller can repair locally (remove and re-fill).
+  std::vector<int> flipped_triangles;
+  std::vector<std::pair<int, int>> overlapping_triangle_pairs;  ///< (s, t), s < t
+  std::vector<int> vertices_outside_domain;
+
   /// One entry per defect kind that occurs, in the order of MeshDefectKind.
   std::vector<MeshDefect> defects;
 
@@ -92,10 +139,30 @@ struct MeshValidation {
   std::string report() const;
 };
 
-/// Checks `mesh` for every kind of MeshDefectKind and computes its counts and topology.
+/// Checks `mesh` for every combinatorial kind of MeshDefectKind (all but the geometric ones at
+/// the end, which need M) and computes its counts and topology.
 /// Never throws for a bad mesh: every defect is reported, not raised. O(N) for bounded vertex
-/// degree plus O(n) per vertex and triangle for the geometric checks in R^n.
+/// degree plus O(n) per vertex and triangle for the areas in R^n.
 /// \throw InvalidArgument if options.degenerate_area_ratio < 0 or options.max_examples < 0.
 MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& options = {});
+
+/// validate(mesh, options) and the geometric validity of `mesh` as a mesh of M ∩ S, M = {F = 0}
+/// of `problem` and S = `domain` (docs/validation.md):
+///  - FlippedTriangle: its orientation, measured in M's tangent planes at its corners and made
+///    consistent over each connected piece of the mesh, disagrees with the piece's majority
+///    (weighted by area), or its plane stands across M (options.min_tangent_cosine). A whole
+///    component with reversed orientation is valid. Degenerate triangles are not judged.
+///  - OverlappingTriangles: two triangles that share no edge (they may share a vertex) cover
+///    the same part of M; close sheets of M (the trough, thin tubes) are not overlaps.
+///  - VertexOutsideDomain: a vertex outside S by more than options.domain_tolerance_ratio.
+/// Each example names the triangles or vertex and its coordinates; the lists in the result are
+/// complete. Cost: one factorisation of DF per vertex (no n×n dense work),
+/// an expected linear-time hash grid for the candidate pairs, and two projections onto M per
+/// pair whose projections overlap in the plane. Numerical failures (a projection that does not
+/// converge) leave a triangle or pair unjudged, never throw.
+/// \throw InvalidArgument for bad options (as above, or a geometric ratio < 0), or if the mesh,
+///        the problem and a bounded domain do not all live in the same R^n.
+MeshValidation validate(const TriangleMesh& mesh, const ImplicitProblem& problem,
+                        const Domain& domain, const ValidationOptions& options = {});
 
 }  // namespace tessera

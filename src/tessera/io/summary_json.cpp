@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/io/summary_json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,6 +14,31 @@ namespace {
 
 nlohmann::json statistic(const Statistic& s) {
   return {{"max", s.max}, {"mean", s.mean}, {"count", s.count}};
+}
+
+// The index lists of the geometric defects are complete in MeshValidation; the summary keeps
+// the first ones (a broken mesh may have 10⁵) and the complete counts beside them.
+constexpr std::size_t max_listed_in_json = 100;
+
+template <class T>
+std::vector<T> first_entries(const std::vector<T>& list) {
+  return {list.begin(), list.begin() + std::min(list.size(), max_listed_in_json)};
+}
+
+nlohmann::json geometry(const MeshValidation& v) {
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const auto& [s, t] : first_entries(v.overlapping_triangle_pairs)) {
+    pairs.push_back({s, t});
+  }
+  return {
+      {"checked", v.is_geometry_checked},
+      {"flipped_triangles",
+       {{"count", v.flipped_triangle_count}, {"triangles", first_entries(v.flipped_triangles)}}},
+      {"overlapping_triangles", {{"count", v.overlapping_pair_count}, {"pairs", pairs}}},
+      {"vertices_outside_domain",
+       {{"count", v.vertex_outside_domain_count},
+        {"vertices", first_entries(v.vertices_outside_domain)}}},
+      {"unoriented_triangles", v.unoriented_triangle_count}};
 }
 
 }  // namespace
@@ -49,12 +75,10 @@ std::string to_json(const MeshReport& report) {
     }
     j["run"]["notes"] = r.notes;
   }
-  j["counts"] = {{"vertices", v.referenced_vertex_count},
-                 {"edges", v.edge_count},
-                 {"triangles", v.triangle_count},
-                 {"boundary_edges", v.boundary_edge_count},
-                 {"boundary_loops", v.boundary_loop_count},
-                 {"components", v.component_count}};
+  j["counts"] = {
+      {"vertices", v.referenced_vertex_count},   {"edges", v.edge_count},
+      {"triangles", v.triangle_count},           {"boundary_edges", v.boundary_edge_count},
+      {"boundary_loops", v.boundary_loop_count}, {"components", v.component_count}};
   j["topology"] = {{"euler_characteristic", v.euler_characteristic},
                    {"orientable", v.is_orientable},
                    {"closed", v.is_closed()},
@@ -65,10 +89,11 @@ std::string to_json(const MeshReport& report) {
   j["valid"] = v.is_valid();
   nlohmann::json defects = nlohmann::json::array();
   for (const MeshDefect& d : v.defects) {
-    defects.push_back({{"kind", std::string(to_string(d.kind))}, {"count", d.count},
-                       {"examples", d.examples}});
+    defects.push_back(
+        {{"kind", std::string(to_string(d.kind))}, {"count", d.count}, {"examples", d.examples}});
   }
   j["defects"] = defects;
+  j["geometry"] = geometry(v);
   j["distance_to_manifold"] = {{"vertex_residual_F", statistic(q.vertex_residual)},
                                {"vertices", statistic(q.vertex_distance)},
                                {"centroids", statistic(q.centroid_distance)},
@@ -127,6 +152,15 @@ std::string to_text(const MeshReport& report) {
   }
   out << ", " << (v.is_orientable ? "orientable" : "non-orientable") << ", "
       << (v.is_valid() ? "valid" : "INVALID") << "\n";
+  if (v.is_geometry_checked) {
+    out << "geometry       " << v.flipped_triangle_count << " flipped triangle(s), "
+        << v.overlapping_pair_count << " overlapping pair(s), " << v.vertex_outside_domain_count
+        << " vertex(es) outside the domain";
+    if (v.unoriented_triangle_count > 0) {
+      out << "; " << v.unoriented_triangle_count << " triangle(s) not oriented (DF singular)";
+    }
+    out << "\n";
+  }
   for (const MeshDefect& d : v.defects) {
     out << "  defect       " << to_string(d.kind) << ": " << d.count
         << (d.examples.empty() ? "" : " (" + d.examples.front() + ")") << "\n";
@@ -137,9 +171,9 @@ std::string to_text(const MeshReport& report) {
   if (q.failed_projections > 0) {
     out << "  warning      " << q.failed_projections << " points could not be projected onto M\n";
   }
-  out << "shape          angles " << q.min_angle_degrees << "° … " << q.max_angle_degrees
-      << "°, " << 100 * q.fraction_angles_below_30 << "% below 30°; edges "
-      << q.min_edge_length << " … " << q.max_edge_length << "\n";
+  out << "shape          angles " << q.min_angle_degrees << "° … " << q.max_angle_degrees << "°, "
+      << 100 * q.fraction_angles_below_30 << "% below 30°; edges " << q.min_edge_length << " … "
+      << q.max_edge_length << "\n";
   out.precision(8);
   out << "area           " << q.area;
   if (report.exact_area) {

@@ -1,0 +1,284 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/geometry/spatial_hash.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "tessera/core/error.h"
+
+namespace tessera {
+namespace {
+
+constexpr int view_dimension = 3;
+using ViewPoint = std::array<double, view_dimension>;
+
+// The three-dimensional view of R^n that the grid hashes: the coordinates for n ≤ 3 (padded
+// with zeros), else three orthonormal directions drawn once from a fixed seed, so that every
+// run and every platform hashes alike. A fixed random view avoids the coordinate axes, along
+// which problems like the bvp (u1 … uN, λ, ε) put most of their variation in a few coordinates.
+class View {
+ public:
+  explicit View(int n) : n_(n) {
+    if (n <= view_dimension) {
+      return;
+    }
+    std::mt19937_64 generator(0x7e55e7a);  // fixed: deterministic hashing
+    std::normal_distribution<double> normal;
+    directions_.resize(n, view_dimension);
+    for (int j = 0; j < view_dimension; ++j) {
+      for (int i = 0; i < n; ++i) {
+        directions_(i, j) = normal(generator);
+      }
+      for (int k = 0; k < j; ++k) {  // Gram–Schmidt; n > 3 random vectors are independent
+        directions_.col(j) -= directions_.col(k).dot(directions_.col(j)) * directions_.col(k);
+      }
+      directions_.col(j).normalize();
+    }
+  }
+  ViewPoint operator()(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+    ViewPoint y{0.0, 0.0, 0.0};
+    if (n_ <= view_dimension) {
+      for (int i = 0; i < n_; ++i) {
+        y[i] = x(i);
+      }
+    } else {
+      for (int j = 0; j < view_dimension; ++j) {
+        y[j] = directions_.col(j).dot(x);
+      }
+    }
+    return y;
+  }
+
+ private:
+  int n_;
+  Eigen::MatrixXd directions_;  // n×3, orthonormal columns (n > 3 only)
+};
+
+struct ViewBox {
+  ViewPoint lower;
+  ViewPoint upper;
+  double extent() const {
+    double e = 0.0;
+    for (int j = 0; j < view_dimension; ++j) {
+      e = std::max(e, upper[j] - lower[j]);
+    }
+    return e;
+  }
+};
+
+bool boxes_overlap(const ViewBox& a, const ViewBox& b) {
+  for (int j = 0; j < view_dimension; ++j) {
+    if (a.upper[j] < b.lower[j] || b.upper[j] < a.lower[j]) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The enlarged boxes in R^n overlap; O(n), computed from the vertices so that no n×N box
+// array is stored (n may be 10⁵).
+bool ambient_boxes_overlap(const Eigen::Ref<const Eigen::MatrixXd>& points, const Triangle& a,
+                           double margin_a, const Triangle& b, double margin_b) {
+  const double margin = margin_a + margin_b;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const double a_lower = std::min({points(i, a[0]), points(i, a[1]), points(i, a[2])});
+    const double a_upper = std::max({points(i, a[0]), points(i, a[1]), points(i, a[2])});
+    const double b_lower = std::min({points(i, b[0]), points(i, b[1]), points(i, b[2])});
+    const double b_upper = std::max({points(i, b[0]), points(i, b[1]), points(i, b[2])});
+    if (a_upper + margin < b_lower || b_upper + margin < a_lower) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// 64-bit mix of (level, cell coordinates) (SplitMix64's finaliser). Two cells with the same
+// key only add candidates, which the box tests then reject, so the key need not be injective.
+std::uint64_t cell_key(int level, const std::array<std::int64_t, view_dimension>& cell) {
+  std::uint64_t h = static_cast<std::uint64_t>(level) * 0x9e3779b97f4a7c15ULL;
+  for (std::int64_t c : cell) {
+    h ^= static_cast<std::uint64_t>(c) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+    h ^= h >> 30;
+    h *= 0xbf58476d1ce4e5b9ULL;
+    h ^= h >> 27;
+    h *= 0x94d049bb133111ebULL;
+    h ^= h >> 31;
+  }
+  return h;
+}
+
+// Open-addressing table from cell keys to singly linked lists of entries (triangles).
+class CellTable {
+ public:
+  explicit CellTable(std::size_t entries) {
+    const std::size_t size = std::bit_ceil(std::max<std::size_t>(16, 2 * entries));
+    mask_ = size - 1;
+    keys_.resize(size);
+    heads_.assign(size, -1);
+    next_.reserve(entries);
+    triangle_.reserve(entries);
+  }
+  void insert(std::uint64_t key, int triangle) {
+    const std::size_t slot = find_slot(key);
+    keys_[slot] = key;
+    next_.push_back(heads_[slot]);
+    triangle_.push_back(triangle);
+    heads_[slot] = static_cast<int>(triangle_.size()) - 1;
+  }
+  /// First entry of the cell, −1 if empty; then next(entry) until −1.
+  int first(std::uint64_t key) const { return heads_[find_slot(key)]; }
+  int next(int entry) const { return next_[entry]; }
+  int triangle(int entry) const { return triangle_[entry]; }
+
+ private:
+  std::size_t find_slot(std::uint64_t key) const {
+    std::size_t slot = key & mask_;
+    while (heads_[slot] != -1 && keys_[slot] != key) {
+      slot = (slot + 1) & mask_;
+    }
+    return slot;
+  }
+  std::size_t mask_ = 0;
+  std::vector<std::uint64_t> keys_;
+  std::vector<int> heads_;
+  std::vector<int> next_;
+  std::vector<int> triangle_;
+};
+
+}  // namespace
+
+std::vector<std::pair<int, int>> nearby_triangle_pairs(
+    const Eigen::Ref<const Eigen::MatrixXd>& points, std::span<const Triangle> triangles,
+    std::span<const double> margins) {
+  TESSERA_CHECK(margins.size() == triangles.size(),
+                "nearby_triangle_pairs: " << margins.size() << " margins for " << triangles.size()
+                                          << " triangles");
+  const int triangle_count = static_cast<int>(triangles.size());
+  const View view(static_cast<int>(points.rows()));
+  std::vector<ViewBox> boxes(triangle_count);
+  double smallest_extent = std::numeric_limits<double>::infinity();
+  double largest_coordinate = 0.0;
+  for (int t = 0; t < triangle_count; ++t) {
+    if (margins[t] < 0) {
+      continue;
+    }
+    ViewBox& box = boxes[t];
+    box.lower.fill(std::numeric_limits<double>::infinity());
+    box.upper.fill(-std::numeric_limits<double>::infinity());
+    for (int v : triangles[t]) {
+      const ViewPoint y = view(points.col(v));
+      for (int j = 0; j < view_dimension; ++j) {
+        box.lower[j] = std::min(box.lower[j], y[j] - margins[t]);
+        box.upper[j] = std::max(box.upper[j], y[j] + margins[t]);
+        largest_coordinate =
+            std::max({largest_coordinate, std::abs(box.lower[j]), std::abs(box.upper[j])});
+      }
+    }
+    if (box.extent() > 0) {
+      smallest_extent = std::min(smallest_extent, box.extent());
+    }
+  }
+  // The finest cell side c: the smallest box, but not below 1e-12 of the coordinates' scale,
+  // so that cell coordinates x/c stay far inside the range of 64-bit integers.
+  const double finest_cell =
+      std::isfinite(smallest_extent)
+          ? std::max(smallest_extent, 1e-12 * std::max(1.0, largest_coordinate))
+          : 1.0;
+  std::vector<int> level(triangle_count, -1);
+  int level_count = 0;
+  for (int t = 0; t < triangle_count; ++t) {
+    if (margins[t] < 0) {
+      continue;
+    }
+    // The smallest ℓ with c·2^ℓ ≥ extent; the box then touches at most 2 cells per axis.
+    const double ratio = boxes[t].extent() / finest_cell;
+    level[t] = ratio <= 1.0 ? 0 : static_cast<int>(std::ceil(std::log2(ratio)));
+    while (std::ldexp(finest_cell, level[t]) < boxes[t].extent()) {
+      ++level[t];  // log2 rounding
+    }
+    level_count = std::max(level_count, level[t] + 1);
+  }
+  std::vector<std::uint8_t> is_level_used(level_count, 0);
+  for (int t = 0; t < triangle_count; ++t) {
+    if (level[t] >= 0) {
+      is_level_used[level[t]] = 1;
+    }
+  }
+  std::vector<int> used_levels;
+  for (int l = 0; l < level_count; ++l) {
+    if (is_level_used[l]) {
+      used_levels.push_back(l);
+    }
+  }
+
+  // Each triangle is stored once, in the cell of its level that holds its box's lower corner.
+  // A partner t on level l ≥ level(s) whose box meets s's box has its lower corner in
+  // [s.lower − side, s.upper] (its extent is at most the side), at most 3 cells per axis.
+  auto cell_of = [&](const ViewBox& box, int l) {
+    const double side = std::ldexp(finest_cell, l);
+    std::array<std::int64_t, view_dimension> cell;
+    for (int j = 0; j < view_dimension; ++j) {
+      cell[j] = static_cast<std::int64_t>(std::floor(box.lower[j] / side));
+    }
+    return cell_key(l, cell);
+  };
+  // Calls visit(key) for each cell of level l where a partner of `box` can be stored.
+  auto for_each_cell = [&](const ViewBox& box, int l, auto&& visit) {
+    const double side = std::ldexp(finest_cell, l);
+    std::array<std::int64_t, view_dimension> first;
+    std::array<std::int64_t, view_dimension> last;
+    for (int j = 0; j < view_dimension; ++j) {
+      first[j] = static_cast<std::int64_t>(std::floor(box.lower[j] / side)) - 1;
+      last[j] = static_cast<std::int64_t>(std::floor(box.upper[j] / side));
+    }
+    std::array<std::int64_t, view_dimension> cell;
+    for (cell[0] = first[0]; cell[0] <= last[0]; ++cell[0]) {
+      for (cell[1] = first[1]; cell[1] <= last[1]; ++cell[1]) {
+        for (cell[2] = first[2]; cell[2] <= last[2]; ++cell[2]) {
+          visit(cell_key(l, cell));
+        }
+      }
+    }
+  };
+
+  CellTable table(static_cast<std::size_t>(triangle_count));
+  for (int t = 0; t < triangle_count; ++t) {
+    if (level[t] >= 0) {
+      table.insert(cell_of(boxes[t], level[t]), t);
+    }
+  }
+
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<int> last_seen_by(triangle_count, -1);  // dedupes cells that share a key
+  for (int s = 0; s < triangle_count; ++s) {
+    if (level[s] < 0) {
+      continue;
+    }
+    for (int l : used_levels) {
+      if (l < level[s]) {
+        continue;
+      }
+      for_each_cell(boxes[s], l, [&](std::uint64_t key) {
+        for (int entry = table.first(key); entry != -1; entry = table.next(entry)) {
+          const int t = table.triangle(entry);
+          // Each pair once: by its member on the finer level, or by the smaller index.
+          if (level[t] != l || (level[t] == level[s] && t <= s) || last_seen_by[t] == s) {
+            continue;
+          }
+          last_seen_by[t] = s;
+          if (boxes_overlap(boxes[s], boxes[t]) &&
+              ambient_boxes_overlap(points, triangles[s], margins[s], triangles[t], margins[t])) {
+            pairs.emplace_back(std::min(s, t), std::max(s, t));
+          }
+        }
+      });
+    }
+  }
+  return pairs;
+}
+
+}  // namespace tessera

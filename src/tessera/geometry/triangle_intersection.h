@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: MIT
+// The intersection of two triangles in the plane: its area and centroid (convex clipping).
+#pragma once
+
+#include <Eigen/Core>
+
+namespace tessera {
+
+/// A convex polygon's area and centroid; the centroid is meaningless if area == 0.
+struct PlanarOverlap {
+  double area = 0.0;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+};
+
+/// The intersection of the triangles a and b (columns are the corners, in either orientation),
+/// by Sutherland–Hodgman clipping of a against the three edge half-planes of b, then the
+/// shoelace formula. Triangles that only touch (a shared vertex or edge) give area 0 up to
+/// rounding, a few ulp of the squared coordinates. A triangle of zero area gives area 0.
+PlanarOverlap triangle_intersection(const Eigen::Matrix<double, 2, 3>& a,
+                                    const Eigen::Matrix<double, 2, 3>& b);
+
+}  // namespace tessera
