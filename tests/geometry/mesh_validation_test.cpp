@@ -379,7 +379,8 @@ TEST(GeometricValidation, OnlyTheOverloadWithAProblemChecksGeometry) {
 
 // The octahedron is as coarse as a mesh of the sphere gets (triangles at 55° to the sphere at
 // their corners); projected onto one face's plane, the faces that share a vertex with it
-// overlap it, but they cover other parts of M: no overlap, no flip.
+// overlap it, but they cover other parts of M: no overlap. (No flip either, though the
+// orientation transport is at its limit here: see docs/validation.md.)
 TEST(GeometricValidation, OctahedronAndIcospheresAreValidMeshesOfTheSphere) {
   expect_geometrically_valid(validate(examples::octahedron(), Sphere(1.0), Domain()));
   for (int subdivisions : {0, 1, 3}) {
