@@ -10,6 +10,7 @@
 
 #include "geometry/mesh_examples.h"
 #include "tessera/core/counted_problem.h"
+#include "tessera/core/domain.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/methods/covering_methods.h"
@@ -102,36 +103,67 @@ TEST(Covering, WrongTopologyIsAFailure) {
       << result.summary.message;
 }
 
-// The skeleton's last word on validity: a build that returns a flipped triangle (here an
-// icosphere with one vertex moved across its neighbours) does not end as a success; the
-// flipped triangles are removed, the rest is valid, and the message gives coordinates.
-TEST(Covering, FlippedTrianglesAreRemovedAndReported) {
+// An icosphere whose vertex 0 is moved (on M) across the edge opposite it in one of its
+// triangles: its fan folds over.
+TriangleMesh icosphere_with_a_folded_fan() {
+  TriangleMesh mesh = examples::icosphere(2);
+  const Eigen::VectorXd p = mesh.point(0);
+  Eigen::VectorXd q;
+  for (const Triangle& t : mesh.triangles()) {
+    if (t[0] == 0 || t[1] == 0 || t[2] == 0) {
+      const int a = t[0] == 0 ? t[1] : t[0];
+      const int b = t[2] == 0 ? t[1] : t[2];
+      q = 0.5 * (mesh.point(a) + mesh.point(b));
+      break;
+    }
+  }
+  Eigen::VectorXd moved = p + 2.2 * (q - p);
+  moved.normalize();  // back onto the unit sphere
+  mesh.mutable_point(0) = moved;
+  return mesh;
+}
+
+// The skeleton's last word on validity: a build that returns a folded fan does not end with
+// the fold. It is repaired locally (the bad triangles and their fans removed, the hole
+// triangulated again), the result is valid with M's topology, and the summary says so.
+TEST(Covering, FlippedTrianglesAreRepairedLocally) {
   const ProblemSetup setup = make_catalogue_problem("sphere");
+  ASSERT_FALSE(validate(icosphere_with_a_folded_fan(), *setup.problem, setup.domain).is_valid());
+  CoveringOptions options;
+  options.step = 0.3;
+  const CoveringResult result = run_covering(
+      "planted", *setup.problem, setup.start, setup.domain, options,
+      [](CoveringContext&, CoveringResult& built) { built.mesh = icosphere_with_a_folded_fan(); });
+  EXPECT_TRUE(result.summary.is_complete()) << result.summary.message;
+  EXPECT_GT(result.summary.removed_triangles, 0);
+  EXPECT_EQ(result.summary.repaired_holes, 1);
+  const MeshValidation validation = validate(result.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+  EXPECT_EQ(validation.euler_characteristic, 2);
+  ASSERT_FALSE(result.summary.notes.empty());
+  EXPECT_NE(result.summary.notes.back().find("flipped"), std::string::npos);
+}
+
+// What cannot be repaired locally is removed, and the run fails naming the place: here a
+// vertex outside the domain (a box that cuts the top off the sphere's mesh by 1e-6).
+TEST(Covering, VerticesOutsideTheDomainAreRemovedAndReported) {
+  ProblemSetup setup = make_catalogue_problem("sphere");
+  const TriangleMesh mesh = examples::icosphere(2);
+  double top = -1.0;
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    top = std::max(top, mesh.point(v)(2));
+  }
+  setup.domain = Domain::box(Eigen::Vector3d(-2, -2, -2), Eigen::Vector3d(2, 2, top - 1e-6));
+  setup.start = Eigen::Vector3d(1, 0, 0);
   CoveringOptions options;
   options.step = 0.3;
   const CoveringResult result =
       run_covering("planted", *setup.problem, setup.start, setup.domain, options,
-                   [](CoveringContext&, CoveringResult& built) {
-                     built.mesh = examples::icosphere(2);
-                     // Vertex 0 lies on the sphere; reflecting it through the centroid of one of
-                     // its neighbours' opposite edges folds its fan over.
-                     const Eigen::VectorXd p = built.mesh.point(0);
-                     Eigen::VectorXd q;
-                     for (const Triangle& t : built.mesh.triangles()) {
-                       if (t[0] == 0 || t[1] == 0 || t[2] == 0) {
-                         const int a = t[0] == 0 ? t[1] : t[0];
-                         const int b = t[2] == 0 ? t[1] : t[2];
-                         q = 0.5 * (built.mesh.point(a) + built.mesh.point(b));
-                         break;
-                       }
-                     }
-                     Eigen::VectorXd moved = p + 2.2 * (q - p);
-                     moved.normalize();  // back onto M
-                     built.mesh.mutable_point(0) = moved;
-                   });
+                   [&mesh](CoveringContext&, CoveringResult& built) { built.mesh = mesh; });
   EXPECT_EQ(result.summary.termination, CoveringTermination::TriangulationFailed);
   EXPECT_GT(result.summary.removed_triangles, 0);
-  EXPECT_NE(result.summary.message.find("flipped"), std::string::npos) << result.summary.message;
+  EXPECT_NE(result.summary.message.find("outside the domain"), std::string::npos)
+      << result.summary.message;
   EXPECT_NE(result.summary.message.find("near ("), std::string::npos) << result.summary.message;
   const MeshValidation validation = validate(result.mesh, *setup.problem, setup.domain);
   EXPECT_TRUE(validation.is_valid()) << validation.report();

@@ -17,6 +17,7 @@
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/geometry/pinched_vertices.h"
 #include "tessera/methods/common/clip_to_domain.h"
+#include "tessera/methods/common/local_repair.h"
 #include "tessera/methods/common/refine_to_tolerance.h"
 #include "tessera/methods/improvement/edge_swap.h"
 #include "tessera/methods/start_point.h"
@@ -116,18 +117,51 @@ std::string describe_triangle(const TriangleMesh& mesh, int t) {
   return "near " + describe_point(centroid);
 }
 
-// Step 7: geometric validation. Triangles that are flipped or cover M twice, and triangles
-// with a vertex outside S, are removed (with the fans that removal pinches); the rest is a
-// valid partial mesh. A defect is never returned as a success.
-void validate_and_repair(const ImplicitProblem& problem, const Domain& domain,
-                         CoveringResult& result) {
+// Step 7: geometric validation. Flipped and overlapping triangles are first repaired locally
+// (removed with the fans around them, the hole triangulated again in M's tangent plane) and
+// the mesh validated again; what cannot be repaired so, and triangles with a vertex outside S,
+// are removed (with the fans that removal pinches) and the run fails with their places: the
+// rest is a valid partial mesh. A defect is never returned as a success.
+// \return the number of new triangles (the last ones of the mesh) made by a repair.
+int validate_and_repair(const ImplicitProblem& problem, const Domain& domain,
+                        CoveringResult& result) {
   TriangleMesh& mesh = result.mesh;
   if (mesh.triangle_count() == 0) {
-    return;
+    return 0;
   }
   const MeshValidation validation = validate(mesh, problem, domain);
   if (validation.is_valid()) {
-    return;
+    return 0;
+  }
+  if (validation.vertices_outside_domain.empty() &&
+      (!validation.flipped_triangles.empty() || !validation.overlapping_triangle_pairs.empty()) &&
+      validation.defects.size() ==
+          static_cast<std::size_t>((validation.flipped_triangle_count > 0) +
+                                   (validation.overlapping_pair_count > 0))) {
+    std::vector<int> defective = validation.flipped_triangles;
+    for (const auto& [s, t] : validation.overlapping_triangle_pairs) {
+      defective.push_back(s);
+      defective.push_back(t);
+    }
+    for (int rings : {1, 2}) {
+      TriangleMesh repaired = mesh;
+      const LocalRepair repair = repair_locally(problem, repaired, defective, rings);
+      if (repair.is_repaired && validate(repaired, problem, domain).is_valid()) {
+        mesh = std::move(repaired);
+        result.summary.removed_triangles += repair.removed_triangles;
+        result.summary.repaired_holes += repair.filled_holes;
+        result.summary.notes.push_back(
+            "the final check found " + std::to_string(validation.flipped_triangle_count) +
+            " flipped triangle(s) and " + std::to_string(validation.overlapping_pair_count) +
+            " overlapping pair(s), e.g. " +
+            (validation.defects.front().examples.empty()
+                 ? std::string("(no example)")
+                 : validation.defects.front().examples.front()) +
+            "; they were removed with their neighbours and " + std::to_string(repair.filled_holes) +
+            " hole(s) were triangulated again");
+        return repair.added_triangles;
+      }
+    }
   }
   if (validation.flipped_triangles.empty() && validation.overlapping_triangle_pairs.empty() &&
       validation.vertices_outside_domain.empty()) {
@@ -137,7 +171,7 @@ void validate_and_repair(const ImplicitProblem& problem, const Domain& domain,
          "the final check found the mesh not valid: " + std::to_string(defect.count) + " " +
              std::string(to_string(defect.kind)) +
              (defect.examples.empty() ? "" : ", e.g. " + defect.examples.front()));
-    return;
+    return 0;
   }
   std::vector<bool> keep(mesh.triangle_count(), true);
   std::vector<std::string> places;
@@ -199,6 +233,7 @@ void validate_and_repair(const ImplicitProblem& problem, const Domain& domain,
     message << (i ? "; " : "") << places[i];
   }
   fail(result.summary, CoveringTermination::TriangulationFailed, message.str());
+  return 0;
 }
 
 }  // namespace
@@ -297,8 +332,25 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
       fail(summary, CoveringTermination::ProjectionFailed, message.str());
     }
   }
-  // 7. Geometric validity, no holes, then the patches for the final triangles.
-  validate_and_repair(problem, domain, result);
+  // 7. Geometric validity, no holes, then the patches for the final triangles. Triangles made
+  //    by a repair are held to the tolerance too, and what refinement makes is validated.
+  const int repaired = validate_and_repair(problem, domain, result);
+  if (repaired > 0 && options.tolerance > 0) {
+    std::vector<int> added;
+    for (int t = result.mesh.triangle_count() - repaired; t < result.mesh.triangle_count(); ++t) {
+      added.push_back(t);
+    }
+    ToleranceRefinementOptions refine;
+    refine.tolerance = options.tolerance;
+    refine.corrector = options.corrector;
+    const ToleranceRefinement refined =
+        refine_to_tolerance(problem, domain, result.mesh, added, refine);
+    summary.refined_edges += refined.split_edges;
+    summary.max_sampled_distance = std::max(summary.max_sampled_distance, refined.max_distance);
+    if (refined.split_edges > 0) {
+      validate_and_repair(problem, domain, result);
+    }
+  }
   check_coverage(domain, options.step, result);
   if (!result.patches.empty() &&
       (result.mesh.triangle_count() != triangles_built || summary.refined_edges > 0 ||

@@ -49,8 +49,10 @@ struct CoveringSummary {
   /// Largest distance to M of the points sampled by the tolerance check (centroids, edge
   /// midpoints, circumcentres) after refinement; −1 if no check was made (tolerance 0).
   double max_sampled_distance = -1.0;
-  /// Triangles removed by the final geometric validation (flipped, overlapping, outside S).
+  /// Triangles removed by the final geometric validation (flipped, overlapping, outside S, and
+  /// the fans around them when the place was repaired).
   int removed_triangles = 0;
+  int repaired_holes = 0;  ///< places where removed triangles were replaced by a new triangulation
   std::vector<std::string> notes;  ///< remarks for the user, e.g. where a crossing was met
   bool is_complete() const { return termination == CoveringTermination::Completed; }
 };
