@@ -30,9 +30,16 @@ struct ClipSummary {
   std::string message;  ///< non-empty if a face could not be clipped (mesh left unclipped there)
 };
 
+/// Puts x exactly onto the bounding hyperplanes of `faces` (\pre x already lies on them to
+/// corrector tolerance): for a coordinate face (a box face) the coordinate is set to the bound
+/// itself, so that b·(x − p) = 0 exactly; for other faces x moves along the normal, which leaves
+/// |b·(x − p)| at rounding level. Boundary vertices must never lie outside S.
+void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::VectorXd& x);
+
 /// Projects x onto M ∩ {the bounding hyperplanes of `faces`} (at most two of them) by
 /// minimum-norm Gauss–Newton. \return false if it does not converge, moves farther than
-/// max_move, or a face is tangent to M there (x is then unspecified).
+/// max_move, or a face is tangent to M there (x is then unspecified). On success x lies on
+/// the faces exactly (see place_on_faces).
 bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
                         const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
                         const CorrectorOptions& options);
@@ -47,7 +54,7 @@ bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
 /// This resolves what Brodzik & Rheinboldt leave open ("adjust the exterior points onto the
 /// boundary"): the boundary of the result lies on M ∩ ∂S up to the corrector tolerance, and
 /// snapping before cutting keeps cut points away from vertices, so no needles are created.
-ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
-                           TriangleMesh& mesh, const ClipOptions& options);
+ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain, TriangleMesh& mesh,
+                           const ClipOptions& options);
 
 }  // namespace tessera
