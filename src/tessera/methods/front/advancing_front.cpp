@@ -7,10 +7,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <limits>
-#include <set>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <set>
 #include <sstream>
 
 #include "tessera/core/corrector.h"
@@ -26,14 +26,13 @@ namespace tessera {
 
 void FrontOptions::validate() const {
   TESSERA_CHECK(std::isfinite(step) && step > 0, "FrontOptions::step = " << step << " must be > 0");
-  TESSERA_CHECK(min_gap_angle > 0 && min_gap_angle < std::numbers::pi / 2,
-                "FrontOptions::min_gap_angle = " << min_gap_angle
-                                                 << " must lie in (0, π/2) radians");
+  TESSERA_CHECK(
+      min_gap_angle > 0 && min_gap_angle < std::numbers::pi / 2,
+      "FrontOptions::min_gap_angle = " << min_gap_angle << " must lie in (0, π/2) radians");
   TESSERA_CHECK(max_valence >= 6 && max_valence <= 12,
                 "FrontOptions::max_valence = " << max_valence << " must lie in [6, 12]");
   TESSERA_CHECK(min_step_fraction > 0 && min_step_fraction < 1,
-                "FrontOptions::min_step_fraction = " << min_step_fraction
-                                                     << " must lie in (0, 1)");
+                "FrontOptions::min_step_fraction = " << min_step_fraction << " must lie in (0, 1)");
   TESSERA_CHECK(collision_distance_fraction > 0 && collision_distance_fraction < 1,
                 "FrontOptions::collision_distance_fraction = " << collision_distance_fraction
                                                                << " must lie in (0, 1)");
@@ -42,8 +41,8 @@ void FrontOptions::validate() const {
                                                           << " must lie in [0, 0.5)");
   TESSERA_CHECK(max_start_distance_steps > 0, "FrontOptions::max_start_distance_steps = "
                                                   << max_start_distance_steps << " must be > 0");
-  TESSERA_CHECK(max_vertices >= 7, "FrontOptions::max_vertices = " << max_vertices
-                                                                   << " must be >= 7");
+  TESSERA_CHECK(max_vertices >= 7,
+                "FrontOptions::max_vertices = " << max_vertices << " must be >= 7");
 }
 
 namespace {
@@ -53,6 +52,9 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr int kMaxClosedLoop = 6;
 // Edges longer than this multiple of h are avoided where a choice exists.
 constexpr double kMaxEdgeRatio = 1.5;
+// Radians added to a frontal vertex's priority key per layer (generation) it is away from the
+// start; see FrontBuilder::priority.
+constexpr double kLayerWeight = 0.05;
 
 // Thrown inside the builder to stop the run; caught in triangulate_by_front, which keeps the
 // mesh built so far (it is valid: every step leaves a consistent partial mesh).
@@ -60,7 +62,6 @@ struct StopRun {
   CoveringTermination termination;
   std::string message;
 };
-
 
 // A gap in the neighbourhood of a frontal vertex: counterclockwise from open edge (x_c, last)
 // to open edge (x_c, first), `angle` radians wide in the tangent plane.
@@ -87,8 +88,7 @@ class FrontBuilder {
   void process(int center);
   std::vector<Gap> find_gaps(int center, const std::vector<FanChain>& chains,
                              const Eigen::MatrixXd& U) const;
-  void close_gap(int center, const Linearization& frame, const Eigen::MatrixXd& U,
-                 const Gap& gap);
+  void close_gap(int center, const Linearization& frame, const Eigen::MatrixXd& U, const Gap& gap);
   std::optional<int> colliding_front_vertex(int center, int previous, const Eigen::VectorXd& x,
                                             const Eigen::MatrixXd& U);
   void connect_to_front_vertex(int center, int previous, int w, const Eigen::MatrixXd& U);
@@ -106,6 +106,9 @@ class FrontBuilder {
   void refresh_priority(int v);
   /// The smallest gap angle at v, in v's own tangent plane (cached per vertex).
   double smallest_gap(int v);
+  /// The key of v in the smallest-gap-first order: the smallest gap, plus kLayerWeight per
+  /// layer for gaps that need no merge (see docs/algorithms/front.md, *Order*).
+  double priority(int v);
   /// Frees v's cached tangent basis (2n doubles) once v is finished: the cache then holds
   /// only the front, not the whole mesh.
   void release_tangent(int v) {
@@ -128,9 +131,11 @@ class FrontBuilder {
   int merges_ = 0;
   int step_reductions_ = 0;
   int connections_ = 0;
-  std::set<std::pair<double, int>> by_gap_;  // (gap angle, vertex), smallest first
-  std::vector<double> gap_key_;              // key of each vertex in by_gap_, NaN if absent
+  std::set<std::pair<double, int>> by_gap_;     // (gap angle, vertex), smallest first
+  std::vector<double> gap_key_;                 // key of each vertex in by_gap_, NaN if absent
   std::vector<Eigen::MatrixXd> tangent_cache_;  // n×2 tangent basis per vertex, empty if unknown
+  std::vector<int> layer_;      // per vertex: 0 for the start, 1 + its creator's layer otherwise
+  int new_vertex_layer_ = 1;    // the layer of the vertices the current step creates
   Linearization center_frame_;  // at the vertex being processed
   Linearization gap_frame_;     // for the gap angles of the priority order
 };
@@ -147,10 +152,10 @@ std::optional<int> FrontBuilder::next_frontal() {
     if (state_.type(v) != VertexType::Frontal) {
       continue;
     }
-    const double gap = smallest_gap(v);
-    if (gap > key + 1e-12) {
-      by_gap_.emplace(gap, v);
-      gap_key_[v] = gap;
+    const double current = priority(v);
+    if (current > key + 1e-12) {
+      by_gap_.emplace(current, v);
+      gap_key_[v] = current;
       continue;
     }
     return v;
@@ -170,8 +175,23 @@ void FrontBuilder::refresh_priority(int v) {
   if (state_.type(v) != VertexType::Frontal) {
     return;
   }
-  gap_key_[v] = smallest_gap(v);
+  gap_key_[v] = priority(v);
   by_gap_.emplace(gap_key_[v], v);
+}
+
+double FrontBuilder::priority(int v) {
+  // Smallest gap first alone is blind to the front's shape at large scale: there, the gap angles
+  // differ from π by O(h·curvature) only, far less than their local scatter, so at fine steps
+  // the front wanders, grows fingers and narrow channels, and meets itself (the sphere at
+  // h = 0.003 stopped at 1.19 million vertices with a front 2.5 times its natural length). The
+  // layer term makes parts of the front that lag behind by a few layers go first, as in a
+  // layered advancing front, while gaps that need a merge are still closed at once.
+  const double gap = smallest_gap(v);
+  if (gap < options_.min_gap_angle) {
+    return gap;
+  }
+  const int layer = static_cast<std::size_t>(v) < layer_.size() ? layer_[v] : 0;
+  return gap + kLayerWeight * layer;
 }
 
 const Eigen::MatrixXd* FrontBuilder::cached_tangent_near(int v) const {
@@ -242,8 +262,8 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
         }
       }
       if (options_.progress && (++processed % 1000) == 0) {
-        options_.progress({state_.live_vertex_count(), state_.live_triangle_count(),
-                           state_.front_size()});
+        options_.progress(
+            {state_.live_vertex_count(), state_.live_triangle_count(), state_.front_size()});
       }
       if (state_.live_vertex_count() >= options_.max_vertices) {
         throw StopRun{CoveringTermination::VertexLimit,
@@ -267,6 +287,8 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
 void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,
                                          const Linearization& frame) {
   const int c = state_.add_vertex(center, VertexType::Interior);
+  layer_.assign(1, 0);
+  new_vertex_layer_ = 1;
   const Eigen::MatrixXd& U = frame.tangent_basis();
   // Paper: the user's h or a smaller one, whichever projects the first hexagon vertex; that h
   // is then kept for the whole run.
@@ -294,7 +316,9 @@ void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,
   int first_vertex = -1;
   int previous = -1;
   for (int i = 0; i < 6; ++i) {
-    Eigen::VectorXd x = i == 0 ? corners[0] : new_point(c, frame, U, std::numbers::pi / 6 + i * std::numbers::pi / 3);
+    Eigen::VectorXd x =
+        i == 0 ? corners[0]
+               : new_point(c, frame, U, std::numbers::pi / 6 + i * std::numbers::pi / 3);
     const int v = add_point(x);
     if (i == 0) {
       first_vertex = v;
@@ -313,7 +337,10 @@ void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,
 
 int FrontBuilder::add_point(const Eigen::VectorXd& x) {
   const bool inside = domain_.is_unbounded() || domain_.boundary_distance(x).signed_distance > 0;
-  return state_.add_vertex(x, inside ? VertexType::Frontal : VertexType::Exterior);
+  const int v = state_.add_vertex(x, inside ? VertexType::Frontal : VertexType::Exterior);
+  layer_.resize(v + 1, new_vertex_layer_);
+  layer_[v] = new_vertex_layer_;
+  return v;
 }
 
 Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
@@ -366,6 +393,7 @@ Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
 }
 
 void FrontBuilder::process(int center) {
+  new_vertex_layer_ = layer_[center] + 1;
   // Reused between vertices: a sparse LU keeps its symbolic analysis while the pattern holds.
   Linearization& frame = center_frame_;
   // A nearby tangent basis lets a sparse factorisation border J with coordinate rows.
@@ -451,8 +479,9 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
       std::ostringstream message;
       message << "the triangles around frontal vertex " << center << " "
               << describe_point(state_.point(center))
-              << " overlap (no room is left between open edges " << gap.last << " and "
-              << gap.first << ") and the open edges cannot be merged";
+              << " overlap (no room is left between the open edges to "
+              << describe_point(state_.point(gap.last)) << " and "
+              << describe_point(state_.point(gap.first)) << ") and the open edges cannot be merged";
       throw StopRun{CoveringTermination::FrontCollision, message.str()};
     }
     add_closing_triangle(center, gap.last, gap.first, U);
@@ -511,8 +540,8 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
 }
 
 std::optional<int> FrontBuilder::colliding_front_vertex(int center, int previous,
-                                                         const Eigen::VectorXd& x,
-                                                         const Eigen::MatrixXd& U) {
+                                                        const Eigen::VectorXd& x,
+                                                        const Eigen::MatrixXd& U) {
   // Vertices within two edges of x_c are the local overlap that PITMAN resolves itself: the
   // next frontal vertex sees a small gap and merges the pair.
   const double radius = options_.collision_distance_fraction * step_;
@@ -567,28 +596,29 @@ void FrontBuilder::require_fit(const Triangle& t, const Eigen::MatrixXd& U) {
   }
   std::ostringstream message;
   message << "the front overlaps itself near frontal vertex " << t[0] << " "
-          << describe_point(state_.point(t[0])) << ": triangle (" << t[0] << ", " << t[1] << ", "
-          << t[2] << ") would overlap the triangles already there";
+          << describe_point(state_.point(t[0])) << ": the triangle with corners "
+          << describe_point(state_.point(t[0])) << ", " << describe_point(state_.point(t[1]))
+          << ", " << describe_point(state_.point(t[2]))
+          << " would overlap the triangles already there";
   throw StopRun{CoveringTermination::FrontCollision, message.str()};
 }
 
-void FrontBuilder::add_closing_triangle(int center, int last, int first,
-                                        const Eigen::MatrixXd& U) {
+void FrontBuilder::add_closing_triangle(int center, int last, int first, const Eigen::MatrixXd& U) {
   // The new edge last→first must be free on this side, and the triangle must not overlap the
   // triangles already at last and first, else the mesh would fold.
   if (!state_.can_add_edge(last, first) || !state_.triangle_fits({center, last, first}, U)) {
     std::ostringstream message;
     message << "cannot close the gap at frontal vertex " << center << " "
-            << describe_point(state_.point(center)) << ": edge (" << last << ", " << first
-            << ") is taken or the triangle would overlap the mesh there";
+            << describe_point(state_.point(center)) << ": the edge from "
+            << describe_point(state_.point(last)) << " to " << describe_point(state_.point(first))
+            << " is taken or the triangle would overlap the mesh there";
     throw StopRun{CoveringTermination::FrontCollision, message.str()};
   }
   state_.add_triangle(center, last, first);
 }
 
 bool FrontBuilder::try_merge(int /*center*/, int first, int last, const Linearization& frame) {
-  if (first == last || state_.are_adjacent(first, last) ||
-      !state_.can_identify(first, last)) {
+  if (first == last || state_.are_adjacent(first, last) || !state_.can_identify(first, last)) {
     return false;
   }
   // Paper's Merge: replace both endpoints by the projection of their average (chord at x_c).
@@ -602,7 +632,9 @@ bool FrontBuilder::try_merge(int /*center*/, int first, int last, const Lineariz
   if (tangent_cache_.size() > static_cast<std::size_t>(first)) {
     tangent_cache_[first].resize(0, 0);  // it moved
   }
-  state_.identify(first, last, average, inside ? std::nullopt : std::optional(VertexType::Exterior));
+  state_.identify(first, last, average,
+                  inside ? std::nullopt : std::optional(VertexType::Exterior));
+  layer_[first] = std::min(layer_[first], layer_[last]);
   ++merges_;
   return true;
 }
@@ -632,8 +664,8 @@ CoveringResult triangulate_by_front(const ImplicitProblem& user_problem,
   check_domain_dimension(domain, user_problem);
   const auto clock_start = std::chrono::steady_clock::now();
   CountedProblem problem(user_problem);
-  StartPoint start_point = project_start_point(problem, start, domain,
-                                               options.max_start_distance_steps * options.step);
+  StartPoint start_point =
+      project_start_point(problem, start, domain, options.max_start_distance_steps * options.step);
   CoveringResult result;
   result.summary.method = "front";
   FrontBuilder builder(problem, domain, options);
