@@ -209,8 +209,16 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   }
   TriangleMesh work = mesh;
   auto work_faces = on_faces;
-  // A triangle without a vertex strictly inside is dropped by step 3: its shape is irrelevant.
-  const auto is_kept = [&](const Triangle& t) { return d[t[0]] > 0 || d[t[1]] > 0 || d[t[2]] > 0; };
+  // After v moves onto the face, only triangles with another vertex strictly inside are kept;
+  // the others (all corners on or outside the face) are dropped by step 3 whatever their shape.
+  const auto is_kept_without = [&](const Triangle& t, int v) {
+    for (int u : t) {
+      if (u != v && d[u] > 0) {
+        return true;
+      }
+    }
+    return false;
+  };
   // 1. Snap vertices near the face onto M ∩ face. Where that point is a corner of M ∩ S
   //    (two faces meet) and a vertex already sits there, the edge to it is collapsed
   //    instead: two vertices a hair apart at a corner would make needles. A snap that would
@@ -236,7 +244,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   const auto star_keeps_orientation = [&](int v, const Eigen::VectorXd& x, int merged) {
     for (int t : vertex_triangles[v]) {
       const Triangle& tri = work.triangle(t);
-      if (!is_kept(tri) ||
+      if (!is_kept_without(tri, v) ||
           (merged >= 0 && (tri[0] == merged || tri[1] == merged || tri[2] == merged))) {
         continue;
       }
