@@ -151,7 +151,12 @@ class OrientationGuard {
   /// tangent plane of M at x and is not degenerate there. Where DF is rank deficient there is
   /// no tangent plane: the change is refused.
   bool keeps_orientation(const Eigen::VectorXd& x, const Corners& before, const Corners& after) {
-    if (!linearization_.factor(problem_, x)) {
+    // The checks of one change share their point: factor once per point (a sparse LU for
+    // large n).
+    const bool is_same_point = linearization_.is_factored() &&
+                               linearization_.point().size() == x.size() &&
+                               linearization_.point() == x;
+    if (!is_same_point && !linearization_.factor(problem_, x)) {
       return false;
     }
     const Eigen::MatrixXd& T = linearization_.tangent_basis();
