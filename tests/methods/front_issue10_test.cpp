@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -12,6 +14,7 @@
 #include "tessera/core/describe.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/methods/atlas/atlas.h"
+#include "tessera/methods/common/clip_to_domain.h"
 #include "tessera/methods/front/advancing_front.h"
 #include "tessera/problems/catalogue.h"
 
@@ -83,6 +86,7 @@ TEST(ClipToDomainIssue10, AtlasWhitneyPleatCornerVertexLiesOnTheBox) {
   const ProblemSetup setup = make_catalogue_problem("whitney_pleat");
   AtlasOptions options;
   options.tolerance = 0.01062;
+  options.max_radius = 0.2;  // the CLI's default: twice the problem's suggested step
   const CoveringResult result = cover_by_atlas(
       *setup.problem, vector_of({-0.162115, 0.137549, -0.121538}), setup.domain, options);
   EXPECT_TRUE(result.summary.is_complete()) << result.summary.message;
@@ -93,6 +97,29 @@ TEST(ClipToDomainIssue10, AtlasWhitneyPleatCornerVertexLiesOnTheBox) {
     has_corner = has_corner || (result.mesh.point(v)(1) == -1.5 && result.mesh.point(v)(2) == 1.5);
   }
   EXPECT_TRUE(has_corner);
+}
+
+// A point on two box faces to corrector tolerance (1e-12 off, one of them outside) is put on them
+// exactly: the coordinates become the bounds themselves, so the vertex is never outside S. On
+// a face that is not a coordinate face, it moves along the normal to rounding.
+TEST(ClipToDomainIssue10, PlaceOnFacesPutsAPointOnBoxFacesExactly) {
+  const Domain box = Domain::box(Eigen::Vector3d(-0.6, -0.6, -2.0), Eigen::Vector3d(0.6, 0.6, 2.0));
+  ASSERT_EQ(box.half_spaces()[1].label.substr(0, 4), "x0 <");  // x ≤ 0.6
+  ASSERT_EQ(box.half_spaces()[3].label.substr(0, 4), "x1 <");  // y ≤ 0.6
+  Eigen::VectorXd x = Eigen::Vector3d(0.6 + 3e-12, 0.6 - 2e-12, 0.5);
+  ASSERT_LT(box.signed_distance(1, x), 0.0);
+  place_on_faces(box, {1, 3}, x);
+  EXPECT_EQ(x(0), 0.6);
+  EXPECT_EQ(x(1), 0.6);
+  EXPECT_EQ(x(2), 0.5);
+  EXPECT_EQ(box.signed_distance(1, x), 0.0);
+  EXPECT_EQ(box.signed_distance(3, x), 0.0);
+
+  Domain slanted(3);
+  slanted.add_half_space(Eigen::Vector3d(-1.0, -1.0, 0.0), Eigen::Vector3d(0.6, 0.6, 0.0));
+  Eigen::VectorXd y = Eigen::Vector3d(0.7 + 1e-10, 0.5, 0.3);
+  place_on_faces(slanted, {0}, y);
+  EXPECT_LE(std::abs(slanted.signed_distance(0, y)), 4 * std::numeric_limits<double>::epsilon());
 }
 
 // At fine steps the smallest-gap-first order let the front wander: the gap angles of a front on
