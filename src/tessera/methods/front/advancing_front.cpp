@@ -183,7 +183,7 @@ double FrontBuilder::priority(int v) {
   // Smallest gap first alone is blind to the front's shape at large scale: there, the gap angles
   // differ from π by O(h·curvature) only, far less than their local scatter, so at fine steps
   // the front wanders, grows fingers and narrow channels, and meets itself (the sphere at
-  // h = 0.003 stopped at 1.19 million vertices with a front 2.5 times its natural length). The
+  // h = 0.003 stopped at 1.19 million vertices with a front 2.6 times its natural length). The
   // layer term makes parts of the front that lag behind by a few layers go first, as in a
   // layered advancing front, while gaps that need a merge are still closed at once.
   const double gap = smallest_gap(v);
