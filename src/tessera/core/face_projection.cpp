@@ -5,6 +5,32 @@
 
 namespace tessera {
 
+void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::VectorXd& x) {
+  // Two passes: a second face that is not orthogonal to the first moves x off it again, by
+  // rounding only.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int f : faces) {
+      const HalfSpace& h = domain.half_spaces()[f];
+      int axis = -1;
+      bool is_coordinate_face = true;
+      for (Eigen::Index i = 0; i < h.normal.size(); ++i) {
+        if (h.normal(i) != 0.0) {
+          is_coordinate_face = axis < 0;
+          axis = static_cast<int>(i);
+          if (!is_coordinate_face) {
+            break;
+          }
+        }
+      }
+      if (is_coordinate_face && axis >= 0) {
+        x(axis) = h.point(axis);  // the bound itself: b·(x − p) is then exactly 0
+      } else {
+        x -= h.normal.dot(x - h.point) * h.normal;
+      }
+    }
+  }
+}
+
 // Minimum-norm Gauss–Newton on F(x) = 0 together with the linear constraints of the faces in
 // `faces` (g_f(x) = b_f·(x − p_f) = 0). The step reuses the linearisation of F alone: write
 // dx = J⁺(−F) + T z with T the tangent basis; then J dx = −F for every z, the faces require
@@ -63,6 +89,9 @@ bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
     }
     previous = norm;
     if (small) {
+      // The iteration leaves b·(x − p) at the size of the last step; a boundary vertex must lie
+      // on its faces exactly (never outside S), so the last rounding-sized move puts it there.
+      place_on_faces(domain, faces, x);
       problem.evaluate(x, F);
       return F.allFinite() && F.norm() <= options.residual_tolerance;
     }

@@ -12,6 +12,12 @@
 
 namespace tessera {
 
+/// Puts x exactly onto the bounding hyperplanes of `faces` (\pre x already lies on them to
+/// corrector tolerance): for a coordinate face (a box face) the coordinate is set to the bound
+/// itself, so that b·(x − p) = 0 exactly; for other faces x moves along the normal, which leaves
+/// |b·(x − p)| at rounding level. Boundary vertices must never lie outside S.
+void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::VectorXd& x);
+
 /// Projects x onto M ∩ {the bounding hyperplanes of `faces`} (at most two of them, as M is a
 /// surface) by minimum-norm Gauss–Newton on F(x) = 0, b_f·(x − p_f) = 0. Each step factors DF
 /// alone (dense or sparse, through Linearization), so it costs what an unconstrained step
@@ -21,6 +27,7 @@ namespace tessera {
 /// \param max_move  the projection fails if x moves farther than this from where it started.
 /// \param first_contraction  if not null, receives Deuflhard's θ = ‖dx₁‖/‖dx₀‖ of the first
 ///        two steps (0 if the first step already converged): the step-size controls use it.
+/// On success x lies on the faces exactly (place_on_faces).
 /// \return false if it does not converge within 2·options.max_iterations steps, stops
 ///         contracting (θ > 0.9), moves farther than max_move, F is not finite, DF loses rank,
 ///         or a face is tangent to M there (the constrained point is then not isolated).

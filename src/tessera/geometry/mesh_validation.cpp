@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <initializer_list>
 #include <limits>
 #include <numbers>
@@ -202,27 +201,28 @@ double oriented_cosine(const Eigen::Map<const Eigen::MatrixXd>& points, const Tr
   return std::clamp((a.x() * b.y() - a.y() * b.x()) / (2.0 * area), -1.0, 1.0);
 }
 
-// 1. Orientation. M = F⁻¹(0) with F regular is orientable, so the mesh of a component of M
-// must have one orientation along M. Linearization gives at each point an orthonormal basis T
-// of ker DF with an arbitrary orientation; it is made consistent by a breadth-first search
-// over the vertices of each connected piece of the mesh, factoring DF at each vertex with its
-// BFS parent's T as reference (align_tangent_basis: det(TᵀT_parent) > 0). This is sound
-// because the two ends of an edge are close, so their tangent planes are close and the sign of
-// det(TᵀT_parent) is the one continuous transport along M gives; as M is orientable, no loop
-// can reverse it, and the propagated T is one orientation of M along the piece.
+// 1. Orientation, judged locally. Two triangles that share an edge and traverse it in
+// opposite directions (a consistently oriented pair) must lie on opposite sides of it along M:
+// projected onto the tangent plane of M at a shared vertex, their signed areas have the same
+// sign. If they do not, the pair is folded: one of them is flipped. The test needs one tangent
+// basis per vertex, in any orientation (both triangles are projected onto the same one), so it
+// needs no orientation transported along M or derived from DF: transport fails where
+// neighbouring tangent planes differ by more than 90° (thin tubes at a coarse step), and the
+// orientation DF gives reverses across a singular curve of F (the `crossing` problem), while a
+// fold is a fold wherever it is. A pair traversing its edge in the same direction (a
+// non-orientable mesh) is folded when its signed areas have opposite signs.
+//
+// Which of a folded pair is the flipped one: the triangle folded against most of its
+// neighbours (a flipped triangle is folded against all of them, each neighbour against one of
+// its own); where that does not decide (a pair each folded once), both are reported.
+// A triangle whose plane stands across M (mean |s| over its corners below min_tangent_cosine,
+// s the projected over the true area) is reported too.
 //
 // Why the vertices and not the triangles' centroids: the vertices lie on M (to the corrector's
 // tolerance), where ker DF is M's tangent plane. A centroid lies off M by the chord error e,
 // where ker DF approximates the tangent plane only to O(‖D²F‖·e / σ_min(DF)); near a singular
 // curve of F (the `crossing` problem's circle, where DF → 0 on M) that is no approximation at
-// all, and projecting the centroid first can land on the other sheet. A vertex is shared by
-// about six triangles, so this is also half as many factorisations (V ≈ N/2).
-//
-// Each triangle's oriented cosine is the mean of s_t over its corners that could be factored
-// (a corner exactly on a singular curve cannot). Within each piece, the sign σ of the
-// area-weighted sum is M's orientation as the mesh sees it; a triangle with σ·s_t below
-// min_tangent_cosine is reversed (< 0) or stands across M. A whole piece of the other sign is
-// M's other orientation, not a defect.
+// all. A vertex is shared by about six triangles, so this is also half as many factorisations.
 void check_orientation(const MeshView& view, const GeometricInput& geometry,
                        const ValidationOptions& options, DefectRecorder& recorder,
                        MeshValidation& result) {
@@ -232,73 +232,86 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
   const auto points = view.mesh.points();
   const int count = topology.triangle_count();
   const int vertex_count = view.mesh.vertex_count();
-  constexpr int unvisited = -1;
-  constexpr int unjudged = -2;  // not finite, or DF rank deficient at the vertex
-  std::vector<int> vertex_group(vertex_count, unvisited);
-  std::vector<double> cosine_sum(count, 0.0);
-  std::vector<int> corner_count(count, 0);
-  std::vector<int> triangle_group(count, unvisited);
-  int group_count = 0;
-  Linearization linearization;
-  // BFS queue of vertices with their (oriented) tangent basis; a basis is kept only while its
-  // vertex waits in the queue, so memory is O(frontier · n), not O(V · n).
-  std::deque<std::pair<int, Eigen::MatrixXd>> queue;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // s of triangle t against the tangent basis at its k-th corner (NaN: not judged there).
+  std::vector<std::array<double, 3>> corner_cosine(count, {nan, nan, nan});
   auto is_judged = [&](int t) { return shapes.is_finite[t] && !shapes.is_degenerate[t]; };
-  auto visit = [&](int v, int g, const Eigen::MatrixXd* reference) {
-    if (!view.is_finite_vertex[v] ||
-        !linearization.factor(geometry.problem, points.col(v), reference)) {
-      vertex_group[v] = unjudged;
-      return;
+  Linearization linearization;
+  for (int v = 0; v < vertex_count; ++v) {
+    if (topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v] ||
+        !linearization.factor(geometry.problem, points.col(v))) {
+      continue;  // not finite, or DF rank deficient at the vertex: not judged there
     }
-    vertex_group[v] = g;
     const Eigen::MatrixXd& T = linearization.tangent_basis();
     for (int t : topology.vertex_triangles(v)) {
       if (is_judged(t)) {
-        cosine_sum[t] += oriented_cosine(points, triangles[t], shapes.area[t], T);
-        ++corner_count[t];
-        triangle_group[t] = g;  // all judged corners of t are in one group: they are adjacent
+        const int k = triangles[t][0] == v ? 0 : (triangles[t][1] == v ? 1 : 2);
+        corner_cosine[t][k] = oriented_cosine(points, triangles[t], shapes.area[t], T);
       }
     }
-    queue.emplace_back(v, T);
+  }
+  auto corner_of = [&](int t, int v) {
+    return triangles[t][0] == v ? 0 : (triangles[t][1] == v ? 1 : 2);
   };
-  for (int root = 0; root < vertex_count; ++root) {
-    if (vertex_group[root] != unvisited || topology.vertex_triangles(root).empty()) {
+  // Folds across interior manifold edges.
+  std::vector<int> folds(count, 0);
+  std::vector<int> interior_edges(count, 0);
+  std::vector<std::pair<int, int>> folded_pairs;
+  for (int e = 0; e < topology.edge_count(); ++e) {
+    const auto pair = topology.edge_triangles(e);
+    if (pair.size() != 2 || !is_judged(pair[0]) || !is_judged(pair[1])) {
       continue;
     }
-    visit(root, group_count, nullptr);
-    while (!queue.empty()) {
-      const auto [v, T] = std::move(queue.front());
-      queue.pop_front();
-      for (int t : topology.vertex_triangles(v)) {
-        for (int w : triangles[t]) {
-          if (vertex_group[w] == unvisited) {
-            visit(w, group_count, &T);
-          }
-        }
+    const int a = pair[0], b = pair[1];
+    ++interior_edges[a];
+    ++interior_edges[b];
+    const bool opposite = topology.is_orientation_consistent(e);
+    int votes = 0;
+    int judged = 0;
+    for (int v : topology.edge(e)) {
+      const double sa = corner_cosine[a][corner_of(a, v)];
+      const double sb = corner_cosine[b][corner_of(b, v)];
+      if (std::isnan(sa) || std::isnan(sb)) {
+        continue;
       }
+      ++judged;
+      votes += (opposite ? sa * sb < 0 : sa * sb > 0) ? 1 : 0;
     }
-    ++group_count;
+    if (judged > 0 && votes == judged) {
+      ++folds[a];
+      ++folds[b];
+      folded_pairs.emplace_back(a, b);
+    }
   }
-  std::vector<double> group_weight(group_count, 0.0);  // Σ area·s over the group's triangles
-  std::vector<double> cosine(count, std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::uint8_t> flipped(count, 0);
   for (int t = 0; t < count; ++t) {
-    if (corner_count[t] > 0) {
-      cosine[t] = cosine_sum[t] / corner_count[t];
-      group_weight[triangle_group[t]] += shapes.area[t] * cosine[t];
+    flipped[t] = folds[t] > 0 && 2 * folds[t] > interior_edges[t];
+  }
+  for (const auto& [a, b] : folded_pairs) {
+    if (!flipped[a] && !flipped[b]) {
+      flipped[a] = flipped[b] = 1;
     }
   }
   for (int t = 0; t < count; ++t) {
     if (!is_judged(t)) {
       continue;  // degenerate or not finite: reported as such
     }
-    if (corner_count[t] == 0) {
+    double magnitude = 0.0;
+    int judged = 0;
+    for (double c : corner_cosine[t]) {
+      if (!std::isnan(c)) {
+        magnitude += std::abs(c);
+        ++judged;
+      }
+    }
+    if (judged == 0) {
       ++result.unoriented_triangle_count;
       continue;
     }
-    const double sigma = group_weight[triangle_group[t]] >= 0 ? 1.0 : -1.0;
-    const double s = sigma * cosine[t];
-    shapes.oriented_cosine[t] = s;
-    if (s >= options.min_tangent_cosine) {
+    magnitude /= judged;
+    const bool stands = magnitude < options.min_tangent_cosine;
+    shapes.oriented_cosine[t] = flipped[t] ? -magnitude : magnitude;
+    if (!flipped[t] && !stands) {
       continue;
     }
     result.flipped_triangles.push_back(view.original[t]);
@@ -307,9 +320,14 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
       out.precision(3);
       const int n = view.mesh.ambient_dimension();
       out << triangle_name(view.original[t], triangles[t]) << " near "
-          << describe_point(centroid(points, triangles[t])) << ": "
-          << (s < 0 ? "" : "stands across M, ") << (n == 3 ? "normal" : "oriented plane") << " at "
-          << degrees(std::acos(s)) << "° to M's" << (n == 3 ? "" : " tangent plane");
+          << describe_point(centroid(points, triangles[t])) << ": ";
+      if (flipped[t]) {
+        out << "folded over its neighbour(s) across " << folds[t] << " of its " << interior_edges[t]
+            << " inner edges";
+      } else {
+        out << "stands across M, " << (n == 3 ? "normal" : "plane") << " at "
+            << degrees(std::acos(magnitude)) << "° to M's" << (n == 3 ? "" : " tangent plane");
+      }
       return out.str();
     });
   }

@@ -2,25 +2,39 @@
 #include "tessera/methods/common/clip_to_domain.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
 #include <set>
 #include <sstream>
 
+#include "tessera/core/describe.h"
 #include "tessera/core/face_projection.h"
 #include "tessera/core/linearization.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
+#include "tessera/geometry/pinched_vertices.h"
 
 namespace tessera {
 
 namespace {
 
+using FaceSets = std::vector<std::vector<int>>;  // per vertex: sorted faces it lies on
+using Corners = std::array<Eigen::VectorXd, 3>;
+
+// A vertex within this distance (relative to 1 + |x|) of a bounding hyperplane lies on it: the
+// methods' own boundary snapping (the atlas's chart centres, refinement midpoints) leaves
+// vertices there to corrector tolerance, and they must count as on the face, not across it.
+constexpr double kOnFaceTolerance = 1e-9;
+// A triangle that clipping reshapes must keep twice its area, projected onto the tangent plane
+// of M, above this fraction of its longest edge squared: positively oriented, not degenerate.
+constexpr double kMinAreaRatio = 1e-6;
+
 // A vertex already at the corner point x of M ∩ (the faces), or −1. Two vertices snapped or cut
 // onto the same corner would make a zero-area triangle.
-int find_corner(const TriangleMesh& mesh, const std::vector<std::vector<int>>& vertex_faces,
+int find_corner(const TriangleMesh& mesh, const FaceSets& vertex_faces,
                 const std::vector<int>& faces, const Eigen::VectorXd& x) {
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     if (vertex_faces[v] == faces && (mesh.point(v) - x).norm() <= 1e-8 * (1 + x.norm())) {
@@ -36,19 +50,82 @@ std::vector<int> common_faces(const std::vector<int>& a, const std::vector<int>&
   return result;
 }
 
-}  // namespace
+Corners corners(const TriangleMesh& mesh, const Triangle& t) {
+  return {mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2])};
+}
 
-namespace {
+// Twice the signed area of the triangle projected onto span T (T: n×2).
+double projected_area(const Eigen::MatrixXd& T, const Corners& p) {
+  const Eigen::Vector2d a = T.transpose() * (p[1] - p[0]);
+  const Eigen::Vector2d b = T.transpose() * (p[2] - p[0]);
+  return a(0) * b(1) - a(1) * b(0);
+}
 
-using FaceSets = std::vector<std::vector<int>>;  // per vertex: sorted faces it lies on
+// The orientation check of every change the clipping makes. All corners lie on M, within a
+// step or two of each other, so projecting onto the tangent plane at one of them preserves
+// orientation; the basis's own orientation does not matter, only that before and after agree.
+class OrientationGuard {
+ public:
+  explicit OrientationGuard(const ImplicitProblem& problem) : problem_(problem) {}
 
-// Clips to face k. Returns false (with `message` set) if a cut point cannot be found.
+  /// True if `after` (a reshaped or cut part of `before`) has before's orientation in the
+  /// tangent plane of M at x and is not degenerate there. Where DF is rank deficient there is
+  /// no tangent plane: the change is refused.
+  bool keeps_orientation(const Eigen::VectorXd& x, const Corners& before, const Corners& after) {
+    // The checks of one change share their point: factor once per point (a sparse LU for
+    // large n).
+    const bool is_same_point = linearization_.is_factored() &&
+                               linearization_.point().size() == x.size() &&
+                               linearization_.point() == x;
+    if (!is_same_point && !linearization_.factor(problem_, x)) {
+      return false;
+    }
+    const Eigen::MatrixXd& T = linearization_.tangent_basis();
+    const double area_before = projected_area(T, before);
+    const double area_after = projected_area(T, after);
+    double longest = 0.0;
+    for (int r = 0; r < 3; ++r) {
+      longest = std::max(longest, (after[(r + 1) % 3] - after[r]).squaredNorm());
+    }
+    return area_before * area_after > 0 && std::abs(area_after) > kMinAreaRatio * longest;
+  }
+
+ private:
+  const ImplicitProblem& problem_;
+  Linearization linearization_;
+};
+
+// Records which bounding hyperplanes each vertex already lies on (to kOnFaceTolerance) and
+// puts it on them exactly.
+FaceSets faces_of_vertices(const Domain& domain, TriangleMesh& mesh) {
+  FaceSets on_faces(mesh.vertex_count());
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    Eigen::VectorXd x = mesh.point(v);
+    for (int k = 0; k < static_cast<int>(domain.half_spaces().size()); ++k) {
+      if (std::abs(domain.signed_distance(k, x)) <= kOnFaceTolerance * (1.0 + x.norm())) {
+        on_faces[v].push_back(k);
+      }
+    }
+    if (!on_faces[v].empty()) {
+      place_on_faces(domain, on_faces[v], x);
+      mesh.mutable_point(v) = x;
+    }
+  }
+  return on_faces;
+}
+
+std::string describe_face(const Domain& domain, int k) {
+  return "'" + domain.half_spaces()[k].label + "'";
+}
+
+// Clips to face k. Returns false (with `message` set, mesh unchanged) if a cut point cannot be
+// found or a triangle would fold.
 bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, double snap_distance,
                   const CorrectorOptions& corrector, TriangleMesh& mesh, FaceSets& on_faces,
                   ClipSummary& summary) {
-  ClipOptions options;
-  options.snap_distance = snap_distance;
-  options.corrector = corrector;
+  const int n = problem.ambient_dimension();
+  const int m = problem.equation_count();
+  OrientationGuard guard(problem);
   const int vertex_count = mesh.vertex_count();
   std::vector<double> d(vertex_count);
   for (int v = 0; v < vertex_count; ++v) {
@@ -56,209 +133,335 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
                ? 0.0
                : domain.signed_distance(k, mesh.point(v));
   }
-  {
-    TriangleMesh work = mesh;
-    auto work_faces = on_faces;
-    // 1. Snap vertices near the face onto M ∩ face. Where that point is a corner of M ∩ S
-    //    (two faces meet) and a vertex already sits there, the edge to it is collapsed
-    //    instead: two vertices a hair apart at a corner would make needles.
-    std::vector<std::vector<int>> vertex_triangles(vertex_count);
-    for (int t = 0; t < work.triangle_count(); ++t) {
-      for (int v : work.triangle(t)) {
-        vertex_triangles[v].push_back(t);
+  TriangleMesh work = mesh;
+  auto work_faces = on_faces;
+  // After v moves onto the face, only triangles with another vertex strictly inside are kept;
+  // the others (all corners on or outside the face) are dropped by step 3 whatever their shape.
+  const auto is_kept_without = [&](const Triangle& t, int v) {
+    for (int u : t) {
+      if (u != v && d[u] > 0) {
+        return true;
       }
     }
-    const auto are_adjacent = [&](int a, int b) {
-      for (int t : vertex_triangles[a]) {
-        const Triangle& tri = work.triangle(t);
-        if (tri[0] == b || tri[1] == b || tri[2] == b) {
-          return true;
-        }
+    return false;
+  };
+  // 1. Snap vertices near the face onto M ∩ face. Where that point is a corner of M ∩ S
+  //    (two faces meet) and a vertex already sits there, the edge to it is collapsed
+  //    instead: two vertices a hair apart at a corner would make needles. A snap that would
+  //    fold a triangle around the vertex (two neighbours snapped onto nearly the same point of
+  //    M ∩ face, or a face meeting M at a shallow angle) is not made; the cut handles it.
+  std::vector<std::vector<int>> vertex_triangles(vertex_count);
+  for (int t = 0; t < work.triangle_count(); ++t) {
+    for (int v : work.triangle(t)) {
+      vertex_triangles[v].push_back(t);
+    }
+  }
+  const auto are_adjacent = [&](int a, int b) {
+    for (int t : vertex_triangles[a]) {
+      const Triangle& tri = work.triangle(t);
+      if (tri[0] == b || tri[1] == b || tri[2] == b) {
+        return true;
       }
-      return false;
-    };
-    std::vector<int> collapse_into(vertex_count, -1);
-    for (int v = 0; v < vertex_count; ++v) {
-      if (d[v] == 0.0 || std::abs(d[v]) >= options.snap_distance) {
+    }
+    return false;
+  };
+  // True if moving v to x (and, if `merged` ≥ 0, identifying it with `merged`) keeps every
+  // kept triangle around v oriented.
+  const auto star_keeps_orientation = [&](int v, const Eigen::VectorXd& x, int merged) {
+    for (int t : vertex_triangles[v]) {
+      const Triangle& tri = work.triangle(t);
+      if (!is_kept_without(tri, v) ||
+          (merged >= 0 && (tri[0] == merged || tri[1] == merged || tri[2] == merged))) {
         continue;
       }
-      std::vector<int> faces = work_faces[v];
+      const Corners before = corners(work, tri);
+      Corners after = before;
+      for (int r = 0; r < 3; ++r) {
+        if (tri[r] == v) {
+          after[r] = x;
+        }
+      }
+      if (!guard.keeps_orientation(x, before, after)) {
+        return false;
+      }
+    }
+    return true;
+  };
+  std::vector<int> collapse_into(vertex_count, -1);
+  for (int v = 0; v < vertex_count; ++v) {
+    if (d[v] == 0.0 || std::abs(d[v]) >= snap_distance) {
+      continue;
+    }
+    std::vector<int> faces = work_faces[v];
+    faces.push_back(k);
+    std::sort(faces.begin(), faces.end());
+    Eigen::VectorXd x = work.point(v);
+    const bool is_corner = static_cast<int>(faces.size()) + m == n;
+    if (!project_onto_faces(problem, domain, faces, x, 3 * snap_distance, corrector) ||
+        !domain.contains(x, 1e-9)) {
+      continue;
+    }
+    const int occupant = is_corner ? find_corner(work, work_faces, faces, x) : -1;
+    if (occupant >= 0) {
+      if (are_adjacent(v, occupant) && collapse_into[occupant] < 0 &&
+          star_keeps_orientation(v, work.point(occupant), occupant)) {
+        collapse_into[v] = occupant;
+        work.mutable_point(v) = work.point(occupant);  // later checks see where v went
+        d[v] = 0.0;
+      }
+      continue;
+    }
+    if (!star_keeps_orientation(v, x, -1)) {
+      continue;
+    }
+    work.mutable_point(v) = x;
+    work_faces[v] = faces;
+    d[v] = 0.0;
+    ++summary.snapped_vertices;
+  }
+  std::vector<Triangle> collapsed;
+  for (Triangle t : work.triangles()) {
+    for (int& v : t) {
+      v = collapse_into[v] >= 0 ? collapse_into[v] : v;
+    }
+    if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) {
+      collapsed.push_back(t);
+    }
+  }
+  work.set_triangles(std::move(collapsed));
+  // 2. Cut points on the edges that still cross the face.
+  std::map<std::pair<int, int>, int> cut_vertex;
+  for (const Triangle& t : work.triangles()) {
+    for (int r = 0; r < 3; ++r) {
+      int u = t[r];
+      int w = t[(r + 1) % 3];
+      if (!((d[u] > 0 && d[w] < 0) || (d[u] < 0 && d[w] > 0))) {
+        continue;
+      }
+      const auto key = std::minmax(u, w);
+      if (cut_vertex.count(key)) {
+        continue;
+      }
+      const double s = d[u] / (d[u] - d[w]);
+      Eigen::VectorXd x = (1 - s) * work.point(u) + s * work.point(w);
+      std::vector<int> faces = common_faces(work_faces[u], work_faces[w]);
       faces.push_back(k);
       std::sort(faces.begin(), faces.end());
-      Eigen::VectorXd x = work.point(v);
-      const bool is_corner =
-          static_cast<int>(faces.size()) + problem.equation_count() == problem.ambient_dimension();
-      if (!project_onto_faces(problem, domain, faces, x, 3 * options.snap_distance,
-                              options.corrector) ||
-          !domain.contains(x, 1e-9)) {
-        continue;
+      const double edge_length = (work.point(u) - work.point(w)).norm();
+      if (!project_onto_faces(problem, domain, faces, x, edge_length, corrector)) {
+        std::ostringstream message;
+        message << "cannot clip the mesh to the face " << describe_face(domain, k)
+                << ": no point of M on the face near the edge from "
+                << describe_point(work.point(u)) << " to " << describe_point(work.point(w));
+        summary.message = message.str();
+        return false;
       }
-      const int occupant = is_corner ? find_corner(work, work_faces, faces, x) : -1;
-      if (occupant >= 0) {
-        if (are_adjacent(v, occupant) && collapse_into[occupant] < 0) {
-          collapse_into[v] = occupant;
-          d[v] = 0.0;
-        }
-        continue;
-      }
-      work.mutable_point(v) = x;
-      work_faces[v] = faces;
-      d[v] = 0.0;
-      ++summary.snapped_vertices;
-    }
-    std::vector<Triangle> collapsed;
-    for (Triangle t : work.triangles()) {
-      for (int& v : t) {
-        v = collapse_into[v] >= 0 ? collapse_into[v] : v;
-      }
-      if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) {
-        collapsed.push_back(t);
-      }
-    }
-    work.set_triangles(std::move(collapsed));
-    // 2. Cut points on the edges that still cross the face.
-    std::map<std::pair<int, int>, int> cut_vertex;
-    for (const Triangle& t : work.triangles()) {
-      for (int r = 0; r < 3; ++r) {
-        int u = t[r];
-        int w = t[(r + 1) % 3];
-        if (!((d[u] > 0 && d[w] < 0) || (d[u] < 0 && d[w] > 0))) {
+      // A cut point next to (or across) an earlier face belongs at the corner where the two
+      // faces meet: left where it is, it would make a needle with that corner, or lie outside
+      // S. Earlier faces are done, so a point outside one of them would stay outside.
+      for (int j = 0; j < k; ++j) {
+        const double distance = domain.signed_distance(j, x);
+        if (std::binary_search(faces.begin(), faces.end(), j) ||
+            (distance >= snap_distance && distance >= 0)) {
           continue;
         }
-        const auto key = std::minmax(u, w);
-        if (cut_vertex.count(key)) {
+        std::vector<int> corner_faces = faces;
+        corner_faces.push_back(j);
+        std::sort(corner_faces.begin(), corner_faces.end());
+        Eigen::VectorXd corner = x;
+        if (static_cast<int>(corner_faces.size()) + m <= n &&
+            project_onto_faces(problem, domain, corner_faces, corner,
+                               std::max(3 * snap_distance, edge_length), corrector) &&
+            domain.contains(corner, 1e-9)) {
+          x = corner;
+          faces = corner_faces;
           continue;
         }
-        const double s = d[u] / (d[u] - d[w]);
-        Eigen::VectorXd x = (1 - s) * work.point(u) + s * work.point(w);
-        std::vector<int> faces = common_faces(work_faces[u], work_faces[w]);
-        faces.push_back(k);
-        std::sort(faces.begin(), faces.end());
-        const double edge_length = (work.point(u) - work.point(w)).norm();
-        if (!project_onto_faces(problem, domain, faces, x, edge_length, options.corrector)) {
+        if (distance < 0) {
           std::ostringstream message;
-          message << "cannot clip the mesh to the face '" << domain.half_spaces()[k].label
-                  << "': no point of M on the face near edge (" << u << ", " << w
-                  << "); the mesh is left unclipped there";
+          message << "cannot clip the mesh to the face " << describe_face(domain, k)
+                  << ": the cut point " << describe_point(x) << " lies outside the face "
+                  << describe_face(domain, j) << " by " << -distance
+                  << " and M has no corner point on both faces near it";
           summary.message = message.str();
           return false;
         }
-        // A cut point that lands next to an earlier face belongs at the corner where the two
-        // faces meet (left where it is, it would make a needle with that corner).
-        if (static_cast<int>(faces.size()) + problem.equation_count() <
-            problem.ambient_dimension()) {
-          for (int j = 0; j < k; ++j) {
-            if (std::binary_search(faces.begin(), faces.end(), j) ||
-                std::abs(domain.signed_distance(j, x)) >= options.snap_distance) {
-              continue;
-            }
-            std::vector<int> corner_faces = faces;
-            corner_faces.push_back(j);
-            std::sort(corner_faces.begin(), corner_faces.end());
-            Eigen::VectorXd corner = x;
-            if (project_onto_faces(problem, domain, corner_faces, corner, 3 * options.snap_distance,
-                                   options.corrector) &&
-                domain.contains(corner, 1e-9)) {
-              x = corner;
-              faces = corner_faces;
-              break;
-            }
-          }
-        }
-        // Where the face meets an earlier face, M ∩ both is a point (a corner of the clipped
-        // surface): reuse the corner vertex if one is already there, else the corner doubles.
-        const int existing =
-            static_cast<int>(faces.size()) + problem.equation_count() == problem.ambient_dimension()
-                ? find_corner(work, work_faces, faces, x)
-                : -1;
-        if (existing >= 0) {
-          cut_vertex[key] = existing;
+      }
+      // Where the face meets an earlier face, M ∩ both is a point (a corner of the clipped
+      // surface): reuse the corner vertex if one is already there, else the corner doubles.
+      const int existing =
+          static_cast<int>(faces.size()) + m == n ? find_corner(work, work_faces, faces, x) : -1;
+      if (existing >= 0) {
+        cut_vertex[key] = existing;
+        continue;
+      }
+      cut_vertex[key] = work.add_vertex(x);
+      work_faces.push_back(faces);
+      d.push_back(0.0);
+      ++summary.cut_edges;
+    }
+  }
+  const auto cut = [&](int u, int w) { return cut_vertex.at(std::minmax(u, w)); };
+  // 3. Split the triangles and keep the parts inside. Each part must keep the orientation of
+  //    the triangle it comes from (a cut point far along a face that meets M at a shallow
+  //    angle can land beyond the rest of the triangle): of a quadrilateral's two diagonals
+  //    only those whose both halves keep it are candidates.
+  std::vector<Triangle> kept;
+  std::string fold;
+  const auto add_polygon = [&](const Triangle& parent, std::vector<int> polygon) {
+    polygon.erase(std::unique(polygon.begin(), polygon.end()), polygon.end());
+    while (polygon.size() > 1 && polygon.front() == polygon.back()) {
+      polygon.pop_back();
+    }
+    const Corners before = corners(work, parent);
+    Eigen::VectorXd reference = before[0];
+    for (int r = 0; r < 3; ++r) {
+      if (d[parent[r]] > 0) {
+        reference = before[r];
+        break;
+      }
+    }
+    const auto fits = [&](const Triangle& child) {
+      return guard.keeps_orientation(reference, before, corners(work, child));
+    };
+    if (polygon.size() == 3) {
+      const Triangle child{polygon[0], polygon[1], polygon[2]};
+      if (fits(child)) {
+        kept.push_back(child);
+        return;
+      }
+    } else if (polygon.size() == 4) {
+      const std::array<std::array<Triangle, 2>, 2> splits{
+          {{{{polygon[0], polygon[1], polygon[2]}, {polygon[0], polygon[2], polygon[3]}}},
+           {{{polygon[0], polygon[1], polygon[3]}, {polygon[1], polygon[2], polygon[3]}}}}};
+      int best = -1;
+      double best_angle = -1.0;
+      for (int i = 0; i < 2; ++i) {
+        const auto& split = splits[i];
+        if (!fits(split[0]) || !fits(split[1])) {
           continue;
         }
-        cut_vertex[key] = work.add_vertex(x);
-        work_faces.push_back(faces);
-        d.push_back(0.0);
-        ++summary.cut_edges;
+        const double angle = std::min(min_angle(work, split[0]), min_angle(work, split[1]));
+        if (angle > best_angle) {
+          best = i;
+          best_angle = angle;
+        }
+      }
+      if (best >= 0) {
+        kept.push_back(splits[best][0]);
+        kept.push_back(splits[best][1]);
+        return;
+      }
+    } else {
+      return;  // fewer than three distinct corners: nothing of the triangle is inside
+    }
+    if (fold.empty()) {
+      std::ostringstream message;
+      message << "clipping to the face " << describe_face(domain, k)
+              << " would fold the triangle with corners " << describe_point(before[0]) << ", "
+              << describe_point(before[1]) << ", " << describe_point(before[2]);
+      fold = message.str();
+    }
+  };
+  for (const Triangle& t : work.triangles()) {
+    int outside = 0;
+    int inside = 0;
+    for (int v : t) {
+      outside += d[v] < 0 ? 1 : 0;
+      inside += d[v] > 0 ? 1 : 0;
+    }
+    if (outside == 0) {
+      if (inside > 0) {
+        kept.push_back(t);
+      }
+      continue;
+    }
+    if (inside == 0) {
+      continue;
+    }
+    // Walk the triangle's edges in order, keeping inside/on vertices and inserting cut points.
+    std::vector<int> polygon;
+    for (int r = 0; r < 3; ++r) {
+      const int u = t[r];
+      const int w = t[(r + 1) % 3];
+      if (d[u] >= 0) {
+        polygon.push_back(u);
+      }
+      if ((d[u] > 0 && d[w] < 0) || (d[u] < 0 && d[w] > 0)) {
+        polygon.push_back(cut(u, w));
       }
     }
-    const auto cut = [&](int u, int w) { return cut_vertex.at(std::minmax(u, w)); };
-    // 3. Split the triangles and keep the parts inside.
-    std::vector<Triangle> kept;
-    const auto add_polygon = [&](std::vector<int> polygon) {
-      polygon.erase(std::unique(polygon.begin(), polygon.end()), polygon.end());
-      while (polygon.size() > 1 && polygon.front() == polygon.back()) {
-        polygon.pop_back();
-      }
-      if (polygon.size() == 3) {
-        kept.push_back({polygon[0], polygon[1], polygon[2]});
-      } else if (polygon.size() == 4) {
-        const double diagonal_02 = std::min(min_angle(work, {polygon[0], polygon[1], polygon[2]}),
-                                            min_angle(work, {polygon[0], polygon[2], polygon[3]}));
-        const double diagonal_13 = std::min(min_angle(work, {polygon[0], polygon[1], polygon[3]}),
-                                            min_angle(work, {polygon[1], polygon[2], polygon[3]}));
-        if (diagonal_02 >= diagonal_13) {
-          kept.push_back({polygon[0], polygon[1], polygon[2]});
-          kept.push_back({polygon[0], polygon[2], polygon[3]});
-        } else {
-          kept.push_back({polygon[0], polygon[1], polygon[3]});
-          kept.push_back({polygon[1], polygon[2], polygon[3]});
-        }
-      }
-    };
-    for (const Triangle& t : work.triangles()) {
-      int outside = 0;
-      int inside = 0;
-      for (int v : t) {
-        outside += d[v] < 0 ? 1 : 0;
-        inside += d[v] > 0 ? 1 : 0;
-      }
-      if (outside == 0) {
-        if (inside > 0) {
-          kept.push_back(t);
-        }
-        continue;
-      }
-      if (inside == 0) {
-        continue;
-      }
-      // Walk the triangle's edges in order, keeping inside/on vertices and inserting cut points.
-      std::vector<int> polygon;
-      for (int r = 0; r < 3; ++r) {
-        const int u = t[r];
-        const int w = t[(r + 1) % 3];
-        if (d[u] >= 0) {
-          polygon.push_back(u);
-        }
-        if ((d[u] > 0 && d[w] < 0) || (d[u] < 0 && d[w] > 0)) {
-          polygon.push_back(cut(u, w));
-        }
-      }
-      add_polygon(polygon);
-    }
-    // 4. Compact: drop vertices no longer used.
-    std::vector<int> new_index(work.vertex_count(), -1);
-    TriangleMesh clipped(work.ambient_dimension());
-    std::vector<std::vector<int>> clipped_faces;
-    for (Triangle& t : kept) {
-      for (int& v : t) {
-        if (new_index[v] < 0) {
-          new_index[v] = clipped.add_vertex(work.point(v));
-          clipped_faces.push_back(work_faces[v]);
-        }
-        v = new_index[v];
-      }
-    }
-    clipped.set_triangles(std::move(kept));
-    mesh = std::move(clipped);
-    on_faces = std::move(clipped_faces);
+    add_polygon(t, polygon);
   }
+  if (!fold.empty()) {
+    summary.message = fold;
+    return false;
+  }
+  // 4. Compact: drop vertices no longer used.
+  std::vector<int> new_index(work.vertex_count(), -1);
+  TriangleMesh clipped(work.ambient_dimension());
+  FaceSets clipped_faces;
+  for (Triangle& t : kept) {
+    for (int& v : t) {
+      if (new_index[v] < 0) {
+        new_index[v] = clipped.add_vertex(work.point(v));
+        clipped_faces.push_back(work_faces[v]);
+      }
+      v = new_index[v];
+    }
+  }
+  clipped.set_triangles(std::move(kept));
+  mesh = std::move(clipped);
+  on_faces = std::move(clipped_faces);
   return true;
+}
+
+// Where face k cannot be clipped, the triangles with a vertex outside it are removed (and, where
+// that pinches a vertex, the smaller fans): the mesh stays valid and inside S, its boundary
+// there ragged instead of on M ∩ ∂S.
+void drop_outside(const Domain& domain, int k, TriangleMesh& mesh, FaceSets& on_faces) {
+  std::vector<Triangle> inside;
+  for (const Triangle& t : mesh.triangles()) {
+    bool is_inside = true;
+    for (int v : t) {
+      is_inside = is_inside && (std::binary_search(on_faces[v].begin(), on_faces[v].end(), k) ||
+                                domain.signed_distance(k, mesh.point(v)) >= 0);
+    }
+    if (is_inside) {
+      inside.push_back(t);
+    }
+  }
+  const std::vector<bool> keep = keep_largest_fans(mesh.vertex_count(), inside);
+  std::vector<int> new_index(mesh.vertex_count(), -1);
+  TriangleMesh result(mesh.ambient_dimension());
+  FaceSets result_faces;
+  std::vector<Triangle> triangles;
+  for (std::size_t i = 0; i < inside.size(); ++i) {
+    if (!keep[i]) {
+      continue;
+    }
+    Triangle t = inside[i];
+    for (int& v : t) {
+      if (new_index[v] < 0) {
+        new_index[v] = result.add_vertex(mesh.point(v));
+        result_faces.push_back(on_faces[v]);
+      }
+      v = new_index[v];
+    }
+    triangles.push_back(t);
+  }
+  result.set_triangles(std::move(triangles));
+  mesh = std::move(result);
+  on_faces = std::move(result_faces);
 }
 
 // Collapses boundary edges shorter than `min_length`: the vertex on fewer faces moves into the
 // other (a corner or face vertex stays where it is, on M ∩ ∂S). A collapse is kept only if it
-// raises the smallest angle among the triangles around the moved vertex and the result is valid.
-int collapse_short_boundary_edges(TriangleMesh& mesh, const FaceSets& on_faces, double min_length) {
+// raises the smallest angle among the triangles around the moved vertex, keeps each of them
+// oriented and the result is valid.
+int collapse_short_boundary_edges(const ImplicitProblem& problem, TriangleMesh& mesh,
+                                  const FaceSets& on_faces, double min_length) {
+  OrientationGuard guard(problem);
   int collapsed = 0;
   bool changed = true;
   std::set<std::pair<int, int>> rejected;  // each edge is judged once: O(N) per collapse
@@ -276,6 +479,7 @@ int collapse_short_boundary_edges(TriangleMesh& mesh, const FaceSets& on_faces, 
       std::vector<Triangle> triangles;
       double worst_before = std::numbers::pi;
       double worst_after = std::numbers::pi;
+      bool keeps_orientation = true;
       for (Triangle t : mesh.triangles()) {
         const bool has_a = t[0] == a || t[1] == a || t[2] == a;
         const bool has_b = t[0] == b || t[1] == b || t[2] == b;
@@ -286,15 +490,18 @@ int collapse_short_boundary_edges(TriangleMesh& mesh, const FaceSets& on_faces, 
           continue;  // the triangle on the collapsed edge disappears
         }
         if (has_b) {
+          const Corners before = corners(mesh, t);
           for (int& v : t) {
             v = v == b ? a : v;
           }
           worst_after = std::min(worst_after, min_angle(mesh, t));
+          keeps_orientation =
+              keeps_orientation && guard.keeps_orientation(mesh.point(a), before, corners(mesh, t));
         }
         triangles.push_back(t);
       }
-      if (worst_after <= worst_before) {
-        continue;  // only collapses that improve the worst angle around b
+      if (worst_after <= worst_before || !keeps_orientation) {
+        continue;  // only collapses that improve the worst angle around b and fold nothing
       }
       // The moved-away vertex is left unreferenced until the final compaction; every other
       // defect rejects the collapse.
@@ -318,7 +525,7 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
                            const ClipOptions& options) {
   ClipSummary summary;
   const int face_count = static_cast<int>(domain.half_spaces().size());
-  FaceSets on_faces(mesh.vertex_count());
+  FaceSets on_faces = faces_of_vertices(domain, mesh);
   for (int k = 0; k < face_count; ++k) {
     bool crosses = false;
     for (int v = 0; v < mesh.vertex_count() && !crosses; ++v) {
@@ -330,19 +537,21 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
     }
     ++summary.half_spaces_crossed;
     // Snapping keeps needles away but, where the mesh is coarse next to a corner of the
-    // domain, can pull two vertices onto each other; then clip again without snapping. A clip
-    // that would still leave an invalid mesh is refused: the mesh stays unclipped there.
+    // domain, can pull two vertices onto each other; then clip again without snapping. Where
+    // neither gives a valid mesh, the triangles across the face are dropped and the run says so.
     bool done = false;
+    std::string failure;
     for (const double snap : {options.snap_distance, 0.0}) {
       TriangleMesh attempt = mesh;
       FaceSets attempt_faces = on_faces;
       ClipSummary attempt_summary;
       if (!clip_to_face(problem, domain, k, snap, options.corrector, attempt, attempt_faces,
                         attempt_summary)) {
-        summary.message = attempt_summary.message;
-        return summary;
+        failure = attempt_summary.message;
+        continue;
       }
-      if (validate(attempt).is_valid()) {
+      const MeshValidation validation = validate(attempt);
+      if (validation.is_valid()) {
         mesh = std::move(attempt);
         on_faces = std::move(attempt_faces);
         summary.snapped_vertices += attempt_summary.snapped_vertices;
@@ -350,17 +559,21 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
         done = true;
         break;
       }
+      failure = "clipping to the face " + describe_face(domain, k) +
+                " would leave an invalid mesh: " + validation.report();
     }
     if (!done) {
-      summary.message = "clipping to the face '" + domain.half_spaces()[k].label +
-                        "' would leave an invalid mesh; the mesh is left unclipped there "
-                        "(try a smaller step)";
-      return summary;
+      drop_outside(domain, k, mesh, on_faces);
+      if (summary.message.empty()) {
+        summary.message = failure +
+                          "; the triangles across that face were removed instead (try a smaller "
+                          "step)";
+      }
     }
   }
   if (options.min_boundary_edge > 0 && summary.half_spaces_crossed > 0) {
     summary.collapsed_edges =
-        collapse_short_boundary_edges(mesh, on_faces, options.min_boundary_edge);
+        collapse_short_boundary_edges(problem, mesh, on_faces, options.min_boundary_edge);
     // Collapsing leaves the moved-away vertices unused: drop them.
     std::vector<int> new_index(mesh.vertex_count(), -1);
     TriangleMesh compact(mesh.ambient_dimension());

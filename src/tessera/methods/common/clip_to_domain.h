@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "tessera/core/corrector.h"
-#include "tessera/core/domain.h"
 #include "tessera/core/face_projection.h"
+#include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/geometry/triangle_mesh.h"
 
@@ -28,7 +28,9 @@ struct ClipSummary {
   int snapped_vertices = 0;
   int cut_edges = 0;
   int collapsed_edges = 0;  ///< short boundary edges collapsed after clipping
-  std::string message;  ///< non-empty if a face could not be clipped (mesh left unclipped there)
+  /// Non-empty if a face could not be clipped: the triangles across it were removed instead
+  /// (the mesh stays valid and inside S; its boundary there is not on M ∩ ∂S). Names the place.
+  std::string message;
 };
 
 /// Clips `mesh` (vertices on M) to S = ∩ half-spaces, one face at a time ("snap, then cut"):
@@ -38,6 +40,10 @@ struct ClipSummary {
 ///     linear interpolant (edges lying on an earlier face stay on it);
 ///  3. triangles are split along the cut (quadrilaterals by the diagonal of larger minimum
 ///     angle) and the parts outside are dropped, with the vertices no longer used.
+/// Every snap, cut and collapse keeps the orientation of the triangles it reshapes (checked in
+/// the tangent plane of M) or is not made; vertices within 1e-9·(1 + |x|) of a face count as on
+/// it; boundary vertices are put on their faces exactly (place_on_faces), so no vertex of the
+/// result lies outside S. See docs/algorithms/front.md, *Boundary*.
 /// This resolves what Brodzik & Rheinboldt leave open ("adjust the exterior points onto the
 /// boundary"): the boundary of the result lies on M ∩ ∂S up to the corrector tolerance, and
 /// snapping before cutting keeps cut points away from vertices, so no needles are created.

@@ -50,6 +50,9 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr int kMaxClosedLoop = 6;
 // Edges longer than this multiple of h are avoided where a choice exists.
 constexpr double kMaxEdgeRatio = 1.5;
+// Radians added to a frontal vertex's priority key per layer (generation) it is away from the
+// start; see FrontBuilder::priority.
+constexpr double kLayerWeight = 0.05;
 
 // Thrown inside the builder to stop the run; caught in triangulate_by_front, which keeps the
 // mesh built so far (it is valid: every step leaves a consistent partial mesh).
@@ -101,6 +104,9 @@ class FrontBuilder {
   void refresh_priority(int v);
   /// The smallest gap angle at v, in v's own tangent plane (cached per vertex).
   double smallest_gap(int v);
+  /// The key of v in the smallest-gap-first order: the smallest gap, plus kLayerWeight per
+  /// layer for gaps that need no merge (see docs/algorithms/front.md, *Order*).
+  double priority(int v);
   /// Frees v's cached tangent basis (2n doubles) once v is finished: the cache then holds
   /// only the front, not the whole mesh.
   void release_tangent(int v) {
@@ -126,8 +132,10 @@ class FrontBuilder {
   std::set<std::pair<double, int>> by_gap_;     // (gap angle, vertex), smallest first
   std::vector<double> gap_key_;                 // key of each vertex in by_gap_, NaN if absent
   std::vector<Eigen::MatrixXd> tangent_cache_;  // n×2 tangent basis per vertex, empty if unknown
-  Linearization center_frame_;                  // at the vertex being processed
-  Linearization gap_frame_;                     // for the gap angles of the priority order
+  std::vector<int> layer_;      // per vertex: 0 for the start, 1 + its creator's layer otherwise
+  int new_vertex_layer_ = 1;    // the layer of the vertices the current step creates
+  Linearization center_frame_;  // at the vertex being processed
+  Linearization gap_frame_;     // for the gap angles of the priority order
 };
 
 std::optional<int> FrontBuilder::next_frontal() {
@@ -142,10 +150,10 @@ std::optional<int> FrontBuilder::next_frontal() {
     if (state_.type(v) != VertexType::Frontal) {
       continue;
     }
-    const double gap = smallest_gap(v);
-    if (gap > key + 1e-12) {
-      by_gap_.emplace(gap, v);
-      gap_key_[v] = gap;
+    const double current = priority(v);
+    if (current > key + 1e-12) {
+      by_gap_.emplace(current, v);
+      gap_key_[v] = current;
       continue;
     }
     return v;
@@ -165,8 +173,23 @@ void FrontBuilder::refresh_priority(int v) {
   if (state_.type(v) != VertexType::Frontal) {
     return;
   }
-  gap_key_[v] = smallest_gap(v);
+  gap_key_[v] = priority(v);
   by_gap_.emplace(gap_key_[v], v);
+}
+
+double FrontBuilder::priority(int v) {
+  // Smallest gap first alone is blind to the front's shape at large scale: there, the gap angles
+  // differ from π by O(h·curvature) only, far less than their local scatter, so at fine steps
+  // the front wanders, grows fingers and narrow channels, and meets itself (the sphere at
+  // h = 0.003 stopped at 1.19 million vertices with a front 2.6 times its natural length). The
+  // layer term makes parts of the front that lag behind by a few layers go first, as in a
+  // layered advancing front, while gaps that need a merge are still closed at once.
+  const double gap = smallest_gap(v);
+  if (gap < options_.min_gap_angle) {
+    return gap;
+  }
+  const int layer = static_cast<std::size_t>(v) < layer_.size() ? layer_[v] : 0;
+  return gap + kLayerWeight * layer;
 }
 
 const Eigen::MatrixXd* FrontBuilder::cached_tangent_near(int v) const {
@@ -262,6 +285,8 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
 void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,
                                          const Linearization& frame) {
   const int c = state_.add_vertex(center, VertexType::Interior);
+  layer_.assign(1, 0);
+  new_vertex_layer_ = 1;
   const Eigen::MatrixXd& U = frame.tangent_basis();
   // Paper: the user's h or a smaller one, whichever projects the first hexagon vertex; that h
   // is then kept for the whole run.
@@ -310,7 +335,10 @@ void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,
 
 int FrontBuilder::add_point(const Eigen::VectorXd& x) {
   const bool inside = domain_.is_unbounded() || domain_.boundary_distance(x).signed_distance > 0;
-  return state_.add_vertex(x, inside ? VertexType::Frontal : VertexType::Exterior);
+  const int v = state_.add_vertex(x, inside ? VertexType::Frontal : VertexType::Exterior);
+  layer_.resize(v + 1, new_vertex_layer_);
+  layer_[v] = new_vertex_layer_;
+  return v;
 }
 
 Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
@@ -363,6 +391,7 @@ Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
 }
 
 void FrontBuilder::process(int center) {
+  new_vertex_layer_ = layer_[center] + 1;
   // Reused between vertices: a sparse LU keeps its symbolic analysis while the pattern holds.
   Linearization& frame = center_frame_;
   // A nearby tangent basis lets a sparse factorisation border J with coordinate rows.
@@ -448,8 +477,9 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
       std::ostringstream message;
       message << "the triangles around frontal vertex " << center << " "
               << describe_point(state_.point(center))
-              << " overlap (no room is left between open edges " << gap.last << " and " << gap.first
-              << ") and the open edges cannot be merged";
+              << " overlap (no room is left between the open edges to "
+              << describe_point(state_.point(gap.last)) << " and "
+              << describe_point(state_.point(gap.first)) << ") and the open edges cannot be merged";
       throw StopRun{CoveringTermination::FrontCollision, message.str()};
     }
     add_closing_triangle(center, gap.last, gap.first, U);
@@ -564,8 +594,10 @@ void FrontBuilder::require_fit(const Triangle& t, const Eigen::MatrixXd& U) {
   }
   std::ostringstream message;
   message << "the front overlaps itself near frontal vertex " << t[0] << " "
-          << describe_point(state_.point(t[0])) << ": triangle (" << t[0] << ", " << t[1] << ", "
-          << t[2] << ") would overlap the triangles already there";
+          << describe_point(state_.point(t[0])) << ": the triangle with corners "
+          << describe_point(state_.point(t[0])) << ", " << describe_point(state_.point(t[1]))
+          << ", " << describe_point(state_.point(t[2]))
+          << " would overlap the triangles already there";
   throw StopRun{CoveringTermination::FrontCollision, message.str()};
 }
 
@@ -575,8 +607,9 @@ void FrontBuilder::add_closing_triangle(int center, int last, int first, const E
   if (!state_.can_add_edge(last, first) || !state_.triangle_fits({center, last, first}, U)) {
     std::ostringstream message;
     message << "cannot close the gap at frontal vertex " << center << " "
-            << describe_point(state_.point(center)) << ": edge (" << last << ", " << first
-            << ") is taken or the triangle would overlap the mesh there";
+            << describe_point(state_.point(center)) << ": the edge from "
+            << describe_point(state_.point(last)) << " to " << describe_point(state_.point(first))
+            << " is taken or the triangle would overlap the mesh there";
     throw StopRun{CoveringTermination::FrontCollision, message.str()};
   }
   state_.add_triangle(center, last, first);
@@ -599,6 +632,7 @@ bool FrontBuilder::try_merge(int /*center*/, int first, int last, const Lineariz
   }
   state_.identify(first, last, average,
                   inside ? std::nullopt : std::optional(VertexType::Exterior));
+  layer_[first] = std::min(layer_[first], layer_[last]);
   ++merges_;
   return true;
 }

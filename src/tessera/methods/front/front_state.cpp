@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 
+#include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_quality.h"
 
@@ -28,7 +29,6 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a(0) * b(1) - a(1) * b(0);
 }
 
-
 }  // namespace
 
 FrontState::FrontState(int ambient_dimension, double grid_cell)
@@ -43,6 +43,7 @@ int FrontState::add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexTyp
   ++live_vertices_;
   if (type == VertexType::Frontal) {
     queue_.push_back(v);
+    ++frontal_vertices_;
   }
   return v;
 }
@@ -61,6 +62,8 @@ void FrontState::set_type(int v, VertexType type) {
   if (type == VertexType::Frontal && types_[v] != VertexType::Frontal) {
     queue_.push_back(v);
   }
+  frontal_vertices_ +=
+      (type == VertexType::Frontal ? 1 : 0) - (types_[v] == VertexType::Frontal ? 1 : 0);
   types_[v] = type;
 }
 
@@ -141,13 +144,16 @@ std::vector<FanChain> FrontState::fan_chains(int v) const {
   std::sort(edges.begin(), edges.end());
   for (std::size_t i = 1; i < edges.size(); ++i) {
     if (edges[i].first == edges[i - 1].first) {
-      throw ComputationFailed("internal fold: vertex " + std::to_string(v) +
-                              " has two triangles leaving edge (" + std::to_string(v) + ", " +
-                              std::to_string(edges[i].first) + ") on the same side");
+      throw ComputationFailed("internal fold: vertex " + std::to_string(v) + " " +
+                              describe_point(point(v)) +
+                              " has two triangles on the same side of "
+                              "its edge to " +
+                              describe_point(point(edges[i].first)));
     }
   }
   const auto next = [&](int a) -> int {
-    auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(a, std::numeric_limits<int>::min()));
+    auto it = std::lower_bound(edges.begin(), edges.end(),
+                               std::make_pair(a, std::numeric_limits<int>::min()));
     return (it != edges.end() && it->first == a) ? it->second : -1;
   };
   std::vector<int> is_target;
@@ -159,7 +165,8 @@ std::vector<FanChain> FrontState::fan_chains(int v) const {
   std::vector<FanChain> chains;
   const auto index_of = [&](int a) {
     return static_cast<std::size_t>(
-        std::lower_bound(edges.begin(), edges.end(), std::make_pair(a, std::numeric_limits<int>::min())) -
+        std::lower_bound(edges.begin(), edges.end(),
+                         std::make_pair(a, std::numeric_limits<int>::min())) -
         edges.begin());
   };
   // Open chains first, from their starting vertices (sources that are no target).
@@ -308,12 +315,11 @@ void FrontState::identify(int a, int b, const Eigen::Ref<const Eigen::VectorXd>&
   std::copy(position.data(), position.data() + dimension_,
             coordinates_.begin() + static_cast<std::ptrdiff_t>(a) * dimension_);
   grid_.insert(a, position);
-  const bool either_frontal =
-      types_[a] == VertexType::Frontal || types_[b] == VertexType::Frontal;
-  types_[b] = VertexType::Removed;
+  const bool either_frontal = types_[a] == VertexType::Frontal || types_[b] == VertexType::Frontal;
+  set_type(b, VertexType::Removed);
   --live_vertices_;
   if (type) {
-    types_[a] = *type;
+    set_type(a, *type);
   } else if (either_frontal || types_[a] == VertexType::Exterior) {
     set_type(a, VertexType::Frontal);
   }
@@ -362,7 +368,8 @@ bool FrontState::triangulate_hole(const std::vector<int>& loop, const Eigen::Mat
           double score = std::numeric_limits<double>::infinity();
           for (const Triangle& t : current) {
             for (int r = 0; r < 3; ++r) {
-              score = std::min(score, corner_angle(point(t[r]), point(t[(r + 1) % 3]), point(t[(r + 2) % 3])));
+              score = std::min(
+                  score, corner_angle(point(t[r]), point(t[(r + 1) % 3]), point(t[(r + 2) % 3])));
             }
           }
           if (score > best_score) {
@@ -409,7 +416,7 @@ bool FrontState::triangulate_hole(const std::vector<int>& loop, const Eigen::Mat
   for (int p : polygon) {
     if (types_[p] == VertexType::Frontal) {
       // Their fans are now closed; processing them would find nothing to do.
-      types_[p] = VertexType::Interior;
+      set_type(p, VertexType::Interior);
     }
   }
   return true;

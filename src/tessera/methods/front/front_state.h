@@ -39,7 +39,8 @@ class FrontState {
 
   /// Next vertex of the FIFO queue that is still frontal; nullopt when the front is empty.
   std::optional<int> pop_frontal();
-  int front_size() const { return static_cast<int>(queue_.size()); }
+  /// The number of frontal vertices (the length of the front).
+  int front_size() const { return frontal_vertices_; }
   int live_vertex_count() const { return live_vertices_; }
   int live_triangle_count() const { return live_triangles_; }
 
@@ -99,6 +100,7 @@ class FrontState {
   PointGrid grid_;
   int live_vertices_ = 0;
   int live_triangles_ = 0;
+  int frontal_vertices_ = 0;
   void remove_triangle(int t);
 };
 
