@@ -62,16 +62,19 @@ std::string to_json(const MeshReport& report) {
                 {"merges", r.merges},
                 {"front_connections", r.front_connections},
                 {"step_reductions", r.step_reductions},
-                {"clipped_half_spaces", r.clipped_half_spaces}};
+                {"clipped_half_spaces", r.clipped_half_spaces},
+                {"tolerance", r.tolerance},
+                {"max_sampled_distance", r.max_sampled_distance},
+                {"refined_edges", r.refined_edges},
+                {"removed_triangles", r.removed_triangles},
+                {"repaired_holes", r.repaired_holes}};
     if (r.charts > 0) {
-      j["run"]["atlas"] = {{"tolerance", r.tolerance},
-                           {"charts", r.charts},
+      j["run"]["atlas"] = {{"charts", r.charts},
                            {"min_chart_radius", r.min_chart_radius},
                            {"max_chart_radius", r.max_chart_radius},
                            {"singular_crossings", r.singular_crossings},
                            {"sheet_rejections", r.sheet_rejections},
-                           {"filled_holes", r.filled_holes},
-                           {"refined_edges", r.refined_edges}};
+                           {"filled_holes", r.filled_holes}};
     }
     j["run"]["notes"] = r.notes;
   }
@@ -130,8 +133,20 @@ std::string to_text(const MeshReport& report) {
           << r.min_chart_radius << " … " << r.max_chart_radius;
     } else {
       out << ", step " << r.step;
+      if (r.tolerance > 0) {
+        out << ", tolerance " << r.tolerance;
+      }
     }
     out << ", " << to_string(r.termination) << (r.message.empty() ? "" : ": " + r.message) << "\n";
+    if (r.max_sampled_distance >= 0) {
+      out << "tolerance      every triangle checked: largest sampled distance to M "
+          << r.max_sampled_distance << " (bound " << r.tolerance << "), " << r.refined_edges
+          << " edge(s) bisected\n";
+    }
+    if (r.removed_triangles > 0) {
+      out << "repair         " << r.removed_triangles << " triangle(s) removed by the final check, "
+          << r.repaired_holes << " place(s) triangulated again\n";
+    }
     for (const std::string& note : r.notes) {
       out << "note           " << note << "\n";
     }
