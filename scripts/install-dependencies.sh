@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Installs the Debian packages tessera needs, only those that are missing.
+# Installs the Debian packages tessera needs, only those that are missing. Arguments name more
+# packages that a script needs besides (scripts/run-fuzzers.sh: clang and its libFuzzer runtime).
 set -euo pipefail
 packages=(cmake ninja-build g++ libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev
-          libbenchmark-dev ccache libcgal-dev)
+          libbenchmark-dev ccache libcgal-dev "$@")
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||
