@@ -41,8 +41,8 @@ void expect_only_invalid_argument(Parse&& parse) {
     parse();
   } catch (const InvalidArgument&) {
   } catch (const std::exception& error) {
-    fail(std::string("threw ") + typeid(error).name() + " instead of InvalidArgument: " +
-         error.what());
+    fail(std::string("threw ") + typeid(error).name() +
+         " instead of InvalidArgument: " + error.what());
   } catch (...) {
     fail("threw something that is not a std::exception");
   }
@@ -52,9 +52,10 @@ void expect_only_invalid_argument(Parse&& parse) {
 /// path: the mesh readers take paths. /dev/shm keeps the file in memory where it exists.
 inline std::string write_scratch_file(const std::uint8_t* data, std::size_t size,
                                       const std::string& extension) {
-  static const std::string path =
-      std::string(access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp") + "/tessera_fuzz_" +
-      std::to_string(getpid()) + extension;
+  static const std::string path = std::string(access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp") +
+                                  "/tessera_fuzz_" + std::to_string(getpid()) + extension;
+  static const int removed_at_exit = std::atexit([] { std::remove(path.c_str()); });
+  (void)removed_at_exit;
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (file == nullptr || (size > 0 && std::fwrite(data, 1, size, file) != size) ||
       std::fclose(file) != 0) {

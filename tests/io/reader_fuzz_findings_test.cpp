@@ -33,8 +33,8 @@ TEST(PlyReaderFuzzFinding, ElementWithoutPropertiesAndHugeCountIsSkipped) {
 TEST(ObjReaderFuzzFinding, IndexTwoToThe31IsOutOfRangeWithoutOverflow) {
   const std::string path = test_path("index_2_to_the_31.obj");
   write_text(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2147483648 3\n");
-  io_test::expect_invalid_argument([&] { read_obj(path); },
-                                   {"line 4", "vertex index 2147483648 is out of range", "3 vertices"});
+  io_test::expect_invalid_argument(
+      [&] { read_obj(path); }, {"line 4", "vertex index 2147483648 is out of range", "3 vertices"});
 }
 
 }  // namespace
