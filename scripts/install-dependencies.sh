@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Installs the Debian packages tessera needs, only those that are missing.
+# Installs the Debian packages tessera needs, only those that are missing. Arguments name more
+# packages that a script needs besides (scripts/run-fuzzers.sh: clang and its libFuzzer runtime).
 set -euo pipefail
 # python3-meshio: tests/io/meshio_test.cpp checks that meshio reads the PLY files tessera writes.
 packages=(cmake ninja-build g++ libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev
-          libbenchmark-dev ccache libcgal-dev python3-meshio)
+          libbenchmark-dev ccache libcgal-dev python3-meshio "$@")
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 namespace tessera::testing {
 
 CommandResult run_cli(const std::string& arguments) {
@@ -26,6 +28,13 @@ CommandResult run_cli(const std::string& arguments) {
   }
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  // In a sanitizer build (scripts/run-sanitizer-tests.sh) a report from the child fails the
+  // calling test whatever exit code that test expects: a test of a failing run expects exit 1,
+  // which is also what a sanitizer may exit with.
+  if (result.output.find("Sanitizer:") != std::string::npos ||
+      result.output.find("runtime error:") != std::string::npos) {
+    ADD_FAILURE() << "sanitizer report from: " << command << "\n" << result.output;
+  }
   return result;
 }
 

@@ -123,7 +123,8 @@ TriangleMesh read_obj(const std::string& path) {
     for (const int v : triangles[t]) {
       if (v >= vertex_count) {
         io_detail::throw_file_error(kFormat, path, triangle_lines[t],
-                                    "vertex index " + std::to_string(v + 1) +
+                                    // 64 bits: v may be INT_MAX (found by obj_fuzz).
+                                    "vertex index " + std::to_string(std::int64_t{v} + 1) +
                                         " is out of range; the file has " +
                                         std::to_string(vertex_count) + " vertices");
       }

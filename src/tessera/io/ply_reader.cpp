@@ -365,6 +365,11 @@ void read_records(Source& source, const PlyHeader& header, const ReadPlan& plan,
     const PlyElement& element = header.elements[e];
     const bool is_vertex = static_cast<int>(e) == plan.vertex_element;
     const bool is_face = static_cast<int>(e) == plan.face_element;
+    // An element without properties has no data whatever its count; counting through its
+    // records would take forever for a count near 2^63 (found by tests/fuzz/ply_fuzz).
+    if (element.properties.empty()) {
+      continue;
+    }
     for (std::int64_t r = 0; r < element.count; ++r) {
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
         const PlyProperty& property = element.properties[p];
