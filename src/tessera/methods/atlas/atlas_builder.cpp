@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "tessera/core/corrector.h"
 #include "tessera/core/describe.h"
@@ -23,6 +24,12 @@ constexpr int kMaxChildrenPerChart = 64;
 // Below this dimension the orientation det([J; Tᵀ]) is cheap enough to watch for singular
 // crossings at every step (dense problems only; see docs/algorithms/atlas.md).
 constexpr int kMaxCrossingTestDimension = 200;
+// pointOnDisk by full Gauss–Newton (where the chord fails) is accepted if it moved the point
+// along the chart's tangent plane by at most this fraction of the distance from the centre.
+constexpr double kMaxTangentialDrift = 0.1;
+// choose_radius probes M at r and at this fraction of r: the slope between them is the
+// turning of the tangent plane near the rim of the disk.
+constexpr double kInnerProbe = 0.75;
 
 }  // namespace
 
@@ -37,40 +44,53 @@ AtlasBuilder::AtlasBuilder(const ImplicitProblem& problem, const Domain& domain,
                        problem.ambient_dimension() <= kMaxCrossingTestDimension) {}
 
 // Henderson's section 2.4: with a(s,t) the offset of M from the tangent plane,
-// R = sqrt(2ε/|a_ss|). Instead of second derivatives of F, the quadratic form of a is measured
-// where it matters: three points at distance r in directions 0°, 60°, 120° are projected onto
-// M orthogonally to the tangent plane (the chord corrector of the chart), and their normal
-// offsets a_i give q_i = 2a_i/r² = A + B cos 2θ_i + C sin 2θ_i. The largest |A + B cos 2θ +
-// C sin 2θ| over θ is the largest normal curvature κ. If a projection fails, the corrector does
-// not converge that far: r is halved (the radius is also "capped by where the corrector
-// converges").
-bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, double& radius) {
+// R = sqrt(2ε/|a_ss|). Instead of second derivatives of F, the offset is measured where it
+// matters: six points at distance r in directions 0°, 60°, …, 300° are projected onto M
+// orthogonally to the tangent plane (the chord corrector of the chart, pointOnDisk).
+//  - The even part of the offsets, q_i = (a(θ_i) + a(θ_i + π))/r² = A + B cos 2θ_i +
+//    C sin 2θ_i (exactly for the quadratic and cubic parts of a), gives the quadratic form;
+//    the largest |A + B cos 2θ + C sin 2θ| over θ is the largest normal curvature κ_q.
+//  - Each offset alone gives the secant curvature 2|a(θ_j)|/r², which also sees the cubic
+//    (odd) part: where the curvature grows across the disk (towards a thin part of M, a fold,
+//    the turn of the trough), the disk is sized by the largest curvature it contains.
+// κ is the larger of the two. The radius R = min(r, sqrt(2ε/κ), max_turning_angle/κ) is then
+// measured again at R, until the disk the measurement covered is not much larger than the
+// disk chosen (R ≥ 0.7 r): a radius is only accepted if M was seen across the whole disk.
+// The radius is also capped where M is not a graph of slope ≤ 1 over the disk of radius r, or
+// the corrector does not converge that far (r is halved): the disk then reaches past a
+// turn of M or onto another part of it, so its tangent-plane projection is not one-to-one.
+bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, double& radius,
+                                 RadiusCap& cap) {
   const Eigen::VectorXd& x = at_center.point();
   const Eigen::MatrixXd& T = at_center.tangent_basis();
   double r = trial;
-  bool remeasured = false;
+  int measurements = 0;
+  bool halved = false;       // the corrector or the graph test refused a larger disk
+  bool turned = false;       // a remeasurement was asked for by the curvature cap
   Eigen::VectorXd& y = probe_;
   Eigen::VectorXd& predicted = predicted_;
-  Eigen::MatrixXd& q = quadratic_;
-  q.resize(n_, 3);
+  Eigen::MatrixXd& a = quadratic_;
+  a.resize(n_, 12);  // columns 0–5: a(θ_i) at r; 6–11: a(θ_i) at kInnerProbe·r
   while (r >= min_radius_) {
-    bool converged = true;
-    static const std::array<Eigen::Vector2d, 3> directions = {
-        Eigen::Vector2d(1.0, 0.0), Eigen::Vector2d(0.5, std::sqrt(3.0) / 2),
-        Eigen::Vector2d(-0.5, std::sqrt(3.0) / 2)};  // θ = 0°, 60°, 120°
-    for (int i = 0; i < 3 && converged; ++i) {
-      const Eigen::Vector2d& d = directions[i];
-      predicted = x + r * (T * d);
+    bool is_graph = true;
+    for (int i = 0; i < 12 && is_graph; ++i) {
+      const double theta = (i % 6) * std::numbers::pi / 3.0;
+      const double distance = i < 6 ? r : kInnerProbe * r;
+      predicted = x + distance * (T * Eigen::Vector2d(std::cos(theta), std::sin(theta)));
       y = predicted;
-      converged = project(at_center, r, y);
+      is_graph = project(at_center, distance, y);
       y -= predicted;  // the offset; its tangential part is zero for the chord, not for GN
       const Eigen::Vector2d along = T.transpose() * y;
-      q.col(i) = (2.0 / (r * r)) * (y - T * along);
+      a.col(i) = y - T * along;
+      // Slope above 1 across the disk: the projection found a far part of M, not a graph.
+      is_graph = is_graph && a.col(i).norm() <= distance;
     }
-    if (!converged) {
+    if (!is_graph) {
       r *= 0.5;
+      halved = true;
       continue;
     }
+    ++measurements;
     // q_i = A + B cos 2θ_i + C sin 2θ_i at θ = 0°, 60°, 120°.
     // |A + cos φ B + sin φ C| over φ = 2θ in [0, 2π), with A = mean q, B = q0 − A,
     // C = (q1 − q2)/√3, written as weights of q0, q1, q2 (tabulated once).
@@ -78,29 +98,62 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
       std::array<std::array<double, 3>, 24> w{};
       for (int k = 0; k < 24; ++k) {
         const double phi = k * std::numbers::pi / 12.0;
-        const double a = (1.0 - std::cos(phi)) / 3.0;
-        w[k] = {a + std::cos(phi), a + std::sin(phi) / std::sqrt(3.0),
-                a - std::sin(phi) / std::sqrt(3.0)};
+        const double c = (1.0 - std::cos(phi)) / 3.0;
+        w[k] = {c + std::cos(phi), c + std::sin(phi) / std::sqrt(3.0),
+                c - std::sin(phi) / std::sqrt(3.0)};
       }
       return w;
     }();
-    double curvature = 0.0;
-    for (const auto& w : weights) {
-      curvature = std::max(curvature, (w[0] * q.col(0) + w[1] * q.col(1) + w[2] * q.col(2)).norm());
-    }
-    double chosen = std::min(options_.max_radius, r);
-    if (curvature > 0) {
-      chosen = std::min({chosen, std::sqrt(2.0 * options_.tolerance / curvature),
-                         options_.max_turning_angle / curvature});
-    }
-    if (chosen < 0.5 * r && !remeasured) {
-      // Measured far beyond the radius chosen: measure again there, where the quadratic
-      // model is accurate (third-order terms shrink by the ratio of the radii).
-      remeasured = true;
+    // Largest ‖Q(θ)‖ over θ of the form through the values at three directions 60° apart.
+    const auto largest = [&](const auto& q0, const auto& q1, const auto& q2) {
+      double value = 0.0;
+      for (const auto& w : weights) {
+        value = std::max(value, (w[0] * q0 + w[1] * q1 + w[2] * q2).norm());
+      }
+      return value;
+    };
+    // Each half of the disk (θ = 0°, 60°, 120° and θ = 180°, 240°, 300°) gets its own form, so
+    // that a curvature growing towards one side is not averaged with the other side.
+    const double scale = 2.0 / (r * r);
+    const double curvature = scale * std::max(largest(a.col(0), a.col(1), a.col(2)),
+                                              largest(a.col(3), a.col(4), a.col(5)));
+    // The turning of the tangent plane near the rim of the disk, from the slope of a between
+    // the inner and outer probes, also as a form over the directions: on a circle of
+    // curvature κ the slope is tan(κ·(mean of the two radii)).
+    const double step = (1.0 - kInnerProbe) * r;
+    const double slope =
+        std::max(largest(a.col(0) - a.col(6), a.col(1) - a.col(7), a.col(2) - a.col(8)),
+                 largest(a.col(3) - a.col(9), a.col(4) - a.col(10), a.col(5) - a.col(11))) /
+        step;
+    const double rim_curvature = std::atan(slope) / (0.5 * (1.0 + kInnerProbe) * r);
+    const double for_tolerance =
+        curvature > 0 ? std::sqrt(2.0 * options_.tolerance / curvature) : options_.max_radius;
+    // Where the curvature grows towards the rim (a thin part or a turn of M ahead), the
+    // turning measured there exceeds κ·r: the disk is then sized by it.
+    const double largest_curvature = std::max(curvature, rim_curvature);
+    const double for_turning = largest_curvature > 0
+                                   ? options_.max_turning_angle / largest_curvature
+                                   : options_.max_radius;
+    const double chosen = std::min({options_.max_radius, r, for_tolerance, for_turning});
+    if (chosen < 0.7 * r && measurements < 4) {
+      // Measured beyond the radius chosen: measure again there, where the quadratic model
+      // is accurate (third-order terms shrink by the ratio of the radii), and so that the
+      // secant sees the largest curvature inside the chosen disk, not a larger one.
+      turned = turned || for_turning <= chosen;
       r = chosen;
       continue;
     }
     radius = chosen;
+    // Capped: smaller than the tolerance (and max_radius) would allow, by the curvature
+    // (κR ≤ max_turning_angle: the local feature size), by the corrector or the graph test,
+    // or else by the trial radius (the grading of the radii between neighbouring charts).
+    if (chosen < 0.99 * std::min(options_.max_radius, for_tolerance)) {
+      cap = turned || for_turning <= chosen ? RadiusCap::Curvature
+            : halved                        ? RadiusCap::NotAGraph
+                                            : RadiusCap::Grading;
+    } else {
+      cap = RadiusCap::None;
+    }
     return true;
   }
   return false;
@@ -109,7 +162,11 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
 // Henderson's pointOnDisk: F(y) = 0 with Tᵀ(y − y_predicted) = 0, by the chord iteration of
 // the chart. Across a singular curve the frozen J points the wrong way (F = z·S changes the
 // sign of its gradient with z), so a failed chord is retried with full Gauss–Newton, which
-// re-evaluates J and lands on the same sheet; its small tangential drift does not matter.
+// re-evaluates J and lands on the same sheet. Its tangential drift must stay small: a large
+// one means the line through y normal to the chart misses M (the disk reaches past a turn of
+// M) and Gauss–Newton found the nearest point of M instead, which is not pointOnDisk's point:
+// a radius measured there is meaningless and a chart centred there would not cut away the
+// corner it was placed for.
 bool AtlasBuilder::project(const Linearization& at_center, double distance, Eigen::VectorXd& y) {
   const Eigen::VectorXd predicted = y;
   if (project_chord(problem_, at_center, y, options_.corrector).is_success()) {
@@ -118,7 +175,11 @@ bool AtlasBuilder::project(const Linearization& at_center, double distance, Eige
   y = predicted;
   CorrectorOptions full = options_.corrector;
   full.max_displacement = 0.5 * distance;
-  return project_gauss_newton(problem_, y, full, scratch_).is_success();
+  if (!project_gauss_newton(problem_, y, full, scratch_).is_success()) {
+    return false;
+  }
+  const Eigen::Vector2d drift = at_center.tangent_basis().transpose() * (y - predicted);
+  return drift.norm() <= kMaxTangentialDrift * distance;
 }
 
 void AtlasBuilder::evaluate_jacobian(const Eigen::VectorXd& x) {
@@ -172,13 +233,30 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
           options_.min_sheet_cosine) {
     return -1;  // the projection jumped to another sheet; the caller tries another point
   }
-  const double trial =
-      parent >= 0 ? std::min(options_.max_radius, options_.radius_growth * charts_[parent].radius)
-                  : options_.max_radius;
+  // The radii are graded: R ≤ R_j + (radius_growth − 1)·‖x − c_j‖ for every chart j whose disk
+  // the new one may overlap (for the parent, at distance R_j, this is R ≤ radius_growth·R_j).
+  // A radius function with Lipschitz constant below 1 never lets a disk contain a neighbour's,
+  // whose power cell would then be empty or a sliver that the charts' slightly different
+  // tangent planes see differently (holes, inconsistent triangles); it also keeps the triangles
+  // between charts of different sizes well shaped.
+  double trial = options_.max_radius;
+  if (parent >= 0) {
+    const double slope = options_.radius_growth - 1.0;
+    trial = std::min(trial, options_.radius_growth * charts_[parent].radius);
+    index_.candidates(x, trial, candidates_);
+    for (int m : candidates_) {
+      const double distance = (center(m) - x).norm();
+      if (distance < trial + charts_[m].radius) {
+        trial = std::min(trial, charts_[m].radius + slope * distance);
+      }
+    }
+  }
   double radius = 0.0;
-  if (!choose_radius(linearization, trial, radius)) {
+  RadiusCap cap = RadiusCap::None;
+  if (!choose_radius(linearization, trial, radius, cap)) {
     return -2;
   }
+  ++capped_[static_cast<int>(cap)];
   const int k = chart_count();
   Chart chart;
   chart.radius = radius;
@@ -465,6 +543,22 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
   summary.charts = chart_count();
   summary.singular_crossings = singular_crossings_;
   summary.sheet_rejections = sheet_rejections_;
+  const int capped = capped_[1] + capped_[2] + capped_[3];
+  if (capped > 0) {
+    std::ostringstream note;
+    note << capped << " of " << chart_count()
+         << " charts have a radius below the tolerance's sqrt(2*tolerance/curvature): "
+         << capped_[static_cast<int>(RadiusCap::Curvature)]
+         << " capped by the curvature (radius <= " << options_.max_turning_angle
+         << "/curvature: M turns within the disk), "
+         << capped_[static_cast<int>(RadiusCap::NotAGraph)]
+         << " where M is no graph over the larger disk or the corrector does not reach it "
+            "(a thin part or a turn of M nearby), "
+         << capped_[static_cast<int>(RadiusCap::Grading)]
+         << " next to smaller charts (radii grow by at most " << options_.radius_growth - 1.0
+         << " per unit length)";
+    summary.notes.push_back(note.str());
+  }
   if (singular_crossings_ > 0) {
     summary.notes.push_back("met a singular crossing of M (first near " + first_crossing_ +
                             "): the atlas continued along the sheet it was on, " +

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <deque>
 #include <string>
 #include <unordered_map>
@@ -19,6 +20,16 @@
 #include "tessera/methods/covering_result.h"
 
 namespace tessera::detail {
+
+// Why a chart's radius is smaller than the tolerance asks for (sqrt(2ε/κ), at most max_radius).
+enum class RadiusCap : signed char {
+  None,
+  Curvature,  // κR ≤ max_turning_angle: M turns within the disk (its local feature size)
+  NotAGraph,  // the disk of the tolerance's radius reaches past a turn of M or onto another
+              // part of it (not a graph of slope ≤ 1), or beyond the corrector's convergence
+  Grading,    // a neighbouring chart is much smaller (radii change by at most radius_growth − 1
+              // per unit length)
+};
 
 struct Chart {
   double radius = 0.0;
@@ -57,7 +68,8 @@ class AtlasBuilder {
   }
 
  private:
-  bool choose_radius(const Linearization& at_center, double trial, double& radius);
+  bool choose_radius(const Linearization& at_center, double trial, double& radius,
+                     RadiusCap& cap);
   bool project(const Linearization& at_center, double distance, Eigen::VectorXd& y);
   void evaluate_jacobian(const Eigen::VectorXd& x);
   double jacobian_scale() const;
@@ -109,6 +121,7 @@ class AtlasBuilder {
   int sheet_rejections_ = 0;
   std::string first_crossing_;
   double min_radius_ = 0.0;
+  std::array<int, 4> capped_ = {0, 0, 0, 0};  // charts by RadiusCap
 };
 
 }  // namespace tessera::detail
