@@ -30,6 +30,8 @@ constexpr double kMaxTangentialDrift = 0.1;
 // choose_radius probes M at r and at this fraction of r: the slope between them is the
 // turning of the tangent plane near the rim of the disk.
 constexpr double kInnerProbe = 0.75;
+// A chart whose own disk boundary cannot be reached by pointOnDisk is shrunk by this factor.
+constexpr double kShrinkFactor = 0.7;
 
 }  // namespace
 
@@ -327,6 +329,54 @@ void AtlasBuilder::connect_neighbours(int k) {
   }
 }
 
+// The polygon of chart k from scratch: its square, cut by every overlapping chart of its sheet.
+void AtlasBuilder::rebuild_polygon(int k) {
+  const auto ck = center(k);
+  const double rk = charts_[k].radius;
+  charts_[k].polygon = ChartPolygon(kInitialHalfWidth * rk);
+  std::vector<int> candidates;
+  index_.candidates(ck, rk, candidates);
+  std::sort(candidates.begin(), candidates.end());
+  Eigen::VectorXd offset;
+  for (int m : candidates) {
+    const double rm = charts_[m].radius;
+    offset = center(m) - ck;
+    const double distance = offset.norm();
+    if (m == k || distance >= rk + rm || distance == 0.0) {
+      continue;
+    }
+    if (!same_sheet(k, m, offset) && m != charts_[k].parent && charts_[m].parent != k) {
+      continue;
+    }
+    const Eigen::Vector2d pk = tangent(k).transpose() * offset;
+    if (pk.norm() > 0) {
+      charts_[k].polygon.cut(pk(0) / pk.norm(), pk(1) / pk.norm(),
+                             (pk.squaredNorm() + rk * rk - rm * rm) / (2.0 * pk.norm()), m);
+    }
+  }
+}
+
+// A smaller radius moves every power bisector of chart c towards c: its polygon shrinks and its
+// neighbours' grow, so all of them are rebuilt, and the neighbours re-queued if a corner of
+// theirs is now uncovered.
+void AtlasBuilder::shrink_radius(int c, double radius) {
+  const double old_radius = charts_[c].radius;
+  charts_[c].radius = radius;
+  ++shrunk_charts_;
+  rebuild_polygon(c);
+  std::vector<int> neighbours;
+  index_.candidates(center(c), old_radius, neighbours);
+  for (int m : neighbours) {
+    if (m == c || (center(m) - center(c)).norm() >= old_radius + charts_[m].radius) {
+      continue;
+    }
+    rebuild_polygon(m);
+    if (!charts_[m].queued && next_open_vertex(m) >= 0) {
+      enqueue(m);
+    }
+  }
+}
+
 bool AtlasBuilder::is_eligible(int c) const {
   // Charts up to domain_margin radii outside S are completed too, so that every chart whose
   // star can reach into S has all its triangles; the outer ones are cut away by the clipping.
@@ -489,10 +539,22 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       // A corner the last child did not remove gets Henderson's placement, which always does.
       const Eigen::Vector2d target =
           target_repeated ? charts_[c].radius * direction : child_position(c, vertex);
+      bool shrunk = false;
       for (double fraction : {1.0, 0.85, 1.1, 0.7, 0.5, 0.35, 0.25}) {
         const Eigen::Vector2d s = fraction * target;
         y = xc + Tc * s;
         if (!project(at_center, s.norm(), y)) {
+          if (fraction == 1.0 && charts_[c].radius > 4.0 * min_radius_ &&
+              s.norm() >= 0.99 * charts_[c].radius) {
+            // pointOnDisk fails on the chart's own disk: M is no graph over it in this
+            // direction or the corrector does not reach its rim, so the radius was too large
+            // (its measurement missed this direction). A child placed nearer would not cut
+            // the corner away; the chart is shrunk instead (Henderson's cap "where the
+            // mapping exists", applied where it was found to fail).
+            shrink_radius(c, kShrinkFactor * charts_[c].radius);
+            shrunk = true;
+            break;
+          }
           continue;
         }
         if (watch_crossings_) {
@@ -522,6 +584,11 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
         if (child >= 0) {
           break;
         }
+      }
+      if (shrunk) {
+        spare_.push_back(std::move(at_child));
+        smallest_child = std::min(smallest_child, charts_[c].radius);
+        continue;
       }
       if (child < 0) {
         fail(summary, CoveringTermination::ProjectionFailed,

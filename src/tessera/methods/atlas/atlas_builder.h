@@ -75,6 +75,8 @@ class AtlasBuilder {
   double jacobian_scale() const;
   int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);
   void connect_neighbours(int k);
+  void rebuild_polygon(int k);
+  void shrink_radius(int c, double radius);
   int next_open_vertex(int c) const;
   Eigen::Vector2d child_position(int c, int vertex) const;
   void snap_to_domain_boundary(Eigen::VectorXd& y, double radius);
@@ -122,6 +124,7 @@ class AtlasBuilder {
   std::string first_crossing_;
   double min_radius_ = 0.0;
   std::array<int, 4> capped_ = {0, 0, 0, 0};  // charts by RadiusCap
+  int shrunk_charts_ = 0;  // radii reduced after the chart was made (shrink_radius)
 };
 
 }  // namespace tessera::detail
