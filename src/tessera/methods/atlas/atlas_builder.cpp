@@ -258,6 +258,36 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   if (!choose_radius(linearization, trial, radius, cap)) {
     return -2;
   }
+  // The reach: another part of M (a chart whose centre lies far from this tangent plane, not a
+  // transversal crossing) within the disks means M comes back within their distance d, so
+  // disks of radius above d/2 would overlap across the gap and glue or double the two parts.
+  // Both are capped at d/2 (the older one shrunk, its polygon and its neighbours' rebuilt).
+  index_.candidates(x, radius, candidates_);
+  std::vector<int> too_close;
+  for (int m : candidates_) {
+    const Eigen::VectorXd offset = center(m) - x;
+    const double distance = offset.norm();
+    if (m == parent || distance >= radius + charts_[m].radius || distance == 0.0) {
+      continue;
+    }
+    const Eigen::Matrix2d cosines = tangent(m).transpose() * linearization.tangent_basis();
+    if (std::abs(cosines.determinant()) < options_.min_sheet_cosine) {
+      continue;  // a transversal crossing (section 8), kept apart by the sheet test
+    }
+    const Eigen::Vector2d along = linearization.tangent_basis().transpose() * offset;
+    const double normal_part =
+        std::sqrt(std::max(0.0, offset.squaredNorm() - along.squaredNorm()));
+    if (normal_part > 0.5 * along.norm()) {
+      if (0.5 * distance < radius) {
+        radius = 0.5 * distance;
+        cap = RadiusCap::Reach;
+      }
+      too_close.push_back(m);
+    }
+  }
+  if (radius < min_radius_) {
+    return -2;
+  }
   ++capped_[static_cast<int>(cap)];
   const int k = chart_count();
   Chart chart;
@@ -278,6 +308,12 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   tangents_.insert(tangents_.end(), T.data(), T.data() + 2 * n_);
   connect_neighbours(k);
   index_.insert(k, x, radius);
+  for (int m : too_close) {
+    const double half = 0.5 * (center(m) - center(k)).norm();
+    if (charts_[m].radius > half && half >= min_radius_) {
+      shrink_radius(m, half);
+    }
+  }
   return k;
 }
 
@@ -610,7 +646,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
   summary.charts = chart_count();
   summary.singular_crossings = singular_crossings_;
   summary.sheet_rejections = sheet_rejections_;
-  const int capped = capped_[1] + capped_[2] + capped_[3];
+  const int capped = capped_[1] + capped_[2] + capped_[3] + capped_[4];
   if (capped > 0) {
     std::ostringstream note;
     note << capped << " of " << chart_count()
@@ -623,7 +659,13 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
             "(a thin part or a turn of M nearby), "
          << capped_[static_cast<int>(RadiusCap::Grading)]
          << " next to smaller charts (radii grow by at most " << options_.radius_growth - 1.0
-         << " per unit length)";
+         << " per unit length), " << capped_[static_cast<int>(RadiusCap::Reach)]
+         << " by the reach (another part of M within the disk)";
+    if (shrunk_charts_ > 0) {
+      note << "; " << shrunk_charts_
+           << " radii were reduced later, where pointOnDisk failed on the disk or another part "
+              "of M came near";
+    }
     summary.notes.push_back(note.str());
   }
   if (singular_crossings_ > 0) {

@@ -29,6 +29,7 @@ enum class RadiusCap : signed char {
               // part of it (not a graph of slope ≤ 1), or beyond the corrector's convergence
   Grading,    // a neighbouring chart is much smaller (radii change by at most radius_growth − 1
               // per unit length)
+  Reach,      // another part of M (not a transversal crossing) lies within the disk
 };
 
 struct Chart {
@@ -123,7 +124,7 @@ class AtlasBuilder {
   int sheet_rejections_ = 0;
   std::string first_crossing_;
   double min_radius_ = 0.0;
-  std::array<int, 4> capped_ = {0, 0, 0, 0};  // charts by RadiusCap
+  std::array<int, 5> capped_ = {0, 0, 0, 0, 0};  // charts by RadiusCap
   int shrunk_charts_ = 0;  // radii reduced after the chart was made (shrink_radius)
 };
 
