@@ -73,7 +73,7 @@ int refine_where(const ImplicitProblem& problem, const Domain& domain, TriangleM
 
 // Post-condition of a completed run, checked rather than assumed: on a closed surface the mesh
 // has no boundary; in a bounded domain every boundary edge lies on ∂S, i.e. both its ends lie
-// on one face. (Both ends on ∂S is not enough: where M ∩ S is a band narrower than the charts,
+// on one face or on two adjacent ones (a corner). (Both ends on ∂S is not enough: where M ∩ S is a band narrower than the charts,
 // an edge can run across the band from one face to the opposite one, and a missing row of
 // triangles there cuts the mesh in two with every boundary vertex on ∂S; seen on
 // bvp:points=1000.) Anything else is a hole in the covering, reported with its place.
@@ -88,10 +88,19 @@ void check_coverage(const Domain& domain, const TriangleMesh& mesh,
   for (int e : topology.boundary_edges()) {
     const int v = topology.edge(e)[0];
     const int w = topology.edge(e)[1];
+    // Both ends on one face, or on two adjacent faces (an edge that cuts a corner of S, left
+    // by the clipping); never on two opposite faces (normals at more than 120°).
     bool on_boundary = false;
     for (int k = 0; k < faces && !on_boundary; ++k) {
-      on_boundary = std::abs(domain.signed_distance(k, mesh.point(v))) <= tolerance &&
-                    std::abs(domain.signed_distance(k, mesh.point(w))) <= tolerance;
+      if (std::abs(domain.signed_distance(k, mesh.point(v))) > tolerance) {
+        continue;
+      }
+      for (int l = 0; l < faces && !on_boundary; ++l) {
+        const auto& nk = domain.half_spaces()[k].normal;
+        const auto& nl = domain.half_spaces()[l].normal;
+        on_boundary = std::abs(domain.signed_distance(l, mesh.point(w))) <= tolerance &&
+                      nk.dot(nl) > -0.5 * nk.norm() * nl.norm();
+      }
     }
     if (!on_boundary) {
       summary.termination = CoveringTermination::TriangulationFailed;
