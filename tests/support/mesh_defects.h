@@ -66,7 +66,10 @@ inline std::vector<int> triangle_components(const TriangleMesh& mesh) {
 
 /// Triangles whose orientation is the minority one in their component (or degenerate): a
 /// consistently oriented mesh of an orientable M has none.
-inline int count_flipped_triangles(const TriangleMesh& mesh, const ImplicitProblem& problem) {
+/// With `counted`, only the triangles for which counted(t) is true are counted (all vote).
+template <typename Predicate>
+inline int count_flipped_triangles(const TriangleMesh& mesh, const ImplicitProblem& problem,
+                                   Predicate counted) {
   const std::vector<int> component = triangle_components(mesh);
   std::unordered_map<int, int> votes;
   std::vector<int> sign(mesh.triangle_count());
@@ -77,9 +80,13 @@ inline int count_flipped_triangles(const TriangleMesh& mesh, const ImplicitProbl
   int flipped = 0;
   for (int t = 0; t < mesh.triangle_count(); ++t) {
     const int majority = votes[component[t]] >= 0 ? 1 : -1;
-    flipped += sign[t] != majority ? 1 : 0;
+    flipped += sign[t] != majority && counted(t) ? 1 : 0;
   }
   return flipped;
+}
+
+inline int count_flipped_triangles(const TriangleMesh& mesh, const ImplicitProblem& problem) {
+  return count_flipped_triangles(mesh, problem, [](int) { return true; });
 }
 
 /// Pairs of triangles without a common vertex that cover the same part of M: the centroid of
