@@ -23,7 +23,8 @@ struct ReliabilityRun {
 };
 
 // The command line's defaults for the radius (2h) with the tolerance given.
-ReliabilityRun run_atlas(ProblemSetup setup, double tolerance, const Eigen::VectorXd* start = nullptr) {
+ReliabilityRun run_atlas(ProblemSetup setup, double tolerance,
+                         const Eigen::VectorXd* start = nullptr) {
   ReliabilityRun run;
   run.setup = std::move(setup);
   AtlasOptions options;
@@ -57,8 +58,8 @@ void expect_complete_and_sound(const ReliabilityRun& run, const std::string& wha
     }
     return true;
   };
-  EXPECT_EQ(testing::count_flipped_triangles(mesh, *run.setup.problem,
-                                             [&](int t) { return !interior_only || is_interior(t); }),
+  EXPECT_EQ(testing::count_flipped_triangles(
+                mesh, *run.setup.problem, [&](int t) { return !interior_only || is_interior(t); }),
             0)
       << what;
   if (!interior_only) {

@@ -39,18 +39,18 @@ void AtlasOptions::validate() const {
                 "AtlasOptions::hexagonal_side = " << hexagonal_side << " must lie in [1, 1.9]");
   TESSERA_CHECK(radius_growth >= 1.0 && radius_growth <= 4.0,
                 "AtlasOptions::radius_growth = " << radius_growth << " must lie in [1, 4]");
-  TESSERA_CHECK(max_turning_angle > 0 && max_turning_angle <= 1.0,
-                "AtlasOptions::max_turning_angle = " << max_turning_angle
-                                                     << " must lie in (0, 1] radians");
+  TESSERA_CHECK(
+      max_turning_angle > 0 && max_turning_angle <= 1.0,
+      "AtlasOptions::max_turning_angle = " << max_turning_angle << " must lie in (0, 1] radians");
   TESSERA_CHECK(min_sheet_cosine >= 0 && min_sheet_cosine < 1,
                 "AtlasOptions::min_sheet_cosine = " << min_sheet_cosine << " must lie in [0, 1)");
   TESSERA_CHECK(domain_margin >= 0 && domain_margin <= 4,
                 "AtlasOptions::domain_margin = " << domain_margin << " must lie in [0, 4]");
-  TESSERA_CHECK(min_radius_fraction > 0 && min_radius_fraction < 1,
-                "AtlasOptions::min_radius_fraction = " << min_radius_fraction
-                                                       << " must lie in (0, 1)");
-  TESSERA_CHECK(max_start_distance >= 0, "AtlasOptions::max_start_distance = "
-                                             << max_start_distance << " must be >= 0");
+  TESSERA_CHECK(
+      min_radius_fraction > 0 && min_radius_fraction < 1,
+      "AtlasOptions::min_radius_fraction = " << min_radius_fraction << " must lie in (0, 1)");
+  TESSERA_CHECK(max_start_distance >= 0,
+                "AtlasOptions::max_start_distance = " << max_start_distance << " must be >= 0");
   TESSERA_CHECK(max_vertices >= 3,
                 "AtlasOptions::max_vertices = " << max_vertices << " must be at least 3");
 }
@@ -73,12 +73,11 @@ int refine_where(const ImplicitProblem& problem, const Domain& domain, TriangleM
 
 // Post-condition of a completed run, checked rather than assumed: on a closed surface the mesh
 // has no boundary; in a bounded domain every boundary edge lies on ∂S, i.e. both its ends lie
-// on one face or on two adjacent ones (a corner). (Both ends on ∂S is not enough: where M ∩ S is a band narrower than the charts,
-// an edge can run across the band from one face to the opposite one, and a missing row of
-// triangles there cuts the mesh in two with every boundary vertex on ∂S; seen on
-// bvp:points=1000.) Anything else is a hole in the covering, reported with its place.
-void check_coverage(const Domain& domain, const TriangleMesh& mesh,
-                    CoveringSummary& summary) {
+// on one face or on two adjacent ones (a corner). (Both ends on ∂S is not enough: where M ∩ S is a
+// band narrower than the charts, an edge can run across the band from one face to the opposite one,
+// and a missing row of triangles there cuts the mesh in two with every boundary vertex on ∂S; seen
+// on bvp:points=1000.) Anything else is a hole in the covering, reported with its place.
+void check_coverage(const Domain& domain, const TriangleMesh& mesh, CoveringSummary& summary) {
   if (!summary.is_complete()) {
     return;
   }
@@ -104,11 +103,10 @@ void check_coverage(const Domain& domain, const TriangleMesh& mesh,
     }
     if (!on_boundary) {
       summary.termination = CoveringTermination::TriangulationFailed;
-      summary.message =
-          "the mesh has a hole: its boundary edge from " + describe_point(mesh.point(v)) +
-          " to " + describe_point(mesh.point(w)) +
-          (domain.is_unbounded() ? " lies on M, which is closed"
-                                 : " does not lie on one face of the domain");
+      summary.message = "the mesh has a hole: its boundary edge from " +
+                        describe_point(mesh.point(v)) + " to " + describe_point(mesh.point(w)) +
+                        (domain.is_unbounded() ? " lies on M, which is closed"
+                                               : " does not lie on one face of the domain");
       return;
     }
   }
@@ -231,8 +229,9 @@ CoveringResult cover_once(CountedProblem& problem, const StartPoint& start_point
     }
   }
   check_coverage(domain, result.mesh, summary);
-  summary.notes.push_back("covered the component of M that contains the start point; other "
-                          "components, if any, need their own start points");
+  summary.notes.push_back(
+      "covered the component of M that contains the start point; other "
+      "components, if any, need their own start points");
   return result;
 }
 
@@ -255,8 +254,9 @@ CoveringResult cover_by_atlas(const ImplicitProblem& user_problem, const Eigen::
     AtlasOptions unsnapped = options;
     unsnapped.boundary_snap = 0.0;
     result = cover_once(problem, start_point, domain, unsnapped, clipping_failed);
-    result.summary.notes.push_back("charts snapped onto the domain boundary left a mesh the "
-                                   "clipping refused; computed again without snapping");
+    result.summary.notes.push_back(
+        "charts snapped onto the domain boundary left a mesh the "
+        "clipping refused; computed again without snapping");
   }
   finish_summary(result.mesh, result.summary, problem, clock_start);
   return result;

@@ -67,8 +67,8 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
   const Eigen::MatrixXd& T = at_center.tangent_basis();
   double r = trial;
   int measurements = 0;
-  bool halved = false;       // the corrector or the graph test refused a larger disk
-  bool turned = false;       // a remeasurement was asked for by the curvature cap
+  bool halved = false;  // the corrector or the graph test refused a larger disk
+  bool turned = false;  // a remeasurement was asked for by the curvature cap
   Eigen::VectorXd& y = probe_;
   Eigen::VectorXd& predicted = predicted_;
   Eigen::MatrixXd& a = quadratic_;
@@ -198,8 +198,9 @@ double AtlasBuilder::jacobian_scale() const {
     return J.norm();
   }
   const Eigen::MatrixXd gram = J * J.transpose();
-  return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram,
-                                     Eigen::EigenvaluesOnly).eigenvalues()(0)));
+  return std::sqrt(
+      std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram, Eigen::EigenvaluesOnly)
+                        .eigenvalues()(0)));
 }
 
 signed char AtlasBuilder::orientation_sign(const Eigen::Ref<const Eigen::MatrixXd>& T) const {
@@ -275,8 +276,7 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
       continue;  // a transversal crossing (section 8), kept apart by the sheet test
     }
     const Eigen::Vector2d along = linearization.tangent_basis().transpose() * offset;
-    const double normal_part =
-        std::sqrt(std::max(0.0, offset.squaredNorm() - along.squaredNorm()));
+    const double normal_part = std::sqrt(std::max(0.0, offset.squaredNorm() - along.squaredNorm()));
     if (normal_part > 0.5 * along.norm()) {
       if (0.5 * distance < radius) {
         radius = 0.5 * distance;
@@ -546,19 +546,19 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     int children = 0;
     Eigen::Vector2d last_target(std::nan(""), std::nan(""));
     double smallest_child = charts_[c].radius;
-    for (int vertex = next_open_vertex(c); vertex >= 0 && !stopped_;
-         vertex = next_open_vertex(c)) {
+    for (int vertex = next_open_vertex(c); vertex >= 0 && !stopped_; vertex = next_open_vertex(c)) {
       if (chart_count() >= options_.max_vertices) {
         fail(summary, CoveringTermination::VertexLimit,
              "stopped at " + std::to_string(chart_count()) + " charts (max_vertices)");
         break;
       }
       // A chart next to much smaller ones needs about (R/r)² of them around it.
-      if (++children > kMaxChildrenPerChart * std::max(1.0, std::pow(charts_[c].radius /
-                                                                        smallest_child, 2))) {
+      if (++children >
+          kMaxChildrenPerChart * std::max(1.0, std::pow(charts_[c].radius / smallest_child, 2))) {
         fail(summary, CoveringTermination::ProjectionFailed,
-             "the chart at " + describe_point(xc) + " could not be closed: its neighbours do not "
-             "cut away the uncovered corners of its polygon");
+             "the chart at " + describe_point(xc) +
+                 " could not be closed: its neighbours do not "
+                 "cut away the uncovered corners of its polygon");
         break;
       }
       const auto& v = charts_[c].polygon.vertices()[vertex];

@@ -69,8 +69,7 @@ class AtlasBuilder {
   }
 
  private:
-  bool choose_radius(const Linearization& at_center, double trial, double& radius,
-                     RadiusCap& cap);
+  bool choose_radius(const Linearization& at_center, double trial, double& radius, RadiusCap& cap);
   bool project(const Linearization& at_center, double distance, Eigen::VectorXd& y);
   void evaluate_jacobian(const Eigen::VectorXd& x);
   double jacobian_scale() const;
@@ -100,7 +99,7 @@ class AtlasBuilder {
   std::vector<double> centers_;   // n per chart
   std::vector<double> tangents_;  // n×2 per chart, column-major
   std::vector<Chart> charts_;
-  std::deque<int> open_;          // charts that may have eligible exterior vertices
+  std::deque<int> open_;  // charts that may have eligible exterior vertices
   std::unordered_map<int, Linearization> factored_;  // factorisations of queued charts
   std::vector<Linearization> spare_;  // factorisations of processed charts, reused (no allocation)
   Linearization take_spare() {
@@ -111,14 +110,14 @@ class AtlasBuilder {
     spare_.pop_back();
     return spare;
   }
-  std::vector<int> candidates_;   // scratch
-  Eigen::VectorXd offset_;        // scratch
-  Eigen::VectorXd predicted_;     // scratch
-  Eigen::MatrixXd jacobian_;      // J at the last point checked for singularity
-  Eigen::VectorXd probe_;         // scratch
-  Eigen::MatrixXd quadratic_;     // scratch: n×3, q_i of choose_radius
+  std::vector<int> candidates_;     // scratch
+  Eigen::VectorXd offset_;          // scratch
+  Eigen::VectorXd predicted_;       // scratch
+  Eigen::MatrixXd jacobian_;        // J at the last point checked for singularity
+  Eigen::VectorXd probe_;           // scratch
+  Eigen::MatrixXd quadratic_;       // scratch: n×3, q_i of choose_radius
   Eigen::MatrixXd parent_tangent_;  // scratch
-  Linearization scratch_;         // workspace of full Gauss–Newton
+  Linearization scratch_;           // workspace of full Gauss–Newton
   bool stopped_ = false;
   int singular_crossings_ = 0;
   int sheet_rejections_ = 0;
