@@ -23,7 +23,7 @@ constexpr int kMaxHoleVertices = 12;
 
 struct Proposal {
   std::pair<std::uint64_t, std::uint32_t> key;  // the triangle's charts, increasing, packed
-  std::array<int, 3> sorted;  // the same, unpacked
+  std::array<int, 3> sorted;                    // the same, unpacked
   int proposer = 0;
   bool even = true;  // (i, j, k) as proposed is an even permutation of `sorted`
 };
@@ -160,10 +160,9 @@ int HoleFiller::fill(std::string& message) {
         continue;  // the boundary of the atlas (run stopped, or the margin outside the domain)
       }
       std::reverse(simple.begin(), simple.end());  // counter-clockwise around the hole
-      // Where M turns fast the one tangent plane can misjudge orientation; the loop's own
-      // orientation (from its neighbours) then decides, with the best angles.
-      if (static_cast<int>(simple.size()) > kMaxHoleVertices ||
-          (!triangulate(simple, added, true) && !triangulate(simple, added, false))) {
+      // Only counter-clockwise triangles: a loop that cannot be filled so is not a hole but
+      // the outline of an island of triangles (filling it would double the island) or a fold.
+      if (static_cast<int>(simple.size()) > kMaxHoleVertices || !triangulate(simple, added, true)) {
         if (message.empty()) {
           message = "the charts' polygons leave a hole of " + std::to_string(simple.size()) +
                     " vertices near " + describe_point(cells_.center(simple.front())) +
@@ -185,20 +184,23 @@ bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>
   for (int i = 0; i < k; ++i) {
     x[i] = cells_.center(loop[i]);
   }
-  // Orientation is judged in the tangent plane of the first vertex; angles in R^n.
-  const Eigen::MatrixXd T = cells_.tangent(loop[0]);
-  std::vector<Eigen::Vector2d> p(k);
+  // Orientation is judged in the tangent planes of the triangle's own vertices (all three must
+  // agree: where M turns fast, one far tangent plane can misjudge it); angles in R^n.
+  std::vector<Eigen::MatrixXd> T(k);
   for (int i = 0; i < k; ++i) {
-    p[i] = T.transpose() * (x[i] - x[0]);
+    T[i] = cells_.tangent(loop[i]);
   }
   auto quality = [&](int a, int b, int c) {
-    const Eigen::Vector2d u = p[b] - p[a];
-    const Eigen::Vector2d v = p[c] - p[a];
-    if (require_counter_clockwise && u(0) * v(1) - u(1) * v(0) <= 0) {
-      return -1.0;  // not counter-clockwise: would fold over its neighbours
+    for (int corner : {a, b, c}) {
+      const Eigen::Vector2d u = T[corner].transpose() * (x[b] - x[a]);
+      const Eigen::Vector2d v = T[corner].transpose() * (x[c] - x[a]);
+      if (require_counter_clockwise && u(0) * v(1) - u(1) * v(0) <= 0) {
+        return -1.0;  // not counter-clockwise: would fold over its neighbours
+      }
     }
-    const double smallest = std::min({corner_angle(x[a], x[b], x[c]), corner_angle(x[b], x[c], x[a]),
-                     corner_angle(x[c], x[a], x[b])});
+    const double smallest =
+        std::min({corner_angle(x[a], x[b], x[c]), corner_angle(x[b], x[c], x[a]),
+                  corner_angle(x[c], x[a], x[b])});
     return smallest > 0 ? smallest : -1.0;
   };
   auto diagonal_allowed = [&](int a, int b) {
@@ -217,8 +219,7 @@ bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>
         continue;
       }
       for (int m = i + 1; m < j; ++m) {
-        const double value =
-            std::min({best[i * k + m], best[m * k + j], quality(i, m, j)});
+        const double value = std::min({best[i * k + m], best[m * k + j], quality(i, m, j)});
         if (value > best[i * k + j]) {
           best[i * k + j] = value;
           split[i * k + j] = m;
@@ -257,7 +258,7 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
     const int m = static_cast<int>(vertices.size());
     for (int i = 0; i < m && m >= 3; ++i) {
       const int before = vertices[(i + m - 1) % m].edge_label;  // edge ending at vertex i
-      const int after = vertices[i].edge_label;                // edge starting at vertex i
+      const int after = vertices[i].edge_label;                 // edge starting at vertex i
       if (before < 0 || after < 0 || before == after ||
           vertices[i].s * vertices[i].s + vertices[i].t * vertices[i].t > r2) {
         continue;
