@@ -5,12 +5,17 @@
 // every mesh is also checked geometrically (no flipped triangle, no doubled patch).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "support/mesh_defects.h"
 #include "support/test_support.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/methods/atlas/atlas.h"
+#include "tessera/methods/atlas/atlas_triangulation.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/problem_file.h"
 
@@ -145,6 +150,99 @@ TEST(AtlasReliability, DefectCountsFindAPlantedFlipAndADoubledPatch) {
   with_copy.push_back(copy);
   doubled.set_triangles(with_copy);
   EXPECT_GE(testing::count_overlapping_pairs(doubled), 1);
+}
+
+// whitney_pleat at tolerance 0.01062 left a hole in S: four nearly cocircular charts whose
+// polygons each chose another diagonal proposed no triangle all of them agreed on, and the
+// hole filler walked from that hole, through a second one at a chart never completed (just
+// beyond the margin outside S), along the whole outer boundary of the atlas; that walk was
+// longer than any hole and dropped, the first hole with it. Here on a planar grid of charts
+// whose outer ring is open: hole B is a square at the open ring, hole A a square of closed
+// charts touching B at one corner. A must be filled, B (an open chart's) left alone.
+TEST(AtlasTriangulation, FillsAHoleOfClosedChartsThatTouchesTheOpenBoundaryOfTheAtlas) {
+  constexpr int kSide = 16;  // the outer ring has 60 charts: longer than any hole
+  constexpr double kRadius = 0.8;
+  constexpr double kDelta = 0.01;
+  // Chart numbers decide where the filler's walks start and which way they turn: the first
+  // walk starts on A at (2, 2), reaches the shared chart (1, 2) and turns into B, then runs
+  // along the whole ring before it comes back, as the walk on whitney_pleat did.
+  std::vector<std::array<int, 2>> position = {{2, 2}, {1, 1}, {1, 2}, {1, 3}, {2, 3}};
+  for (int x = 0; x < kSide; ++x) {
+    for (int y = 0; y < kSide; ++y) {
+      if (std::find(position.begin(), position.end(), std::array<int, 2>{x, y}) == position.end()) {
+        position.push_back({x, y});
+      }
+    }
+  }
+  std::vector<int> number(kSide * kSide);
+  for (int c = 0; c < kSide * kSide; ++c) {
+    number[position[c][0] * kSide + position[c][1]] = c;
+  }
+  auto index = [&](int x, int y) { return number[x * kSide + y]; };
+  // Squares by their lower left corner: A at (1, 2), B at (0, 1); they share the chart (1, 2).
+  auto is_hole = [](int x, int y) { return (x == 1 && y == 2) || (x == 0 && y == 1); };
+  std::vector<ChartPolygon> polygons(kSide * kSide);
+  std::vector<bool> closed(kSide * kSide, false);
+  for (int x = 0; x < kSide; ++x) {
+    for (int y = 0; y < kSide; ++y) {
+      ChartPolygon& polygon = polygons[index(x, y)];
+      polygon = ChartPolygon(1.2 * kRadius);
+      for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+          if ((dx == 0 && dy == 0) || x + dx < 0 || x + dx >= kSide || y + dy < 0 ||
+              y + dy >= kSide) {
+            continue;
+          }
+          const double length = std::hypot(dx, dy);
+          double offset = 0.5 * length;
+          if (dx != 0 && dy != 0) {
+            // A diagonal neighbour: its bisector passes through the square's corner. Charts
+            // agree on the diagonal (x, y)–(x+1, y+1) except in a hole, where every chart sees
+            // its diagonal neighbour a little nearer, so neighbours disagree.
+            const bool hole = is_hole(std::min(x, x + dx), std::min(y, y + dy));
+            offset += (hole || dx == dy) ? -kDelta : kDelta;
+          }
+          polygon.cut(dx / length, dy / length, offset, index(x + dx, y + dy));
+        }
+      }
+      closed[index(x, y)] =
+          polygon.farthest_exterior_vertex(kRadius) < 0 &&
+          std::none_of(polygon.vertices().begin(), polygon.vertices().end(),
+                       [](const auto& v) { return v.edge_label == ChartPolygon::kNoNeighbour; });
+    }
+  }
+  ASSERT_FALSE(closed[index(0, 1)]);
+  ASSERT_TRUE(closed[index(1, 2)] && closed[index(2, 2)] && closed[index(1, 3)] &&
+              closed[index(2, 3)]);
+  AtlasCells cells;
+  cells.ambient_dimension = 3;
+  cells.chart_count = kSide * kSide;
+  cells.center = [&](int c) {
+    return Eigen::VectorXd(Eigen::Vector3d(position[c][0], position[c][1], 0));
+  };
+  cells.tangent = [](int) { return Eigen::MatrixXd(Eigen::MatrixXd::Identity(3, 2)); };
+  cells.polygon = [&](int c) -> const ChartPolygon& { return polygons[c]; };
+  cells.radius = [](int) { return kRadius; };
+  cells.is_closed = [&](int c) { return closed[c]; };
+  const AtlasTriangulation triangulation = triangulate_atlas(cells);
+  EXPECT_TRUE(triangulation.message.empty()) << triangulation.message;
+  // Triangles with all three vertices in a square, found by position (z = 0, integer x, y).
+  auto triangles_in = [&](int x, int y) {
+    int count = 0;
+    for (const Triangle& t : triangulation.mesh.triangles()) {
+      bool inside = true;
+      for (int v : t) {
+        const Eigen::VectorXd& p = triangulation.mesh.point(v);
+        inside = inside && (p(0) == x || p(0) == x + 1) && (p(1) == y || p(1) == y + 1);
+      }
+      count += inside ? 1 : 0;
+    }
+    return count;
+  };
+  EXPECT_EQ(triangles_in(1, 2), 2);  // hole A, filled
+  EXPECT_EQ(triangles_in(0, 1), 0);  // hole B, at the open ring: no triangle agreed on, none made
+  EXPECT_EQ(triangles_in(5, 5), 2);  // an ordinary square
+  EXPECT_EQ(triangulation.filled_holes, 1);
 }
 
 }  // namespace

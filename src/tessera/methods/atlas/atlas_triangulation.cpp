@@ -43,7 +43,9 @@ bool is_even_rotation(const std::array<int, 3>& t, const std::array<int, 3>& sor
 }
 
 // A closed walk that visits a vertex twice is two loops joined there; returns the simple ones.
-std::vector<std::vector<int>> split_into_simple_loops(const std::vector<int>& walk) {
+// Of a walk that does not close (it ran into a dead end), only the loops it went around count:
+// what is left after them is the open tail, no loop.
+std::vector<std::vector<int>> split_into_simple_loops(const std::vector<int>& walk, bool closed) {
   std::vector<std::vector<int>> loops;
   std::vector<int> stack;
   for (int v : walk) {
@@ -54,7 +56,7 @@ std::vector<std::vector<int>> split_into_simple_loops(const std::vector<int>& wa
     }
     stack.push_back(v);
   }
-  if (stack.size() >= 3) {
+  if (closed && stack.size() >= 3) {
     loops.push_back(stack);
   }
   std::erase_if(loops, [](const std::vector<int>& loop) { return loop.size() < 3; });
@@ -139,7 +141,7 @@ int HoleFiller::fill(std::string& message) {
     std::vector<int> loop;
     int edge = static_cast<int>(first);
     bool closed_loop = false;
-    while (edge >= 0 && static_cast<int>(loop.size()) <= 4 * kMaxHoleVertices) {
+    while (edge >= 0) {
       used[edge] = true;
       loop.push_back(boundary[edge].first);
       const int head = boundary[edge].second;
@@ -149,11 +151,18 @@ int HoleFiller::fill(std::string& message) {
       }
       edge = next_from(head);
     }
-    if (!closed_loop) {
-      continue;  // a loop that touches itself or is very long: the atlas boundary
-    }
     // Where two holes touch at a vertex the walk runs through both: split it into simple loops.
-    for (std::vector<int>& simple : split_into_simple_loops(loop)) {
+    // The walk is followed to its end and only then split. Where a hole touches the atlas's
+    // outer boundary (a hole of disagreeing charts next to one at the margin outside S that is
+    // never completed), the walk runs around the hole and along the whole outer boundary; the
+    // hole is still a hole between closed charts and must be filled. Dropping every walk longer
+    // than the longest hole, as before, left such a hole inside S (whitney_pleat at tolerance
+    // 0.01062: four nearly cocircular charts at the face y = 1.5, whose polygons each chose a
+    // different diagonal, touching through a second such quad a chart just beyond the margin).
+    for (std::vector<int>& simple : split_into_simple_loops(loop, closed_loop)) {
+      if (static_cast<int>(simple.size()) > 4 * kMaxHoleVertices) {
+        continue;  // the atlas boundary
+      }
       const bool all_closed =
           std::all_of(simple.begin(), simple.end(), [&](int c) { return cells_.is_closed(c); });
       if (!all_closed) {
