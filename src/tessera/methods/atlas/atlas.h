@@ -42,9 +42,11 @@ struct AtlasOptions : CoveringOptions {
   /// A chart's radius is at most this factor times its parent's, so that the triangles between
   /// charts of different sizes keep good angles.
   double radius_growth = 1.5;
-  /// κR ≤ this (radians): the tangent planes of neighbouring charts differ by at most about
-  /// twice this angle, which keeps the tangent-plane projections one-to-one.
-  double max_turning_angle = 0.5;
+  /// κR ≤ this (radians): the tangent planes of overlapping charts differ by at most about
+  /// twice this angle, which keeps the tangent-plane projections one-to-one and the power
+  /// diagrams that neighbouring charts see in their own planes alike (0.5 left holes on cstr
+  /// at tolerance 0.03, where M turns fast near x1 = 1; issue 10).
+  double max_turning_angle = 0.35;
   /// Overlapping charts whose tangent planes have |det(T_iᵀT_j)| below this lie on different
   /// sheets of M (a transversal crossing, section 8) and are never glued.
   double min_sheet_cosine = 0.35;

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "tessera/core/corrector.h"
 #include "tessera/core/describe.h"
@@ -23,6 +24,14 @@ constexpr int kMaxChildrenPerChart = 64;
 // Below this dimension the orientation det([J; Tᵀ]) is cheap enough to watch for singular
 // crossings at every step (dense problems only; see docs/algorithms/atlas.md).
 constexpr int kMaxCrossingTestDimension = 200;
+// pointOnDisk by full Gauss–Newton (where the chord fails) is accepted if it moved the point
+// along the chart's tangent plane by at most this fraction of the distance from the centre.
+constexpr double kMaxTangentialDrift = 0.1;
+// choose_radius probes M at r and at this fraction of r: the slope between them is the
+// turning of the tangent plane near the rim of the disk.
+constexpr double kInnerProbe = 0.75;
+// A chart whose own disk boundary cannot be reached by pointOnDisk is shrunk by this factor.
+constexpr double kShrinkFactor = 0.7;
 
 }  // namespace
 
@@ -37,40 +46,53 @@ AtlasBuilder::AtlasBuilder(const ImplicitProblem& problem, const Domain& domain,
                        problem.ambient_dimension() <= kMaxCrossingTestDimension) {}
 
 // Henderson's section 2.4: with a(s,t) the offset of M from the tangent plane,
-// R = sqrt(2ε/|a_ss|). Instead of second derivatives of F, the quadratic form of a is measured
-// where it matters: three points at distance r in directions 0°, 60°, 120° are projected onto
-// M orthogonally to the tangent plane (the chord corrector of the chart), and their normal
-// offsets a_i give q_i = 2a_i/r² = A + B cos 2θ_i + C sin 2θ_i. The largest |A + B cos 2θ +
-// C sin 2θ| over θ is the largest normal curvature κ. If a projection fails, the corrector does
-// not converge that far: r is halved (the radius is also "capped by where the corrector
-// converges").
-bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, double& radius) {
+// R = sqrt(2ε/|a_ss|). Instead of second derivatives of F, the offset is measured where it
+// matters: six points at distance r in directions 0°, 60°, …, 300° are projected onto M
+// orthogonally to the tangent plane (the chord corrector of the chart, pointOnDisk).
+//  - The even part of the offsets, q_i = (a(θ_i) + a(θ_i + π))/r² = A + B cos 2θ_i +
+//    C sin 2θ_i (exactly for the quadratic and cubic parts of a), gives the quadratic form;
+//    the largest |A + B cos 2θ + C sin 2θ| over θ is the largest normal curvature κ_q.
+//  - Each offset alone gives the secant curvature 2|a(θ_j)|/r², which also sees the cubic
+//    (odd) part: where the curvature grows across the disk (towards a thin part of M, a fold,
+//    the turn of the trough), the disk is sized by the largest curvature it contains.
+// κ is the larger of the two. The radius R = min(r, sqrt(2ε/κ), max_turning_angle/κ) is then
+// measured again at R, until the disk the measurement covered is not much larger than the
+// disk chosen (R ≥ 0.7 r): a radius is only accepted if M was seen across the whole disk.
+// The radius is also capped where M is not a graph of slope ≤ 1 over the disk of radius r, or
+// the corrector does not converge that far (r is halved): the disk then reaches past a
+// turn of M or onto another part of it, so its tangent-plane projection is not one-to-one.
+bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, double& radius,
+                                 RadiusCap& cap) {
   const Eigen::VectorXd& x = at_center.point();
   const Eigen::MatrixXd& T = at_center.tangent_basis();
   double r = trial;
-  bool remeasured = false;
+  int measurements = 0;
+  bool halved = false;  // the corrector or the graph test refused a larger disk
+  bool turned = false;  // a remeasurement was asked for by the curvature cap
   Eigen::VectorXd& y = probe_;
   Eigen::VectorXd& predicted = predicted_;
-  Eigen::MatrixXd& q = quadratic_;
-  q.resize(n_, 3);
+  Eigen::MatrixXd& a = quadratic_;
+  a.resize(n_, 12);  // columns 0–5: a(θ_i) at r; 6–11: a(θ_i) at kInnerProbe·r
   while (r >= min_radius_) {
-    bool converged = true;
-    static const std::array<Eigen::Vector2d, 3> directions = {
-        Eigen::Vector2d(1.0, 0.0), Eigen::Vector2d(0.5, std::sqrt(3.0) / 2),
-        Eigen::Vector2d(-0.5, std::sqrt(3.0) / 2)};  // θ = 0°, 60°, 120°
-    for (int i = 0; i < 3 && converged; ++i) {
-      const Eigen::Vector2d& d = directions[i];
-      predicted = x + r * (T * d);
+    bool is_graph = true;
+    for (int i = 0; i < 12 && is_graph; ++i) {
+      const double theta = (i % 6) * std::numbers::pi / 3.0;
+      const double distance = i < 6 ? r : kInnerProbe * r;
+      predicted = x + distance * (T * Eigen::Vector2d(std::cos(theta), std::sin(theta)));
       y = predicted;
-      converged = project(at_center, r, y);
+      is_graph = project(at_center, distance, y);
       y -= predicted;  // the offset; its tangential part is zero for the chord, not for GN
       const Eigen::Vector2d along = T.transpose() * y;
-      q.col(i) = (2.0 / (r * r)) * (y - T * along);
+      a.col(i) = y - T * along;
+      // Slope above 1 across the disk: the projection found a far part of M, not a graph.
+      is_graph = is_graph && a.col(i).norm() <= distance;
     }
-    if (!converged) {
+    if (!is_graph) {
       r *= 0.5;
+      halved = true;
       continue;
     }
+    ++measurements;
     // q_i = A + B cos 2θ_i + C sin 2θ_i at θ = 0°, 60°, 120°.
     // |A + cos φ B + sin φ C| over φ = 2θ in [0, 2π), with A = mean q, B = q0 − A,
     // C = (q1 − q2)/√3, written as weights of q0, q1, q2 (tabulated once).
@@ -78,29 +100,62 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
       std::array<std::array<double, 3>, 24> w{};
       for (int k = 0; k < 24; ++k) {
         const double phi = k * std::numbers::pi / 12.0;
-        const double a = (1.0 - std::cos(phi)) / 3.0;
-        w[k] = {a + std::cos(phi), a + std::sin(phi) / std::sqrt(3.0),
-                a - std::sin(phi) / std::sqrt(3.0)};
+        const double c = (1.0 - std::cos(phi)) / 3.0;
+        w[k] = {c + std::cos(phi), c + std::sin(phi) / std::sqrt(3.0),
+                c - std::sin(phi) / std::sqrt(3.0)};
       }
       return w;
     }();
-    double curvature = 0.0;
-    for (const auto& w : weights) {
-      curvature = std::max(curvature, (w[0] * q.col(0) + w[1] * q.col(1) + w[2] * q.col(2)).norm());
-    }
-    double chosen = std::min(options_.step, r);
-    if (curvature > 0) {
-      chosen = std::min({chosen, std::sqrt(2.0 * options_.tolerance / curvature),
-                         options_.max_turning_angle / curvature});
-    }
-    if (chosen < 0.5 * r && !remeasured) {
-      // Measured far beyond the radius chosen: measure again there, where the quadratic
-      // model is accurate (third-order terms shrink by the ratio of the radii).
-      remeasured = true;
+    // Largest ‖Q(θ)‖ over θ of the form through the values at three directions 60° apart.
+    const auto largest = [&](const auto& q0, const auto& q1, const auto& q2) {
+      double value = 0.0;
+      for (const auto& w : weights) {
+        value = std::max(value, (w[0] * q0 + w[1] * q1 + w[2] * q2).norm());
+      }
+      return value;
+    };
+    // Each half of the disk (θ = 0°, 60°, 120° and θ = 180°, 240°, 300°) gets its own form, so
+    // that a curvature growing towards one side is not averaged with the other side.
+    const double scale = 2.0 / (r * r);
+    const double curvature = scale * std::max(largest(a.col(0), a.col(1), a.col(2)),
+                                              largest(a.col(3), a.col(4), a.col(5)));
+    // The turning of the tangent plane near the rim of the disk, from the slope of a between
+    // the inner and outer probes, also as a form over the directions: on a circle of
+    // curvature κ the slope is tan(κ·(mean of the two radii)).
+    const double step = (1.0 - kInnerProbe) * r;
+    const double slope =
+        std::max(largest(a.col(0) - a.col(6), a.col(1) - a.col(7), a.col(2) - a.col(8)),
+                 largest(a.col(3) - a.col(9), a.col(4) - a.col(10), a.col(5) - a.col(11))) /
+        step;
+    const double rim_curvature = std::atan(slope) / (0.5 * (1.0 + kInnerProbe) * r);
+    const double for_tolerance =
+        curvature > 0 ? std::sqrt(2.0 * options_.tolerance / curvature) : options_.step;
+    // Where the curvature grows towards the rim (a thin part or a turn of M ahead), the
+    // turning measured there exceeds κ·r: the disk is then sized by it.
+    const double largest_curvature = std::max(curvature, rim_curvature);
+    const double for_turning = largest_curvature > 0
+                                   ? options_.max_turning_angle / largest_curvature
+                                   : options_.step;
+    const double chosen = std::min({options_.step, r, for_tolerance, for_turning});
+    if (chosen < 0.7 * r && measurements < 4) {
+      // Measured beyond the radius chosen: measure again there, where the quadratic model
+      // is accurate (third-order terms shrink by the ratio of the radii), and so that the
+      // secant sees the largest curvature inside the chosen disk, not a larger one.
+      turned = turned || for_turning <= chosen;
       r = chosen;
       continue;
     }
     radius = chosen;
+    // Capped: smaller than the tolerance (and max_radius) would allow, by the curvature
+    // (κR ≤ max_turning_angle: the local feature size), by the corrector or the graph test,
+    // or else by the trial radius (the grading of the radii between neighbouring charts).
+    if (chosen < 0.99 * std::min(options_.step, for_tolerance)) {
+      cap = turned || for_turning <= chosen ? RadiusCap::Curvature
+            : halved                        ? RadiusCap::NotAGraph
+                                            : RadiusCap::Grading;
+    } else {
+      cap = RadiusCap::None;
+    }
     return true;
   }
   return false;
@@ -109,7 +164,11 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
 // Henderson's pointOnDisk: F(y) = 0 with Tᵀ(y − y_predicted) = 0, by the chord iteration of
 // the chart. Across a singular curve the frozen J points the wrong way (F = z·S changes the
 // sign of its gradient with z), so a failed chord is retried with full Gauss–Newton, which
-// re-evaluates J and lands on the same sheet; its small tangential drift does not matter.
+// re-evaluates J and lands on the same sheet. Its tangential drift must stay small: a large
+// one means the line through y normal to the chart misses M (the disk reaches past a turn of
+// M) and Gauss–Newton found the nearest point of M instead, which is not pointOnDisk's point:
+// a radius measured there is meaningless and a chart centred there would not cut away the
+// corner it was placed for.
 bool AtlasBuilder::project(const Linearization& at_center, double distance, Eigen::VectorXd& y) {
   const Eigen::VectorXd predicted = y;
   if (project_chord(problem_, at_center, y, options_.corrector).is_success()) {
@@ -118,7 +177,11 @@ bool AtlasBuilder::project(const Linearization& at_center, double distance, Eige
   y = predicted;
   CorrectorOptions full = options_.corrector;
   full.max_displacement = 0.5 * distance;
-  return project_gauss_newton(problem_, y, full, scratch_).is_success();
+  if (!project_gauss_newton(problem_, y, full, scratch_).is_success()) {
+    return false;
+  }
+  const Eigen::Vector2d drift = at_center.tangent_basis().transpose() * (y - predicted);
+  return drift.norm() <= kMaxTangentialDrift * distance;
 }
 
 void AtlasBuilder::evaluate_jacobian(const Eigen::VectorXd& x) {
@@ -173,13 +236,59 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
           options_.min_sheet_cosine) {
     return -1;  // the projection jumped to another sheet; the caller tries another point
   }
-  const double trial =
-      parent >= 0 ? std::min(options_.step, options_.radius_growth * charts_[parent].radius)
-                  : options_.step;
+  // The radii are graded: R ≤ R_j + (radius_growth − 1)·‖x − c_j‖ for every chart j whose disk
+  // the new one may overlap (for the parent, at distance R_j, this is R ≤ radius_growth·R_j).
+  // A radius function with Lipschitz constant below 1 never lets a disk contain a neighbour's,
+  // whose power cell would then be empty or a sliver that the charts' slightly different
+  // tangent planes see differently (holes, inconsistent triangles); it also keeps the triangles
+  // between charts of different sizes well shaped.
+  double trial = options_.step;
+  if (parent >= 0) {
+    const double slope = options_.radius_growth - 1.0;
+    trial = std::min(trial, options_.radius_growth * charts_[parent].radius);
+    index_.candidates(x, trial, candidates_);
+    for (int m : candidates_) {
+      const double distance = (center(m) - x).norm();
+      if (distance < trial + charts_[m].radius) {
+        trial = std::min(trial, charts_[m].radius + slope * distance);
+      }
+    }
+  }
   double radius = 0.0;
-  if (!choose_radius(linearization, trial, radius)) {
+  RadiusCap cap = RadiusCap::None;
+  if (!choose_radius(linearization, trial, radius, cap)) {
     return -2;
   }
+  // The reach: another part of M (a chart whose centre lies far from this tangent plane, not a
+  // transversal crossing) within the disks means M comes back within their distance d, so
+  // disks of radius above d/2 would overlap across the gap and glue or double the two parts.
+  // Both are capped at d/2 (the older one shrunk, its polygon and its neighbours' rebuilt).
+  index_.candidates(x, radius, candidates_);
+  std::vector<int> too_close;
+  for (int m : candidates_) {
+    const Eigen::VectorXd offset = center(m) - x;
+    const double distance = offset.norm();
+    if (m == parent || distance >= radius + charts_[m].radius || distance == 0.0) {
+      continue;
+    }
+    const Eigen::Matrix2d cosines = tangent(m).transpose() * linearization.tangent_basis();
+    if (std::abs(cosines.determinant()) < options_.min_sheet_cosine) {
+      continue;  // a transversal crossing (section 8), kept apart by the sheet test
+    }
+    const Eigen::Vector2d along = linearization.tangent_basis().transpose() * offset;
+    const double normal_part = std::sqrt(std::max(0.0, offset.squaredNorm() - along.squaredNorm()));
+    if (normal_part > 0.5 * along.norm()) {
+      if (0.5 * distance < radius) {
+        radius = 0.5 * distance;
+        cap = RadiusCap::Reach;
+      }
+      too_close.push_back(m);
+    }
+  }
+  if (radius < min_radius_) {
+    return -2;
+  }
+  ++capped_[static_cast<int>(cap)];
   const int k = chart_count();
   Chart chart;
   chart.radius = radius;
@@ -199,6 +308,12 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   tangents_.insert(tangents_.end(), T.data(), T.data() + 2 * n_);
   connect_neighbours(k);
   index_.insert(k, x, radius);
+  for (int m : too_close) {
+    const double half = 0.5 * (center(m) - center(k)).norm();
+    if (charts_[m].radius > half && half >= min_radius_) {
+      shrink_radius(m, half);
+    }
+  }
   return k;
 }
 
@@ -245,6 +360,54 @@ void AtlasBuilder::connect_neighbours(int k) {
         !charts_[m].queued && next_open_vertex(m) >= 0) {
       // (Cuts only shrink a polygon; this re-queues a chart whose corner a cut moved, which
       // matters only for charts that were skipped while the queue held them.)
+      enqueue(m);
+    }
+  }
+}
+
+// The polygon of chart k from scratch: its square, cut by every overlapping chart of its sheet.
+void AtlasBuilder::rebuild_polygon(int k) {
+  const auto ck = center(k);
+  const double rk = charts_[k].radius;
+  charts_[k].polygon = ChartPolygon(kInitialHalfWidth * rk);
+  std::vector<int> candidates;
+  index_.candidates(ck, rk, candidates);
+  std::sort(candidates.begin(), candidates.end());
+  Eigen::VectorXd offset;
+  for (int m : candidates) {
+    const double rm = charts_[m].radius;
+    offset = center(m) - ck;
+    const double distance = offset.norm();
+    if (m == k || distance >= rk + rm || distance == 0.0) {
+      continue;
+    }
+    if (!same_sheet(k, m, offset) && m != charts_[k].parent && charts_[m].parent != k) {
+      continue;
+    }
+    const Eigen::Vector2d pk = tangent(k).transpose() * offset;
+    if (pk.norm() > 0) {
+      charts_[k].polygon.cut(pk(0) / pk.norm(), pk(1) / pk.norm(),
+                             (pk.squaredNorm() + rk * rk - rm * rm) / (2.0 * pk.norm()), m);
+    }
+  }
+}
+
+// A smaller radius moves every power bisector of chart c towards c: its polygon shrinks and its
+// neighbours' grow, so all of them are rebuilt, and the neighbours re-queued if a corner of
+// theirs is now uncovered.
+void AtlasBuilder::shrink_radius(int c, double radius) {
+  const double old_radius = charts_[c].radius;
+  charts_[c].radius = radius;
+  ++shrunk_charts_;
+  rebuild_polygon(c);
+  std::vector<int> neighbours;
+  index_.candidates(center(c), old_radius, neighbours);
+  for (int m : neighbours) {
+    if (m == c || (center(m) - center(c)).norm() >= old_radius + charts_[m].radius) {
+      continue;
+    }
+    rebuild_polygon(m);
+    if (!charts_[m].queued && next_open_vertex(m) >= 0) {
       enqueue(m);
     }
   }
@@ -412,10 +575,22 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       // A corner the last child did not remove gets Henderson's placement, which always does.
       const Eigen::Vector2d target =
           target_repeated ? charts_[c].radius * direction : child_position(c, vertex);
+      bool shrunk = false;
       for (double fraction : {1.0, 0.85, 1.1, 0.7, 0.5, 0.35, 0.25}) {
         const Eigen::Vector2d s = fraction * target;
         y = xc + Tc * s;
         if (!project(at_center, s.norm(), y)) {
+          if (fraction == 1.0 && charts_[c].radius > 4.0 * min_radius_ &&
+              s.norm() >= 0.99 * charts_[c].radius) {
+            // pointOnDisk fails on the chart's own disk: M is no graph over it in this
+            // direction or the corrector does not reach its rim, so the radius was too large
+            // (its measurement missed this direction). A child placed nearer would not cut
+            // the corner away; the chart is shrunk instead (Henderson's cap "where the
+            // mapping exists", applied where it was found to fail).
+            shrink_radius(c, kShrinkFactor * charts_[c].radius);
+            shrunk = true;
+            break;
+          }
           continue;
         }
         if (watch_crossings_) {
@@ -446,6 +621,11 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
           break;
         }
       }
+      if (shrunk) {
+        spare_.push_back(std::move(at_child));
+        smallest_child = std::min(smallest_child, charts_[c].radius);
+        continue;
+      }
       if (child < 0) {
         fail(summary, CoveringTermination::ProjectionFailed,
              "no chart could be centred beyond " + describe_point(xc) +
@@ -466,6 +646,28 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
   summary.charts = chart_count();
   summary.singular_crossings = singular_crossings_;
   summary.sheet_rejections = sheet_rejections_;
+  const int capped = capped_[1] + capped_[2] + capped_[3] + capped_[4];
+  if (capped > 0) {
+    std::ostringstream note;
+    note << capped << " of " << chart_count()
+         << " charts have a radius below the tolerance's sqrt(2*tolerance/curvature): "
+         << capped_[static_cast<int>(RadiusCap::Curvature)]
+         << " capped by the curvature (radius <= " << options_.max_turning_angle
+         << "/curvature: M turns within the disk), "
+         << capped_[static_cast<int>(RadiusCap::NotAGraph)]
+         << " where M is no graph over the larger disk or the corrector does not reach it "
+            "(a thin part or a turn of M nearby), "
+         << capped_[static_cast<int>(RadiusCap::Grading)]
+         << " next to smaller charts (radii grow by at most " << options_.radius_growth - 1.0
+         << " per unit length), " << capped_[static_cast<int>(RadiusCap::Reach)]
+         << " by the reach (another part of M within the disk)";
+    if (shrunk_charts_ > 0) {
+      note << "; " << shrunk_charts_
+           << " radii were reduced later, where pointOnDisk failed on the disk or another part "
+              "of M came near";
+    }
+    summary.notes.push_back(note.str());
+  }
   if (singular_crossings_ > 0) {
     summary.notes.push_back("met a singular crossing of M (first near " + first_crossing_ +
                             "): the atlas continued along the sheet it was on, " +

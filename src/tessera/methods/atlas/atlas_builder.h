@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <deque>
 #include <string>
 #include <unordered_map>
@@ -19,6 +20,17 @@
 #include "tessera/methods/covering_result.h"
 
 namespace tessera::detail {
+
+// Why a chart's radius is smaller than the tolerance asks for (sqrt(2ε/κ), at most max_radius).
+enum class RadiusCap : signed char {
+  None,
+  Curvature,  // κR ≤ max_turning_angle: M turns within the disk (its local feature size)
+  NotAGraph,  // the disk of the tolerance's radius reaches past a turn of M or onto another
+              // part of it (not a graph of slope ≤ 1), or beyond the corrector's convergence
+  Grading,    // a neighbouring chart is much smaller (radii change by at most radius_growth − 1
+              // per unit length)
+  Reach,      // another part of M (not a transversal crossing) lies within the disk
+};
 
 struct Chart {
   double radius = 0.0;
@@ -57,12 +69,14 @@ class AtlasBuilder {
   }
 
  private:
-  bool choose_radius(const Linearization& at_center, double trial, double& radius);
+  bool choose_radius(const Linearization& at_center, double trial, double& radius, RadiusCap& cap);
   bool project(const Linearization& at_center, double distance, Eigen::VectorXd& y);
   void evaluate_jacobian(const Eigen::VectorXd& x);
   double jacobian_scale() const;
   int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);
   void connect_neighbours(int k);
+  void rebuild_polygon(int k);
+  void shrink_radius(int c, double radius);
   int next_open_vertex(int c) const;
   Eigen::Vector2d child_position(int c, int vertex) const;
   void snap_to_domain_boundary(Eigen::VectorXd& y, double radius);
@@ -85,7 +99,7 @@ class AtlasBuilder {
   std::vector<double> centers_;   // n per chart
   std::vector<double> tangents_;  // n×2 per chart, column-major
   std::vector<Chart> charts_;
-  std::deque<int> open_;          // charts that may have eligible exterior vertices
+  std::deque<int> open_;  // charts that may have eligible exterior vertices
   std::unordered_map<int, Linearization> factored_;  // factorisations of queued charts
   std::vector<Linearization> spare_;  // factorisations of processed charts, reused (no allocation)
   Linearization take_spare() {
@@ -96,19 +110,21 @@ class AtlasBuilder {
     spare_.pop_back();
     return spare;
   }
-  std::vector<int> candidates_;   // scratch
-  Eigen::VectorXd offset_;        // scratch
-  Eigen::VectorXd predicted_;     // scratch
-  Eigen::MatrixXd jacobian_;      // J at the last point checked for singularity
-  Eigen::VectorXd probe_;         // scratch
-  Eigen::MatrixXd quadratic_;     // scratch: n×3, q_i of choose_radius
+  std::vector<int> candidates_;     // scratch
+  Eigen::VectorXd offset_;          // scratch
+  Eigen::VectorXd predicted_;       // scratch
+  Eigen::MatrixXd jacobian_;        // J at the last point checked for singularity
+  Eigen::VectorXd probe_;           // scratch
+  Eigen::MatrixXd quadratic_;       // scratch: n×3, q_i of choose_radius
   Eigen::MatrixXd parent_tangent_;  // scratch
-  Linearization scratch_;         // workspace of full Gauss–Newton
+  Linearization scratch_;           // workspace of full Gauss–Newton
   bool stopped_ = false;
   int singular_crossings_ = 0;
   int sheet_rejections_ = 0;
   std::string first_crossing_;
   double min_radius_ = 0.0;
+  std::array<int, 5> capped_ = {0, 0, 0, 0, 0};  // charts by RadiusCap
+  int shrunk_charts_ = 0;  // radii reduced after the chart was made (shrink_radius)
 };
 
 }  // namespace tessera::detail

@@ -23,7 +23,7 @@ constexpr int kMaxHoleVertices = 12;
 
 struct Proposal {
   std::pair<std::uint64_t, std::uint32_t> key;  // the triangle's charts, increasing, packed
-  std::array<int, 3> sorted;  // the same, unpacked
+  std::array<int, 3> sorted;                    // the same, unpacked
   int proposer = 0;
   bool even = true;  // (i, j, k) as proposed is an even permutation of `sorted`
 };
@@ -43,7 +43,9 @@ bool is_even_rotation(const std::array<int, 3>& t, const std::array<int, 3>& sor
 }
 
 // A closed walk that visits a vertex twice is two loops joined there; returns the simple ones.
-std::vector<std::vector<int>> split_into_simple_loops(const std::vector<int>& walk) {
+// Of a walk that does not close (it ran into a dead end), only the loops it went around count:
+// what is left after them is the open tail, no loop.
+std::vector<std::vector<int>> split_into_simple_loops(const std::vector<int>& walk, bool closed) {
   std::vector<std::vector<int>> loops;
   std::vector<int> stack;
   for (int v : walk) {
@@ -54,7 +56,7 @@ std::vector<std::vector<int>> split_into_simple_loops(const std::vector<int>& wa
     }
     stack.push_back(v);
   }
-  if (stack.size() >= 3) {
+  if (closed && stack.size() >= 3) {
     loops.push_back(stack);
   }
   std::erase_if(loops, [](const std::vector<int>& loop) { return loop.size() < 3; });
@@ -139,7 +141,7 @@ int HoleFiller::fill(std::string& message) {
     std::vector<int> loop;
     int edge = static_cast<int>(first);
     bool closed_loop = false;
-    while (edge >= 0 && static_cast<int>(loop.size()) <= 4 * kMaxHoleVertices) {
+    while (edge >= 0) {
       used[edge] = true;
       loop.push_back(boundary[edge].first);
       const int head = boundary[edge].second;
@@ -149,21 +151,27 @@ int HoleFiller::fill(std::string& message) {
       }
       edge = next_from(head);
     }
-    if (!closed_loop) {
-      continue;  // a loop that touches itself or is very long: the atlas boundary
-    }
     // Where two holes touch at a vertex the walk runs through both: split it into simple loops.
-    for (std::vector<int>& simple : split_into_simple_loops(loop)) {
+    // The walk is followed to its end and only then split. Where a hole touches the atlas's
+    // outer boundary (a hole of disagreeing charts next to one at the margin outside S that is
+    // never completed), the walk runs around the hole and along the whole outer boundary; the
+    // hole is still a hole between closed charts and must be filled. Dropping every walk longer
+    // than the longest hole, as before, left such a hole inside S (whitney_pleat at tolerance
+    // 0.01062: four nearly cocircular charts at the face y = 1.5, whose polygons each chose a
+    // different diagonal, touching through a second such quad a chart just beyond the margin).
+    for (std::vector<int>& simple : split_into_simple_loops(loop, closed_loop)) {
+      if (static_cast<int>(simple.size()) > 4 * kMaxHoleVertices) {
+        continue;  // the atlas boundary
+      }
       const bool all_closed =
           std::all_of(simple.begin(), simple.end(), [&](int c) { return cells_.is_closed(c); });
       if (!all_closed) {
         continue;  // the boundary of the atlas (run stopped, or the margin outside the domain)
       }
       std::reverse(simple.begin(), simple.end());  // counter-clockwise around the hole
-      // Where M turns fast the one tangent plane can misjudge orientation; the loop's own
-      // orientation (from its neighbours) then decides, with the best angles.
-      if (static_cast<int>(simple.size()) > kMaxHoleVertices ||
-          (!triangulate(simple, added, true) && !triangulate(simple, added, false))) {
+      // Only counter-clockwise triangles: a loop that cannot be filled so is not a hole but
+      // the outline of an island of triangles (filling it would double the island) or a fold.
+      if (static_cast<int>(simple.size()) > kMaxHoleVertices || !triangulate(simple, added, true)) {
         if (message.empty()) {
           message = "the charts' polygons leave a hole of " + std::to_string(simple.size()) +
                     " vertices near " + describe_point(cells_.center(simple.front())) +
@@ -185,20 +193,23 @@ bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>
   for (int i = 0; i < k; ++i) {
     x[i] = cells_.center(loop[i]);
   }
-  // Orientation is judged in the tangent plane of the first vertex; angles in R^n.
-  const Eigen::MatrixXd T = cells_.tangent(loop[0]);
-  std::vector<Eigen::Vector2d> p(k);
+  // Orientation is judged in the tangent planes of the triangle's own vertices (all three must
+  // agree: where M turns fast, one far tangent plane can misjudge it); angles in R^n.
+  std::vector<Eigen::MatrixXd> T(k);
   for (int i = 0; i < k; ++i) {
-    p[i] = T.transpose() * (x[i] - x[0]);
+    T[i] = cells_.tangent(loop[i]);
   }
   auto quality = [&](int a, int b, int c) {
-    const Eigen::Vector2d u = p[b] - p[a];
-    const Eigen::Vector2d v = p[c] - p[a];
-    if (require_counter_clockwise && u(0) * v(1) - u(1) * v(0) <= 0) {
-      return -1.0;  // not counter-clockwise: would fold over its neighbours
+    for (int corner : {a, b, c}) {
+      const Eigen::Vector2d u = T[corner].transpose() * (x[b] - x[a]);
+      const Eigen::Vector2d v = T[corner].transpose() * (x[c] - x[a]);
+      if (require_counter_clockwise && u(0) * v(1) - u(1) * v(0) <= 0) {
+        return -1.0;  // not counter-clockwise: would fold over its neighbours
+      }
     }
-    const double smallest = std::min({corner_angle(x[a], x[b], x[c]), corner_angle(x[b], x[c], x[a]),
-                     corner_angle(x[c], x[a], x[b])});
+    const double smallest =
+        std::min({corner_angle(x[a], x[b], x[c]), corner_angle(x[b], x[c], x[a]),
+                  corner_angle(x[c], x[a], x[b])});
     return smallest > 0 ? smallest : -1.0;
   };
   auto diagonal_allowed = [&](int a, int b) {
@@ -217,8 +228,7 @@ bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>
         continue;
       }
       for (int m = i + 1; m < j; ++m) {
-        const double value =
-            std::min({best[i * k + m], best[m * k + j], quality(i, m, j)});
+        const double value = std::min({best[i * k + m], best[m * k + j], quality(i, m, j)});
         if (value > best[i * k + j]) {
           best[i * k + j] = value;
           split[i * k + j] = m;
@@ -257,7 +267,7 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
     const int m = static_cast<int>(vertices.size());
     for (int i = 0; i < m && m >= 3; ++i) {
       const int before = vertices[(i + m - 1) % m].edge_label;  // edge ending at vertex i
-      const int after = vertices[i].edge_label;                // edge starting at vertex i
+      const int after = vertices[i].edge_label;                 // edge starting at vertex i
       if (before < 0 || after < 0 || before == after ||
           vertices[i].s * vertices[i].s + vertices[i].t * vertices[i].t > r2) {
         continue;
