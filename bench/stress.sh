@@ -15,7 +15,8 @@ command="nice build/tests/tessera_stress --cases $cases --seed $seed --max-secon
   echo "Command: \`$command\` ($(date -u +%Y-%m-%d), $(git rev-parse --short HEAD))"
   echo
   $command
+  status=$?
   echo
-  echo "exit code $?"
+  echo "exit code $status"
 } > bench/results/stress.md 2>&1
 tail -1 bench/results/stress.md
