@@ -18,6 +18,7 @@
 // Exit code 1 if any case is invalid, has the wrong χ, is over tolerance, throws or crashes.
 #include <poll.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -385,6 +386,9 @@ Outcome run_isolated(const Case& c, const std::string& source_dir, double max_se
   }
   if (child == 0) {
     close(pipe_ends[0]);
+    // The machine is shared: a runaway case fails with bad_alloc instead of swapping.
+    const rlimit memory{rlim_t{4} << 30, rlim_t{4} << 30};
+    setrlimit(RLIMIT_AS, &memory);
     const std::string line = encode(judge(c, source_dir));
     const ssize_t written = write(pipe_ends[1], line.data(), line.size());
     close(pipe_ends[1]);
