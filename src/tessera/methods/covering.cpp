@@ -92,8 +92,8 @@ void check_coverage(const Domain& domain, double step, CoveringResult& result) {
     }
     if (!on_boundary) {
       fail(result.summary, CoveringTermination::TriangulationFailed,
-           "the mesh has a hole: its boundary edge from " + describe_point(mesh.point(v)) +
-               " to " + describe_point(mesh.point(w)) +
+           "the mesh has a hole: its boundary edge from " + describe_point(mesh.point(v)) + " to " +
+               describe_point(mesh.point(w)) +
                (domain.is_unbounded() ? " lies on M, which is closed"
                                       : " does not lie on one face of the domain"));
       return;
@@ -109,9 +109,14 @@ void rebuild_patches(const ImplicitProblem& problem, CoveringResult& result) {
   std::vector<Eigen::MatrixXd> tangents(mesh.vertex_count());
   Linearization linearization;
   for (int v = 0; v < mesh.vertex_count(); ++v) {
-    if (linearization.factor(problem, mesh.point(v))) {
-      tangents[v] = linearization.tangent_basis();
+    if (!linearization.factor(problem, mesh.point(v))) {
+      // No tangent plane at a vertex (DF rank deficient): no patch can be built there.
+      result.patches.clear();
+      result.summary.notes.push_back("no cubic patches: DF is rank deficient at the vertex " +
+                                     describe_point(mesh.point(v)));
+      return;
     }
+    tangents[v] = linearization.tangent_basis();
   }
   result.patches.clear();
   result.patches.reserve(mesh.triangle_count());
@@ -222,11 +227,23 @@ int validate_and_repair(const ImplicitProblem& problem, const Domain& domain,
     }
   }
   const int before = mesh.triangle_count();
-  std::vector<bool> kept_fans = keep_largest_fans(mesh.vertex_count(), mesh.triangles());
+  // Dropping triangles can pinch a vertex (two fans left meeting there): the fans are judged
+  // on what is kept, and the largest kept.
+  std::vector<int> kept_index;
+  std::vector<Triangle> kept_triangles;
   for (int t = 0; t < before; ++t) {
-    keep[t] = keep[t] && kept_fans[t];
+    if (keep[t]) {
+      kept_index.push_back(t);
+      kept_triangles.push_back(mesh.triangle(t));
+    }
   }
-  if (!result.patches.empty()) {
+  const std::vector<bool> kept_fans = keep_largest_fans(mesh.vertex_count(), kept_triangles);
+  for (std::size_t k = 0; k < kept_index.size(); ++k) {
+    keep[kept_index[k]] = kept_fans[k];
+  }
+  // Patches still match the triangles only if nothing reshaped the mesh since the build;
+  // otherwise they are rebuilt at the end anyway.
+  if (static_cast<int>(result.patches.size()) == before) {
     std::vector<CubicBezierPatch> patches;
     for (int t = 0; t < before; ++t) {
       if (keep[t]) {
@@ -371,6 +388,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
   check_coverage(domain, options.step, result);
   if (!result.patches.empty() &&
       (result.mesh.triangle_count() != triangles_built || summary.refined_edges > 0 ||
+       summary.removed_triangles > 0 ||
        static_cast<int>(result.patches.size()) != result.mesh.triangle_count())) {
     rebuild_patches(problem, result);
   }
