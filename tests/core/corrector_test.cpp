@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "tessera/core/counted_problem.h"
+#include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
 
 namespace {
@@ -186,4 +187,55 @@ TEST(CountedProblem, CountsEvaluations) {
   ASSERT_TRUE(summary.is_success());
   EXPECT_EQ(problem.jacobian_evaluations(), summary.iterations);
   EXPECT_EQ(problem.function_evaluations(), summary.iterations + 1);
+  // Gauss–Newton factors once per iteration; the chord never does.
+  EXPECT_EQ(problem.factorisations(), summary.iterations);
+  const long before = problem.factorisations();
+  tessera::Linearization frozen;
+  ASSERT_TRUE(frozen.factor(problem, x));
+  Eigen::VectorXd y = x;
+  y(2) += 0.01;
+  ASSERT_TRUE(tessera::project_chord(problem, frozen, y, {}).is_success());
+  EXPECT_EQ(problem.factorisations(), before + 1);
+}
+
+// TwoEquations with coordinate blocks, to check how they become the metric's weights.
+class WithBlocks final : public tessera::ImplicitProblem {
+ public:
+  explicit WithBlocks(std::vector<tessera::CoordinateBlock> blocks) : blocks_(std::move(blocks)) {}
+  int ambient_dimension() const override { return 4; }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override {
+    inner_.evaluate(x, F);
+  }
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override {
+    inner_.jacobian(x, J);
+  }
+  std::vector<tessera::CoordinateBlock> coordinate_blocks() const override { return blocks_; }
+
+ private:
+  TwoEquations inner_{false};
+  std::vector<tessera::CoordinateBlock> blocks_;
+};
+
+TEST(MetricWeights, EuclideanUnlessABlockIsWeighted) {
+  TwoEquations plain(false);
+  EXPECT_EQ(tessera::metric_weights(plain).size(), 0);
+  EXPECT_EQ(tessera::metric_weights(WithBlocks({{"u", 0, 2, 1.0}})).size(), 0);
+  const Eigen::VectorXd weights = tessera::metric_weights(WithBlocks({{"u", 1, 2, 0.25}}));
+  ASSERT_EQ(weights.size(), 4);
+  EXPECT_EQ(weights, Eigen::Vector4d(1.0, 0.25, 0.25, 1.0));
+  // A counted problem passes the blocks on.
+  const WithBlocks weighted({{"u", 1, 2, 0.25}});
+  EXPECT_EQ(tessera::metric_weights(tessera::CountedProblem(weighted)), weights);
+}
+
+TEST(MetricWeights, RejectsBlocksOutsideOverlappingOrUnweighted) {
+  EXPECT_THROW(tessera::metric_weights(WithBlocks({{"u", 3, 2, 0.5}})),
+               tessera::InvalidArgument);
+  EXPECT_THROW(tessera::metric_weights(WithBlocks({{"u", 0, 2, 0.5}, {"v", 1, 2, 0.5}})),
+               tessera::InvalidArgument);
+  EXPECT_THROW(tessera::metric_weights(WithBlocks({{"u", 0, 2, 0.0}})), tessera::InvalidArgument);
+  EXPECT_THROW(tessera::metric_weights(WithBlocks({{"u", 0, 2, std::nan("")}})),
+               tessera::InvalidArgument);
 }

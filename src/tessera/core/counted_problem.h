@@ -1,10 +1,30 @@
 // SPDX-License-Identifier: MIT
-// A decorator that counts evaluations of F and of its Jacobian, for summaries and benchmarks.
+// A decorator that counts evaluations of F and of its Jacobian, and the factorisations of the
+// Jacobian made by Linearization, for summaries and benchmarks.
 #pragma once
 
 #include "tessera/core/implicit_problem.h"
 
 namespace tessera {
+
+/// Work done on a problem: evaluations of F and of DF, and numerical factorisations of DF (or of
+/// the bordered matrix [DF; border]). The currency of continuation at large n.
+struct WorkCounts {
+  long function_evaluations = 0;
+  long jacobian_evaluations = 0;
+  long factorisations = 0;
+  WorkCounts operator-(const WorkCounts& other) const {
+    return {function_evaluations - other.function_evaluations,
+            jacobian_evaluations - other.jacobian_evaluations,
+            factorisations - other.factorisations};
+  }
+  WorkCounts& operator+=(const WorkCounts& other) {
+    function_evaluations += other.function_evaluations;
+    jacobian_evaluations += other.jacobian_evaluations;
+    factorisations += other.factorisations;
+    return *this;
+  }
+};
 
 /// Forwards to `inner` and counts calls. Methods wrap the user's problem in one of these.
 class CountedProblem final : public ImplicitProblem {
@@ -30,14 +50,25 @@ class CountedProblem final : public ImplicitProblem {
   }
   std::string name() const override { return inner_.name(); }
   std::vector<std::string> coordinate_names() const override { return inner_.coordinate_names(); }
+  std::vector<CoordinateBlock> coordinate_blocks() const override {
+    return inner_.coordinate_blocks();
+  }
+
+  /// Called by Linearization::factor with the factorisations it made for this problem.
+  void record_factorisations(long count) const { factorisations_ += count; }
 
   long function_evaluations() const { return function_evaluations_; }
   long jacobian_evaluations() const { return jacobian_evaluations_; }
+  long factorisations() const { return factorisations_; }
+  WorkCounts counts() const {
+    return {function_evaluations_, jacobian_evaluations_, factorisations_};
+  }
 
  private:
   const ImplicitProblem& inner_;
   mutable long function_evaluations_ = 0;
   mutable long jacobian_evaluations_ = 0;
+  mutable long factorisations_ = 0;
 };
 
 }  // namespace tessera

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/core/implicit_problem.h"
 
+#include <cmath>
+
 #include "tessera/core/error.h"
 
 namespace tessera {
@@ -29,6 +31,32 @@ void ImplicitProblem::sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x
 
 std::vector<std::string> ImplicitProblem::coordinate_names() const {
   return default_coordinate_names(ambient_dimension());
+}
+
+Eigen::VectorXd metric_weights(const ImplicitProblem& problem) {
+  const int n = problem.ambient_dimension();
+  Eigen::VectorXd weights = Eigen::VectorXd::Ones(n);
+  std::vector<bool> taken(n, false);
+  bool is_euclidean = true;
+  for (const CoordinateBlock& block : problem.coordinate_blocks()) {
+    TESSERA_CHECK(block.first >= 0 && block.size >= 1 && block.first <= n - block.size,
+                  "problem '" << problem.name() << "': coordinate block '" << block.name
+                              << "' (first " << block.first << ", size " << block.size
+                              << ") does not lie in the coordinates 0 … " << n - 1);
+    TESSERA_CHECK(std::isfinite(block.weight) && block.weight > 0,
+                  "problem '" << problem.name() << "': coordinate block '" << block.name
+                              << "' has weight " << block.weight
+                              << "; it must be a finite number > 0");
+    for (int i = block.first; i < block.first + block.size; ++i) {
+      TESSERA_CHECK(!taken[i], "problem '" << problem.name() << "': coordinate block '"
+                                           << block.name << "' overlaps another block at "
+                                           << "coordinate " << i);
+      taken[i] = true;
+      weights(i) = block.weight;
+    }
+    is_euclidean = is_euclidean && block.weight == 1.0;
+  }
+  return is_euclidean ? Eigen::VectorXd() : weights;
 }
 
 std::vector<std::string> default_coordinate_names(int n) {

@@ -9,6 +9,23 @@
 
 namespace tessera {
 
+/// A named range of coordinates, e.g. the grid values u of a discretised PDE.
+///
+/// Blocks give M's coordinates their meaning beyond names: the views (`max:u`, `norm:u`) and the
+/// metric in which tessera measures M. A grid function u on N points is a vector whose Euclidean
+/// norm grows like √N under refinement while the function it represents does not; with
+/// `weight` = √h (one dimension, h the mesh width) or h (two dimensions) the weighted norm
+/// approximates the continuous L² norm, and the surface, its step and tolerance no longer
+/// depend on the grid (AUTO and COCO scale discretised states the same way).
+struct CoordinateBlock {
+  std::string name;  ///< e.g. "u"; unique among a problem's blocks and coordinate names
+  int first = 0;     ///< index of the block's first coordinate
+  int size = 1;      ///< number of coordinates, first … first + size − 1
+  /// Factor of these coordinates in the norm tessera measures M in: ‖x‖² = Σ (w_i x_i)² with
+  /// w_i = weight inside a block and 1 elsewhere. Must be finite and > 0.
+  double weight = 1.0;
+};
+
 /// An implicitly defined two-dimensional manifold M = {x in R^n : F(x) = 0}.
 ///
 /// Implement `ambient_dimension`, `evaluate` and one of `jacobian` / `sparse_jacobian`.
@@ -46,7 +63,17 @@ class ImplicitProblem {
 
   /// Names of the n coordinates; the default is x0 … x{n-1} (x, y, z when n = 3).
   virtual std::vector<std::string> coordinate_names() const;
+
+  /// Named ranges of coordinates and their weights in the metric (see CoordinateBlock); the
+  /// default is none: M is measured in the Euclidean norm of R^n.
+  virtual std::vector<CoordinateBlock> coordinate_blocks() const { return {}; }
 };
+
+/// The n weights w of the problem's metric ‖x‖² = Σ (w_i x_i)², from its coordinate blocks;
+/// empty when every weight is 1 (the Euclidean norm).
+/// 	hrow InvalidArgument if a block lies outside 0 … n−1, overlaps another or has a weight
+///        that is not finite and > 0.
+Eigen::VectorXd metric_weights(const ImplicitProblem& problem);
 
 /// Default coordinate names for dimension n: x, y, z for n = 3, otherwise x0 … x{n-1}.
 std::vector<std::string> default_coordinate_names(int n);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <random>
 
+#include "tessera/core/counted_problem.h"
 #include "tessera/core/error.h"
 
 namespace tessera {
@@ -26,6 +27,11 @@ class LinearizationBackend {
                       double& reciprocal_condition) = 0;
   virtual void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd& tangent,
                      Eigen::Ref<Eigen::VectorXd> dx) const = 0;
+  /// Numerical factorisations made so far (a sparse factor() may try more than one border).
+  long factorisations() const { return factorisations_; }
+
+ protected:
+  long factorisations_ = 0;
 };
 
 namespace {
@@ -64,6 +70,7 @@ class DenseBackend final : public LinearizationBackend {
       return false;
     }
     qr_.compute(jacobian_.transpose());
+    ++factorisations_;
     const auto& R = qr_.matrixR();
     double largest = 0.0;
     double smallest = std::numeric_limits<double>::infinity();
@@ -213,6 +220,7 @@ class SparseBackend final : public LinearizationBackend {
                              bordered_.innerIndexPtr() + bordered_.nonZeros());
     }
     lu_.factorize(bordered_);
+    ++factorisations_;
     if (lu_.info() != Eigen::Success) {
       return false;
     }
@@ -289,7 +297,14 @@ bool Linearization::factor(const ImplicitProblem& problem,
     }
   }
   point_ = x;
-  if (!backend_->factor(problem, x, reference_tangent, tangent_, reciprocal_condition_)) {
+  const long before = backend_->factorisations();
+  const bool is_factored =
+      backend_->factor(problem, x, reference_tangent, tangent_, reciprocal_condition_);
+  // Factorisations are the currency of continuation at large n: the run's counter sees them.
+  if (const auto* counted = dynamic_cast<const CountedProblem*>(&problem)) {
+    counted->record_factorisations(backend_->factorisations() - before);
+  }
+  if (!is_factored) {
     return false;
   }
   if (reference_tangent != nullptr) {

@@ -59,6 +59,7 @@ std::string to_json(const MeshReport& report) {
                 {"wall_seconds", r.wall_seconds},
                 {"function_evaluations", r.function_evaluations},
                 {"jacobian_evaluations", r.jacobian_evaluations},
+                {"factorisations", r.factorisations},
                 {"merges", r.merges},
                 {"front_connections", r.front_connections},
                 {"step_reductions", r.step_reductions},
@@ -75,6 +76,21 @@ std::string to_json(const MeshReport& report) {
                            {"singular_crossings", r.singular_crossings},
                            {"sheet_rejections", r.sheet_rejections},
                            {"filled_holes", r.filled_holes}};
+    }
+    nlohmann::json phases = nlohmann::json::array();
+    for (const PhaseWork& p : r.work_by_phase) {
+      phases.push_back({{"phase", p.phase},
+                        {"function_evaluations", p.counts.function_evaluations},
+                        {"jacobian_evaluations", p.counts.jacobian_evaluations},
+                        {"factorisations", p.counts.factorisations},
+                        {"wall_seconds", p.wall_seconds}});
+    }
+    j["run"]["work_by_phase"] = phases;
+    if (r.vertex_count > 0) {
+      const double V = r.vertex_count;
+      j["run"]["per_vertex"] = {{"function_evaluations", r.function_evaluations / V},
+                                {"jacobian_evaluations", r.jacobian_evaluations / V},
+                                {"factorisations", r.factorisations / V}};
     }
     j["run"]["notes"] = r.notes;
   }
@@ -151,12 +167,25 @@ std::string to_text(const MeshReport& report) {
       out << "note           " << note << "\n";
     }
     out << "work           " << r.wall_seconds << " s, " << r.function_evaluations
-        << " evaluations of F, " << r.jacobian_evaluations << " of DF";
+        << " evaluations of F, " << r.jacobian_evaluations << " of DF, " << r.factorisations
+        << " factorisations";
     if (r.vertex_count > 0) {
-      out << " (" << static_cast<double>(r.function_evaluations) / r.vertex_count << " and "
-          << static_cast<double>(r.jacobian_evaluations) / r.vertex_count << " per vertex)";
+      const double V = r.vertex_count;
+      out << " (" << r.function_evaluations / V << ", " << r.jacobian_evaluations / V << " and "
+          << r.factorisations / V << " per vertex)";
     }
     out << "\n";
+    if (r.vertex_count > 0 && !r.work_by_phase.empty()) {
+      // Where the work went, per vertex of the result: DF evaluations/factorisations per step.
+      const double V = r.vertex_count;
+      out << "  by step      ";
+      for (std::size_t i = 0; i < r.work_by_phase.size(); ++i) {
+        const PhaseWork& p = r.work_by_phase[i];
+        out << (i ? ", " : "") << p.phase << " " << p.counts.jacobian_evaluations / V << "/"
+            << p.counts.factorisations / V;
+      }
+      out << " DF/factorisations per vertex\n";
+    }
   }
   out << "mesh           " << v.referenced_vertex_count << " vertices, " << v.edge_count
       << " edges, " << v.triangle_count << " triangles, " << v.boundary_loop_count

@@ -287,13 +287,31 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
   CoveringResult result;
   result.mesh = TriangleMesh(n);
   CoveringSummary& summary = result.summary;
+  // Each step's work is the counters' growth since the last step ended.
+  std::vector<PhaseWork> phases;
+  WorkCounts counted_so_far;
+  auto phase_start = clock_start;
+  auto end_phase = [&](const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    const WorkCounts counts = problem.counts();
+    if (counts.function_evaluations > counted_so_far.function_evaluations ||
+        counts.jacobian_evaluations > counted_so_far.jacobian_evaluations) {
+      phases.push_back({name, counts - counted_so_far,
+                        std::chrono::duration<double>(now - phase_start).count()});
+    }
+    counted_so_far = counts;
+    phase_start = now;
+  };
   auto finish = [&] {
+    end_phase("finish");
     summary.method = method;
     summary.tolerance = options.tolerance;
     summary.vertex_count = result.mesh.vertex_count();
     summary.triangle_count = result.mesh.triangle_count();
     summary.function_evaluations = problem.function_evaluations();
     summary.jacobian_evaluations = problem.jacobian_evaluations();
+    summary.factorisations = problem.factorisations();
+    summary.work_by_phase = phases;
     summary.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   };
@@ -310,11 +328,13 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
     finish();
     return result;
   }
+  end_phase("start");
   // 4. The method's build, and 5. clipping to S.
   CoveringContext context{problem, domain, *start_point};
   try {
     summary.method = method;
     build(context, result);
+    end_phase("build");
     if (!domain.is_unbounded() && context.boundary_edge_length > 0 &&
         result.mesh.triangle_count() > 0) {
       std::string refusal;
@@ -338,6 +358,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
         improve_by_edge_swaps(result.mesh, problem, ImprovementOptions{});
       }
     }
+    end_phase("clip");
   } catch (const std::bad_alloc&) {
     // Whatever the build held is gone; the summary still says what happened.
     result.mesh = TriangleMesh(n);
@@ -365,10 +386,12 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
               << " from M, is at " << describe_point(refined.worst_point);
       fail(summary, CoveringTermination::ProjectionFailed, message.str());
     }
+    end_phase("refine");
   }
   // 7. Geometric validity, no holes, then the patches for the final triangles. Triangles made
   //    by a repair are held to the tolerance too, and what refinement makes is validated.
   const int repaired = validate_and_repair(problem, domain, result);
+  end_phase("validate");
   if (repaired > 0 && options.tolerance > 0) {
     std::vector<int> added;
     for (int t = result.mesh.triangle_count() - repaired; t < result.mesh.triangle_count(); ++t) {
@@ -392,6 +415,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
        static_cast<int>(result.patches.size()) != result.mesh.triangle_count())) {
     rebuild_patches(problem, result);
   }
+  end_phase("patches");
   // 8. The summary.
   finish();
   return result;

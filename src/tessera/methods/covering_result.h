@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tessera/core/counted_problem.h"
 #include "tessera/geometry/bezier_patch.h"
 #include "tessera/geometry/triangle_mesh.h"
 
@@ -22,6 +23,13 @@ enum class CoveringTermination {
 
 const char* to_string(CoveringTermination termination);
 
+/// The work of one step of the covering pipeline (start, build, clip, refine, validate, patches).
+struct PhaseWork {
+  std::string phase;
+  WorkCounts counts;
+  double wall_seconds = 0.0;
+};
+
 /// Counters and timings of one covering run. Wall time is informational (benchmarks measure).
 struct CoveringSummary {
   std::string method;
@@ -31,7 +39,10 @@ struct CoveringSummary {
   int triangle_count = 0;
   long function_evaluations = 0;
   long jacobian_evaluations = 0;
+  long factorisations = 0;  ///< numerical factorisations of DF (or of [DF; border])
   double wall_seconds = 0.0;
+  /// The same work split by pipeline step, in the order the steps ran.
+  std::vector<PhaseWork> work_by_phase;
   double step = 0.0;            ///< the step (edge length) actually used
   int merges = 0;               ///< open edges identified (front method)
   int step_reductions = 0;      ///< projections that needed step halving

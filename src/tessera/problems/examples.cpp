@@ -318,6 +318,10 @@ std::vector<std::string> ArrheniusBratu::coordinate_names() const {
   return names;
 }
 
+std::vector<CoordinateBlock> ArrheniusBratu::coordinate_blocks() const {
+  return {{"u", 0, point_count_, std::sqrt(1.0 / (point_count_ + 1.0))}};
+}
+
 Eigen::VectorXd ArrheniusBratu::point_with_amplitude(double amplitude, double epsilon) const {
   TESSERA_CHECK(
       std::isfinite(amplitude) && amplitude >= 0.0,

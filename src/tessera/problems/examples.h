@@ -200,6 +200,9 @@ class ArrheniusBratu final : public ImplicitProblem {
                        Eigen::SparseMatrix<double>& J) const override;
   std::string name() const override { return "bvp"; }
   std::vector<std::string> coordinate_names() const override;
+  /// One block "u" (the N grid values) of weight √h, h = 1/(N + 1): the metric's norm of u is
+  /// the discrete L² norm, so lengths on M do not grow with N.
+  std::vector<CoordinateBlock> coordinate_blocks() const override;
 
   /// The point of M whose profile has maximum value `amplitude` (taken at the middle grid point
   /// ⌊(N+1)/2⌋), at the given ε. Positive solutions are symmetric and determined by (u_max, ε),
