@@ -37,29 +37,45 @@ void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::
 // (BᵀT) z = −g − Bᵀ J⁺(−F), and since J⁺(−F) ⟂ T z, the minimum-norm dx of the whole bordered
 // system has the minimum-norm z of that c×2 system (Hohmann's example 3 solves the same system
 // densely).
-bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
+namespace {
+
+// The iteration of project_onto_faces. With `frozen` (a factorisation at a nearby point of M)
+// it is the chord iteration: every step reuses J⁺ and T of that point and no factorisation is
+// made; without, each step factors DF at the iterate (Gauss–Newton).
+enum class FaceProjection { Converged, FirstStepTooFar, Failed };
+
+FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& domain,
                         const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
-                        const CorrectorOptions& options, double* first_contraction) {
+                        const CorrectorOptions& options, double* first_contraction,
+                        const Linearization* frozen) {
   const int n = problem.ambient_dimension();
   const int c = static_cast<int>(faces.size());
   if (first_contraction != nullptr) {
     *first_contraction = 0.0;
   }
   if (c > 2) {
-    return false;  // more faces than the surface has dimensions: no such point in general
+    // More faces than the surface has dimensions: no such point in general.
+    return FaceProjection::Failed;
   }
   const Eigen::VectorXd start = x;
   Eigen::VectorXd F(n - 2);
   Eigen::VectorXd dx(n);
-  Linearization linearization;
+  Linearization own;
+  const Linearization& linearization = frozen != nullptr ? *frozen : own;
+  // The chord converges linearly: it gets more steps, and must contract by a factor 2 per step.
+  const int max_steps = frozen != nullptr ? 3 * options.max_iterations : 2 * options.max_iterations;
+  const double max_contraction = frozen != nullptr ? options.max_contraction : 0.9;
   double previous = 0.0;
-  for (int k = 0; k < 2 * options.max_iterations; ++k) {
+  for (int k = 0; k < max_steps; ++k) {
     problem.evaluate(x, F);
-    const Eigen::MatrixXd reference =
-        linearization.is_factored() ? linearization.tangent_basis() : Eigen::MatrixXd();
-    if (!F.allFinite() ||
-        !linearization.factor(problem, x, reference.size() ? &reference : nullptr)) {
-      return false;
+    if (!F.allFinite()) {
+      return FaceProjection::Failed;
+    }
+    if (frozen == nullptr) {
+      const Eigen::MatrixXd reference = own.is_factored() ? own.tangent_basis() : Eigen::MatrixXd();
+      if (!own.factor(problem, x, reference.size() ? &reference : nullptr)) {
+        return FaceProjection::Failed;
+      }
     }
     linearization.solve_minimum_norm(-F, dx);
     const Eigen::MatrixXd& T = linearization.tangent_basis();
@@ -72,20 +88,20 @@ bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
     }
     Eigen::VectorXd z(2);
     if (!solve_minimum_norm_dense(BT, rhs, z)) {
-      return false;  // a face tangent to M: the constrained point is not isolated
+      return FaceProjection::Failed;  // a face tangent to M: the point is not isolated
     }
     dx += T * z;
     x += dx;
     if ((x - start).norm() > max_move) {
-      return false;
+      return k == 0 ? FaceProjection::FirstStepTooFar : FaceProjection::Failed;
     }
     const double norm = dx.norm();
     const bool small = norm <= options.tolerance * (1.0 + x.norm());
     if (k == 1 && previous > 0 && first_contraction != nullptr) {
       *first_contraction = norm / previous;
     }
-    if (k > 0 && previous > 0 && norm > 0.9 * previous && !small) {
-      return false;  // not contracting: outside the region of convergence
+    if (k > 0 && previous > 0 && norm > max_contraction * previous && !small) {
+      return FaceProjection::Failed;  // not contracting: outside the region of convergence
     }
     previous = norm;
     if (small) {
@@ -93,10 +109,35 @@ bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
       // on its faces exactly (never outside S), so the last rounding-sized move puts it there.
       place_on_faces(domain, faces, x);
       problem.evaluate(x, F);
-      return F.allFinite() && F.norm() <= options.residual_tolerance;
+      return F.allFinite() && F.norm() <= options.residual_tolerance ? FaceProjection::Converged
+                                                                      : FaceProjection::Failed;
     }
   }
-  return false;
+  return FaceProjection::Failed;
+}
+
+}  // namespace
+
+bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
+                        const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
+                        const CorrectorOptions& options, double* first_contraction,
+                        const Linearization* near) {
+  if (near != nullptr && near->is_factored()) {
+    const Eigen::VectorXd start = x;
+    const FaceProjection chord = iterate_onto_faces(problem, domain, faces, x, max_move, options,
+                                                    first_contraction, near);
+    if (chord == FaceProjection::Converged) {
+      return true;
+    }
+    if (chord == FaceProjection::FirstStepTooFar) {
+      // To first order the point of M on the faces is farther than max_move (a face at a
+      // shallow angle to M): Gauss–Newton's first step would say the same, at a price.
+      return false;
+    }
+    x = start;
+  }
+  return iterate_onto_faces(problem, domain, faces, x, max_move, options, first_contraction,
+                            nullptr) == FaceProjection::Converged;
 }
 
 }  // namespace tessera

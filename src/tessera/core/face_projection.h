@@ -9,6 +9,7 @@
 #include "tessera/core/corrector.h"
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
+#include "tessera/core/linearization.h"
 
 namespace tessera {
 
@@ -31,8 +32,13 @@ void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::
 /// \return false if it does not converge within 2·options.max_iterations steps, stops
 ///         contracting (θ > 0.9), moves farther than max_move, F is not finite, DF loses rank,
 ///         or a face is tangent to M there (the constrained point is then not isolated).
+/// \param near  if not null and factored: a factorisation at a nearby point of M. The chord
+///        iteration with it is tried first (no factorisation at all; at large n that is the
+///        whole cost), Gauss–Newton only where the chord does not contract by options'
+///        max_contraction per step.
 bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
                         const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
-                        const CorrectorOptions& options, double* first_contraction = nullptr);
+                        const CorrectorOptions& options, double* first_contraction = nullptr,
+                        const Linearization* near = nullptr);
 
 }  // namespace tessera

@@ -12,6 +12,7 @@
 #include "tessera/core/domain.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
+#include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/bezier_patch.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
@@ -270,20 +271,44 @@ int validate_and_repair(const ImplicitProblem& problem, const Domain& domain,
   return 0;
 }
 
+// The result's points back in the problem's own coordinates x = W⁻¹ y.
+void unscale(const Eigen::VectorXd& weights, CoveringResult& result) {
+  TriangleMesh& mesh = result.mesh;
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    mesh.mutable_point(v).array() /= weights.array();
+  }
+  for (CubicBezierPatch& patch : result.patches) {
+    patch = CubicBezierPatch(weights.cwiseInverse().asDiagonal() * patch.control_points());
+  }
+}
+
 }  // namespace
 
 CoveringResult run_covering(const std::string& method, const ImplicitProblem& user_problem,
-                            const Eigen::VectorXd& start, const Domain& domain,
+                            const Eigen::VectorXd& user_start, const Domain& user_domain,
                             const CoveringOptions& options, const CoveringBuild& build) {
   // 1. Input.
   options.validate_common(method.c_str());
   const int n = user_problem.ambient_dimension();
-  TESSERA_CHECK(
-      domain.is_unbounded() || domain.ambient_dimension() == n,
-      "domain is in R^" << domain.ambient_dimension() << " but the problem is in R^" << n);
+  TESSERA_CHECK(user_domain.is_unbounded() || user_domain.ambient_dimension() == n,
+                "domain is in R^" << user_domain.ambient_dimension()
+                                  << " but the problem is in R^" << n);
+  TESSERA_CHECK(user_start.size() == n,
+                "start point has " << user_start.size() << " coordinates, the problem n = " << n);
   const auto clock_start = std::chrono::steady_clock::now();
-  // 2. Counting.
-  const CountedProblem problem(user_problem);
+  // 2. The problem's metric (CoordinateBlock): the methods cover M̃ = W M in y = W x, so that
+  //    steps, radii, the tolerance and every distance are lengths in the metric, and counting.
+  const Eigen::VectorXd weights = metric_weights(user_problem);
+  const bool is_weighted = weights.size() > 0;
+  std::optional<ScaledProblem> scaled;
+  if (is_weighted) {
+    scaled.emplace(user_problem, weights);
+  }
+  const Domain scaled_domain = is_weighted ? scale_domain(user_domain, weights) : Domain();
+  const Domain& domain = is_weighted ? scaled_domain : user_domain;
+  const Eigen::VectorXd start = is_weighted ? weights.cwiseProduct(user_start) : user_start;
+  const CountedProblem problem(is_weighted ? static_cast<const ImplicitProblem&>(*scaled)
+                                           : user_problem);
   CoveringResult result;
   result.mesh = TriangleMesh(n);
   CoveringSummary& summary = result.summary;
@@ -304,6 +329,9 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
   };
   auto finish = [&] {
     end_phase("finish");
+    if (is_weighted) {
+      unscale(weights, result);
+    }
     summary.method = method;
     summary.tolerance = options.tolerance;
     summary.vertex_count = result.mesh.vertex_count();

@@ -174,6 +174,7 @@ bool AtlasBuilder::project(const Linearization& at_center, double distance, Eige
   if (project_chord(problem_, at_center, y, options_.corrector).is_success()) {
     return true;
   }
+
   y = predicted;
   CorrectorOptions full = options_.corrector;
   full.max_displacement = 0.5 * distance;
@@ -416,8 +417,23 @@ void AtlasBuilder::shrink_radius(int c, double radius) {
 bool AtlasBuilder::is_eligible(int c) const {
   // Charts up to domain_margin radii outside S are completed too, so that every chart whose
   // star can reach into S has all its triangles; the outer ones are cut away by the clipping.
-  return domain_.is_unbounded() || domain_.boundary_distance(center(c)).signed_distance >=
-                                       -options_.domain_margin * charts_[c].radius;
+  // The margin is measured along M: a face at distance d meets the chart's tangent plane at
+  // distance d/‖Tᵀb‖ from its centre, much farther than d where the face cuts M at a shallow
+  // angle (seen on bvp, whose ε = 0 face does), and charts there would all be wasted.
+  if (domain_.is_unbounded()) {
+    return true;
+  }
+  const double margin = options_.domain_margin * charts_[c].radius;
+  const auto x = center(c);
+  const auto T = tangent(c);
+  for (int k = 0; k < static_cast<int>(domain_.half_spaces().size()); ++k) {
+    const double d = domain_.signed_distance(k, x);
+    if (d < -margin ||
+        (d < 0 && d < -margin * (T.transpose() * domain_.half_spaces()[k].normal).norm())) {
+      return false;
+    }
+  }
+  return true;
 }
 
 int AtlasBuilder::next_open_vertex(int c) const {
@@ -428,7 +444,8 @@ int AtlasBuilder::next_open_vertex(int c) const {
 // near a corner), so that the atlas carries a row of charts exactly on ∂S and clipping finds
 // the boundary already there instead of cutting slivers. A point already taken by a chart
 // (a corner reached twice) is left where it was.
-void AtlasBuilder::snap_to_domain_boundary(Eigen::VectorXd& y, double radius) {
+void AtlasBuilder::snap_to_domain_boundary(Eigen::VectorXd& y, double radius,
+                                           const Linearization& near) {
   if (domain_.is_unbounded() || options_.boundary_snap <= 0) {
     return;
   }
@@ -444,7 +461,7 @@ void AtlasBuilder::snap_to_domain_boundary(Eigen::VectorXd& y, double radius) {
   }
   Eigen::VectorXd snapped = y;
   if (!project_onto_faces(problem_, domain_, faces, snapped, options_.boundary_snap * radius * 2,
-                          options_.corrector)) {
+                          options_.corrector, nullptr, &near)) {
     return;
   }
   index_.candidates(snapped, 0.1 * radius, candidates_);
@@ -614,7 +631,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
           }
         }
         if (!target_repeated) {
-          snap_to_domain_boundary(y, charts_[c].radius);
+          snap_to_domain_boundary(y, charts_[c].radius, at_center);
         }
         child = add_chart(y, c, at_child);
         if (child >= 0) {

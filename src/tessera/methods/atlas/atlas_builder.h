@@ -79,7 +79,8 @@ class AtlasBuilder {
   void shrink_radius(int c, double radius);
   int next_open_vertex(int c) const;
   Eigen::Vector2d child_position(int c, int vertex) const;
-  void snap_to_domain_boundary(Eigen::VectorXd& y, double radius);
+  // `near`: the factorisation of the chart the point was projected from (chord first).
+  void snap_to_domain_boundary(Eigen::VectorXd& y, double radius, const Linearization& near);
   bool is_eligible(int c) const;
   bool same_sheet(int a, int b, const Eigen::VectorXd& offset) const;
   signed char orientation_sign(const Eigen::Ref<const Eigen::MatrixXd>& T) const;

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "tessera/core/describe.h"
 #include "tessera/core/face_projection.h"
@@ -64,23 +65,38 @@ double projected_area(const Eigen::MatrixXd& T, const Corners& p) {
 // The orientation check of every change the clipping makes. All corners lie on M, within a
 // step or two of each other, so projecting onto the tangent plane at one of them preserves
 // orientation; the basis's own orientation does not matter, only that before and after agree.
+// Tangent planes are taken at mesh vertices and kept (n×2 each, for the few vertices near a
+// face): a factorisation per vertex, not per change, and the last one also serves the chord
+// projections onto the faces near that vertex.
 class OrientationGuard {
  public:
   explicit OrientationGuard(const ImplicitProblem& problem) : problem_(problem) {}
 
-  /// True if `after` (a reshaped or cut part of `before`) has before's orientation in the
-  /// tangent plane of M at x and is not degenerate there. Where DF is rank deficient there is
-  /// no tangent plane: the change is refused.
-  bool keeps_orientation(const Eigen::VectorXd& x, const Corners& before, const Corners& after) {
-    // The checks of one change share their point: factor once per point (a sparse LU for
-    // large n).
-    const bool is_same_point = linearization_.is_factored() &&
-                               linearization_.point().size() == x.size() &&
-                               linearization_.point() == x;
-    if (!is_same_point && !linearization_.factor(problem_, x)) {
-      return false;
+  /// The factorisation of DF at vertex v (at x, its point); null where DF is rank deficient.
+  const Linearization* at_vertex(int v, const Eigen::VectorXd& x) {
+    if (factored_vertex_ != v) {
+      factored_vertex_ = v;
+      is_factored_ = linearization_.factor(problem_, x);
+      if (is_factored_) {
+        tangents_[v] = linearization_.tangent_basis();
+      }
     }
-    const Eigen::MatrixXd& T = linearization_.tangent_basis();
+    return is_factored_ ? &linearization_ : nullptr;
+  }
+
+  /// True if `after` (a reshaped or cut part of `before`) has before's orientation in the
+  /// tangent plane of M at vertex v (point x, near the corners) and is not degenerate there.
+  /// Where DF is rank deficient there is no tangent plane: the change is refused.
+  bool keeps_orientation(int v, const Eigen::VectorXd& x, const Corners& before,
+                         const Corners& after) {
+    auto found = tangents_.find(v);
+    if (found == tangents_.end()) {
+      if (at_vertex(v, x) == nullptr) {
+        return false;
+      }
+      found = tangents_.find(v);
+    }
+    const Eigen::MatrixXd& T = found->second;
     const double area_before = projected_area(T, before);
     const double area_after = projected_area(T, after);
     double longest = 0.0;
@@ -93,6 +109,9 @@ class OrientationGuard {
  private:
   const ImplicitProblem& problem_;
   Linearization linearization_;
+  int factored_vertex_ = -1;
+  bool is_factored_ = false;
+  std::unordered_map<int, Eigen::MatrixXd> tangents_;
 };
 
 // Records which bounding hyperplanes each vertex already lies on (to kOnFaceTolerance) and
@@ -181,7 +200,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
           after[r] = x;
         }
       }
-      if (!guard.keeps_orientation(x, before, after)) {
+      if (!guard.keeps_orientation(v, work.point(v), before, after)) {
         return false;
       }
     }
@@ -197,7 +216,8 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     std::sort(faces.begin(), faces.end());
     Eigen::VectorXd x = work.point(v);
     const bool is_corner = static_cast<int>(faces.size()) + m == n;
-    if (!project_onto_faces(problem, domain, faces, x, 3 * snap_distance, corrector) ||
+    if (!project_onto_faces(problem, domain, faces, x, 3 * snap_distance, corrector, nullptr,
+                            guard.at_vertex(v, x)) ||
         !domain.contains(x, 1e-9)) {
       continue;
     }
@@ -248,7 +268,9 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       faces.push_back(k);
       std::sort(faces.begin(), faces.end());
       const double edge_length = (work.point(u) - work.point(w)).norm();
-      if (!project_onto_faces(problem, domain, faces, x, edge_length, corrector)) {
+      const int inside = d[u] > 0 ? u : w;
+      const Linearization* near = guard.at_vertex(inside, work.point(inside));
+      if (!project_onto_faces(problem, domain, faces, x, edge_length, corrector, nullptr, near)) {
         std::ostringstream message;
         message << "cannot clip the mesh to the face " << describe_face(domain, k)
                 << ": no point of M on the face near the edge from "
@@ -271,7 +293,8 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
         Eigen::VectorXd corner = x;
         if (static_cast<int>(corner_faces.size()) + m <= n &&
             project_onto_faces(problem, domain, corner_faces, corner,
-                               std::max(3 * snap_distance, edge_length), corrector) &&
+                               std::max(3 * snap_distance, edge_length), corrector, nullptr,
+                               near) &&
             domain.contains(corner, 1e-9)) {
           x = corner;
           faces = corner_faces;
@@ -314,15 +337,16 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       polygon.pop_back();
     }
     const Corners before = corners(work, parent);
-    Eigen::VectorXd reference = before[0];
+    int reference = parent[0];
     for (int r = 0; r < 3; ++r) {
       if (d[parent[r]] > 0) {
-        reference = before[r];
+        reference = parent[r];
         break;
       }
     }
     const auto fits = [&](const Triangle& child) {
-      return guard.keeps_orientation(reference, before, corners(work, child));
+      return guard.keeps_orientation(reference, work.point(reference), before,
+                                     corners(work, child));
     };
     if (polygon.size() == 3) {
       const Triangle child{polygon[0], polygon[1], polygon[2]};
@@ -496,7 +520,8 @@ int collapse_short_boundary_edges(const ImplicitProblem& problem, TriangleMesh& 
           }
           worst_after = std::min(worst_after, min_angle(mesh, t));
           keeps_orientation =
-              keeps_orientation && guard.keeps_orientation(mesh.point(a), before, corners(mesh, t));
+              keeps_orientation &&
+              guard.keeps_orientation(a, mesh.point(a), before, corners(mesh, t));
         }
         triangles.push_back(t);
       }

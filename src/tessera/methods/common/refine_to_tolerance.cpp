@@ -33,6 +33,64 @@ std::vector<int> shared_faces(const Domain& domain, const Eigen::VectorXd& a,
   return faces;
 }
 
+// The triangles `candidates` in an order that lets few factorisations serve them all: each is
+// paired with an anchor, one of its vertices, and the pairs are sorted by anchor. The anchors
+// are chosen greedily (the vertex with the most unanchored triangles around it first), so about
+// one vertex in three is an anchor instead of one factorisation per triangle.
+std::vector<std::pair<int, int>> anchored(const TriangleMesh& mesh,
+                                          const std::vector<int>& candidates) {
+  const int V = mesh.vertex_count();
+  std::vector<int> start(V + 1, 0);  // candidates around each vertex, compressed rows
+  for (int t : candidates) {
+    for (int v : mesh.triangle(t)) {
+      ++start[v + 1];
+    }
+  }
+  for (int v = 0; v < V; ++v) {
+    start[v + 1] += start[v];
+  }
+  std::vector<int> around(start[V]);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int k = 0; k < static_cast<int>(candidates.size()); ++k) {
+    for (int v : mesh.triangle(candidates[k])) {
+      around[fill[v]++] = k;
+    }
+  }
+  std::vector<int> open_around(V);
+  for (int v = 0; v < V; ++v) {
+    open_around[v] = start[v + 1] - start[v];
+  }
+  std::vector<int> anchor(candidates.size(), -1);
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    if (anchor[k] >= 0) {
+      continue;
+    }
+    const Triangle& tri = mesh.triangle(candidates[k]);
+    int best = tri[0];
+    for (int v : tri) {
+      if (open_around[v] > open_around[best]) {
+        best = v;
+      }
+    }
+    for (int i = start[best]; i < start[best + 1]; ++i) {
+      const int j = around[i];
+      if (anchor[j] < 0) {
+        anchor[j] = best;
+        for (int v : mesh.triangle(candidates[j])) {
+          --open_around[v];
+        }
+      }
+    }
+  }
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(candidates.size());
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    pairs.emplace_back(anchor[k], candidates[k]);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
 }  // namespace
 
 ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Domain& domain,
@@ -47,10 +105,12 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   Linearization workspace;
   const double threshold = options.tolerance * options.sample_safety;
   // The samples of a triangle are projected with the chord iteration frozen at one of its
-  // vertices (one factorisation per triangle instead of one per Gauss–Newton step: for sparse
-  // problems the difference is 15×). The chord lands on M, so its displacement bounds the
+  // vertices, its anchor, which serves all triangles around it (a factorisation for every
+  // third vertex or so, instead of several per Gauss–Newton projection: for sparse problems
+  // factorisations are the cost). The chord lands on M, so its displacement bounds the
   // distance from above: the estimate errs towards splitting.
   Linearization frozen;
+  int frozen_at = -1;
   bool frozen_ok = false;
   auto distance_to_m = [&](const Eigen::VectorXd& point) {
     Eigen::VectorXd x = point;
@@ -65,12 +125,15 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   };
   // The largest sampled distance of triangle t to M, and where it is.
   Eigen::VectorXd where;
-  auto sample = [&](int t) {
+  auto sample = [&](int anchor, int t) {
     const Triangle tri = mesh.triangle(t);
     const Eigen::VectorXd a = mesh.point(tri[0]);
     const Eigen::VectorXd b = mesh.point(tri[1]);
     const Eigen::VectorXd c = mesh.point(tri[2]);
-    frozen_ok = frozen.factor(problem, a);
+    if (anchor != frozen_at) {
+      frozen_ok = frozen.factor(problem, mesh.point(anchor));
+      frozen_at = anchor;
+    }
     double worst = -1.0;
     auto consider = [&](const Eigen::VectorXd& point) {
       const double d = distance_to_m(point);
@@ -104,9 +167,9 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     // 1. Which edges to split: the longest edge of every candidate that is too far from M.
     std::unordered_map<std::uint64_t, int> midpoint_of;  // edge → new vertex
     std::vector<std::pair<int, int>> to_split;
-    for (int t : candidates) {
+    for (const auto& [anchor, t] : anchored(mesh, candidates)) {
       const Triangle tri = mesh.triangle(t);
-      const double worst = sample(t);
+      const double worst = sample(anchor, t);
       if (worst <= threshold) {
         summary.max_distance = std::max(summary.max_distance, worst);
         continue;
@@ -132,6 +195,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       break;
     }
     // 2. The new vertices: midpoints projected onto M (∩ the faces the edge lies on).
+    std::sort(to_split.begin(), to_split.end());
     int made = 0;
     for (const auto& [u, v] : to_split) {
       const Eigen::VectorXd a = mesh.point(u);
@@ -141,9 +205,21 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const std::vector<int> faces = shared_faces(domain, a, b, options.face_tolerance);
       bool projected = false;
       if (faces.empty()) {
+        // The chord frozen at an endpoint first (the pairs are sorted, so one factorisation
+        // serves the edges of a vertex), full Gauss–Newton where it does not contract.
         const Eigen::VectorXd start = x;
-        projected = project_gauss_newton(problem, x, options.corrector, workspace).is_success() &&
+        if (frozen_at != u) {
+          frozen_ok = frozen.factor(problem, a);
+          frozen_at = u;
+        }
+        projected = frozen_ok && project_chord(problem, frozen, x, options.corrector).is_success() &&
                     (x - start).norm() <= length;
+        if (!projected) {
+          x = start;
+          projected =
+              project_gauss_newton(problem, x, options.corrector, workspace).is_success() &&
+              (x - start).norm() <= length;
+        }
       } else {
         projected = faces.size() <= 2 &&
                     project_onto_faces(problem, domain, faces, x, length, options.corrector);
@@ -233,8 +309,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   // once more, so that `remaining` and `max_distance` describe the mesh returned.
   if (exhausted) {
     double worst_remaining = -1.0;
-    for (int t : candidates) {
-      const double worst = sample(t);
+    for (const auto& [anchor, t] : anchored(mesh, candidates)) {
+      const double worst = sample(anchor, t);
       summary.max_distance = std::max(summary.max_distance, worst);
       if (!(worst <= threshold)) {
         if (!(worst <= worst_remaining)) {
