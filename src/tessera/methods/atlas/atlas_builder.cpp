@@ -43,7 +43,8 @@ AtlasBuilder::AtlasBuilder(const ImplicitProblem& problem, const Domain& domain,
       n_(problem.ambient_dimension()),
       index_(problem.ambient_dimension()),
       watch_crossings_(!problem.has_sparse_jacobian() &&
-                       problem.ambient_dimension() <= kMaxCrossingTestDimension) {}
+                       problem.ambient_dimension() <= kMaxCrossingTestDimension),
+      first_step_probes_(problem.has_sparse_jacobian()) {}
 
 // Henderson's section 2.4: with a(s,t) the offset of M from the tangent plane,
 // R = sqrt(2ε/|a_ss|). Instead of second derivatives of F, the offset is measured where it
@@ -73,14 +74,33 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
   Eigen::VectorXd& predicted = predicted_;
   Eigen::MatrixXd& a = quadratic_;
   a.resize(n_, 12);  // columns 0–5: a(θ_i) at r; 6–11: a(θ_i) at kInnerProbe·r
+  // Sparse (large n) problems: each probe is the chord's first step only, −J⁺F at the predicted
+  // point, which is the offset to second order; and the inner ring is left out. 6 evaluations of
+  // F and 6 solves per measurement instead of 12 projections of 3–5 steps each: at large n a
+  // solve costs a fair part of a factorisation. What the inner ring and the full projections
+  // guard against (curvature growing towards the rim, a disk past a turn of M) is checked
+  // where it matters, when a child is projected onto the disk's rim (run()), and the tolerance
+  // is checked on every triangle afterwards.
+  const int probes = first_step_probes_ ? 6 : 12;
+  Eigen::VectorXd F(n_ - 2);
   while (r >= min_radius_) {
     bool is_graph = true;
-    for (int i = 0; i < 12 && is_graph; ++i) {
+    for (int i = 0; i < probes && is_graph; ++i) {
       const double theta = (i % 6) * std::numbers::pi / 3.0;
       const double distance = i < 6 ? r : kInnerProbe * r;
       predicted = x + distance * (T * Eigen::Vector2d(std::cos(theta), std::sin(theta)));
       y = predicted;
-      is_graph = project(at_center, distance, y);
+      if (first_step_probes_) {
+        problem_.evaluate(y, F);
+        is_graph = F.allFinite();
+        if (is_graph) {
+          Eigen::VectorXd dy(n_);
+          at_center.solve_minimum_norm(-F, dy);
+          y += dy;
+        }
+      } else {
+        is_graph = project(at_center, distance, y);
+      }
       y -= predicted;  // the offset; its tangential part is zero for the chord, not for GN
       const Eigen::Vector2d along = T.transpose() * y;
       a.col(i) = y - T * along;
@@ -124,9 +144,11 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
     // curvature κ the slope is tan(κ·(mean of the two radii)).
     const double step = (1.0 - kInnerProbe) * r;
     const double slope =
-        std::max(largest(a.col(0) - a.col(6), a.col(1) - a.col(7), a.col(2) - a.col(8)),
-                 largest(a.col(3) - a.col(9), a.col(4) - a.col(10), a.col(5) - a.col(11))) /
-        step;
+        first_step_probes_
+            ? 0.0
+            : std::max(largest(a.col(0) - a.col(6), a.col(1) - a.col(7), a.col(2) - a.col(8)),
+                       largest(a.col(3) - a.col(9), a.col(4) - a.col(10), a.col(5) - a.col(11))) /
+                  step;
     const double rim_curvature = std::atan(slope) / (0.5 * (1.0 + kInnerProbe) * r);
     const double for_tolerance =
         curvature > 0 ? std::sqrt(2.0 * options_.tolerance / curvature) : options_.step;

@@ -97,6 +97,8 @@ class AtlasBuilder {
   const int n_;
   ChartIndex index_;
   const bool watch_crossings_;
+  // Radius probes by the chord's first step only (sparse problems, where solves are the cost).
+  const bool first_step_probes_;
   std::vector<double> centers_;   // n per chart
   std::vector<double> tangents_;  // n×2 per chart, column-major
   std::vector<Chart> charts_;
