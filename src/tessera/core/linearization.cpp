@@ -320,6 +320,56 @@ void Linearization::solve_minimum_norm(const Eigen::Ref<const Eigen::VectorXd>& 
   backend_->solve(rhs, tangent_, dx);
 }
 
+bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& near,
+                        const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::MatrixXd& T,
+                        double tolerance, int max_iterations) {
+  TESSERA_ASSERT(near.is_factored());
+  const int n = problem.ambient_dimension();
+  const int m = n - 2;
+  // J(y)·T, from the sparse or the dense Jacobian as the problem prefers.
+  Eigen::SparseMatrix<double> sparse;
+  Eigen::MatrixXd dense;
+  double jacobian_norm = 0.0;
+  if (problem.has_sparse_jacobian()) {
+    problem.sparse_jacobian(y, sparse);
+    jacobian_norm = sparse.norm();
+  } else {
+    dense.resize(m, n);
+    problem.jacobian(y, dense);
+    jacobian_norm = dense.norm();
+  }
+  if (!std::isfinite(jacobian_norm) || jacobian_norm == 0.0) {
+    return false;
+  }
+  const auto residual = [&](const Eigen::MatrixXd& basis) -> Eigen::MatrixXd {
+    return problem.has_sparse_jacobian() ? Eigen::MatrixXd(sparse * basis)
+                                         : Eigen::MatrixXd(dense * basis);
+  };
+  T = near.tangent_basis();
+  Eigen::VectorXd correction(n);
+  for (int iteration = 0; iteration <= max_iterations; ++iteration) {
+    const Eigen::MatrixXd JT = residual(T);
+    if (JT.norm() <= tolerance * jacobian_norm) {
+      return true;
+    }
+    if (iteration == max_iterations) {
+      break;
+    }
+    for (int j = 0; j < 2; ++j) {
+      near.solve_minimum_norm(JT.col(j), correction);
+      T.col(j) -= correction;
+    }
+    // Orthonormalise (modified Gram–Schmidt): ker J(y) is spanned either way.
+    T.col(0).normalize();
+    T.col(1) -= T.col(0).dot(T.col(1)) * T.col(0);
+    T.col(1).normalize();
+    if (!T.allFinite()) {
+      return false;
+    }
+  }
+  return false;
+}
+
 bool solve_minimum_norm_dense(const Eigen::Ref<const Eigen::MatrixXd>& J,
                               const Eigen::Ref<const Eigen::VectorXd>& rhs,
                               Eigen::Ref<Eigen::VectorXd> dx) {

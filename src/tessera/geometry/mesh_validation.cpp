@@ -236,17 +236,46 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
   // s of triangle t against the tangent basis at its k-th corner (NaN: not judged there).
   std::vector<std::array<double, 3>> corner_cosine(count, {nan, nan, nan});
   auto is_judged = [&](int t) { return shapes.is_finite[t] && !shapes.is_degenerate[t]; };
-  Linearization linearization;
-  for (int v = 0; v < vertex_count; ++v) {
-    if (topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v] ||
-        !linearization.factor(geometry.problem, points.col(v))) {
-      continue;  // not finite, or DF rank deficient at the vertex: not judged there
-    }
-    const Eigen::MatrixXd& T = linearization.tangent_basis();
+  const auto judge_corners = [&](int v, const Eigen::MatrixXd& T) {
     for (int t : topology.vertex_triangles(v)) {
       if (is_judged(t)) {
         const int k = triangles[t][0] == v ? 0 : (triangles[t][1] == v ? 1 : 2);
         corner_cosine[t][k] = oriented_cosine(points, triangles[t], shapes.area[t], T);
+      }
+    }
+  };
+  // For sparse (large n) problems the tangent planes of a vertex's neighbours come from its
+  // factorisation (tangent_basis_near: one evaluation of DF and a few solves each), so that
+  // only about one vertex in five is factored; the orientation test needs the planes to a few
+  // digits only. Dense problems factor at every vertex, which costs little there and keeps
+  // planes that differ by 90° between neighbours (thin tubes) exact.
+  const bool is_sparse = geometry.problem.has_sparse_jacobian();
+  constexpr double kNearTangentTolerance = 1e-6;
+  std::vector<std::uint8_t> is_done(vertex_count, 0);
+  Linearization linearization;
+  Eigen::MatrixXd near_tangent;
+  for (int v = 0; v < vertex_count; ++v) {
+    if (is_done[v] || topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v]) {
+      continue;
+    }
+    is_done[v] = 1;
+    if (!linearization.factor(geometry.problem, points.col(v))) {
+      continue;  // DF rank deficient at the vertex: not judged there
+    }
+    judge_corners(v, linearization.tangent_basis());
+    if (!is_sparse) {
+      continue;
+    }
+    for (int t : topology.vertex_triangles(v)) {
+      for (int w : triangles[t]) {
+        if (is_done[w] || !view.is_finite_vertex[w]) {
+          continue;
+        }
+        if (tangent_basis_near(geometry.problem, linearization, points.col(w), near_tangent,
+                               kNearTangentTolerance)) {
+          is_done[w] = 1;
+          judge_corners(w, near_tangent);
+        }
       }
     }
   }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -207,8 +208,27 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     return true;
   };
   std::vector<int> collapse_into(vertex_count, -1);
+  // How far v is from the face along the mesh: |d| over the fastest rate at which d changes
+  // along v's edges. Where the face meets M at a shallow angle a vertex at ambient distance
+  // |d| < snap_distance can lie many snap distances from M ∩ face; such vertices are skipped
+  // before their tangent plane is factored.
+  const auto distance_along_mesh = [&](int v) {
+    double rate = 0.0;
+    for (int t : vertex_triangles[v]) {
+      for (int w : work.triangle(t)) {
+        if (w != v) {
+          const double length = (work.point(w) - work.point(v)).norm();
+          if (length > 0) {
+            rate = std::max(rate, std::abs(d[v] - d[w]) / length);
+          }
+        }
+      }
+    }
+    return rate > 0 ? std::abs(d[v]) / rate : std::numeric_limits<double>::infinity();
+  };
   for (int v = 0; v < vertex_count; ++v) {
-    if (d[v] == 0.0 || std::abs(d[v]) >= snap_distance) {
+    if (d[v] == 0.0 || std::abs(d[v]) >= snap_distance ||
+        distance_along_mesh(v) >= 3 * snap_distance) {
       continue;
     }
     std::vector<int> faces = work_faces[v];

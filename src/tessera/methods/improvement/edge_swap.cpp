@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <numbers>
 #include <sstream>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -109,36 +110,99 @@ bool project_edge_midpoint(const TriangleMesh& mesh, const ImplicitProblem& prob
   return project_gauss_newton(problem, x, corrector, linearization).is_success();
 }
 
-// Projects the midpoint of a and b onto M, factors J there and checks that the quadrilateral
-// a, d, b, c is strictly convex in that tangent plane with the old triangles' orientation, and
-// in the tangent planes at its four corners with the same orientation.
+// Tangent bases at the mesh's vertices (whose points a swap never moves), kept for the
+// vertices seen last: neighbouring quadrilaterals share corners, so most corners are factored
+// once per run instead of once per check. Bounded, so that a sweep over a mesh of large n holds
+// O(1) n-vectors.
+class CornerTangents {
+ public:
+  explicit CornerTangents(const ImplicitProblem& problem) : problem_(problem) {}
+
+  /// The factorisation at vertex v, made now unless v was the last one factored.
+  const Linearization* factorisation(const TriangleMesh& mesh, int v) {
+    if (factored_vertex_ != v) {
+      factored_vertex_ = v;
+      is_factored_ = linearization_.factor(problem_, mesh.point(v));
+      if (is_factored_) {
+        remember(v, linearization_.tangent_basis());
+      }
+    }
+    return is_factored_ ? &linearization_ : nullptr;
+  }
+
+  /// T at vertex v (n×2, orthonormal), oriented like `reference`; false where DF is rank
+  /// deficient.
+  bool tangent(const TriangleMesh& mesh, int v, const Eigen::MatrixXd& reference,
+               Eigen::MatrixXd& T) {
+    const auto found = tangents_.find(v);
+    if (found != tangents_.end()) {
+      T = found->second;
+    } else if (const Linearization* at_v = factorisation(mesh, v)) {
+      T = at_v->tangent_basis();
+    } else {
+      return false;
+    }
+    align_tangent_basis(T, reference);
+    return true;
+  }
+
+ private:
+  static constexpr std::size_t kCapacity = 256;
+  void remember(int v, const Eigen::MatrixXd& T) {
+    if (tangents_.size() >= kCapacity) {
+      tangents_.clear();  // simplest bound; the next checks refill what they need
+    }
+    tangents_[v] = T;
+  }
+
+  const ImplicitProblem& problem_;
+  Linearization linearization_;
+  int factored_vertex_ = -1;
+  bool is_factored_ = false;
+  std::unordered_map<int, Eigen::MatrixXd> tangents_;
+};
+
+// Projects the midpoint of a and b onto M (the chord frozen at a, Gauss–Newton where it does
+// not contract) and checks that the quadrilateral a, d, b, c is strictly convex, with the old
+// triangles' orientation, in the tangent planes at its four corners.
 SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& problem,
                               const Quad& q, const ImprovementOptions& options,
-                              Linearization& linearization, Linearization& corner_linearization) {
-  Eigen::VectorXd x;
-  if (!project_edge_midpoint(mesh, problem, q.a, q.b, linearization, x) ||
-      !linearization.factor(problem, x)) {
+                              Linearization& workspace, CornerTangents& corners_tangents) {
+  const Linearization* at_a = corners_tangents.factorisation(mesh, q.a);
+  if (at_a == nullptr) {
     return SwapCheck::ProjectionFailed;
   }
-  // T: n×2 orthonormal tangent basis at P(m); coordinates in the tangent plane are Tᵀ(y − P(m)).
-  const Eigen::MatrixXd T = linearization.tangent_basis();
+  // The midpoint must project onto M within the edge's length: farther means the edge has
+  // left the neighbourhood of M it belongs to (another sheet), where nothing can be judged.
+  Eigen::VectorXd x = 0.5 * (mesh.point(q.a) + mesh.point(q.b));
+  CorrectorOptions corrector;
+  corrector.max_displacement = (mesh.point(q.a) - mesh.point(q.b)).norm();
+  const Eigen::VectorXd midpoint = x;
+  if (!project_chord(problem, *at_a, x, corrector).is_success()) {
+    x = midpoint;
+    if (!project_gauss_newton(problem, x, corrector, workspace).is_success()) {
+      return SwapCheck::ProjectionFailed;
+    }
+  }
+  // T: n×2 orthonormal tangent basis at a; coordinates in the tangent plane are Tᵀ(y − a).
+  const Eigen::MatrixXd T = at_a->tangent_basis();
   double sign = 0.0;
-  if (!is_strictly_convex_in_plane(mesh, q, T, x, options, sign)) {
+  if (!is_strictly_convex_in_plane(mesh, q, T, Eigen::VectorXd(mesh.point(q.a)), options, sign)) {
     return SwapCheck::NonConvex;
   }
-  // The midpoint's plane alone can be fooled where M curves across a large quadrilateral: a
-  // swap could then fold the mesh over (a triangle reversed relative to M's normal at its
-  // corners), and a folded region can never be unfolded by convex swaps. So the quadrilateral
-  // must also be strictly convex, with the same orientation, in the tangent plane at each of its
-  // corners (the corner bases are aligned with T, so "same orientation" is meaningful).
-  const int corners[4] = {q.a, q.b, q.c, q.d};
-  for (const int v : corners) {
-    if (!corner_linearization.factor(problem, mesh.point(v), &T)) {
+  // One plane alone can be fooled where M curves across a large quadrilateral: a swap could
+  // then fold the mesh over (a triangle reversed relative to M's normal at its corners), and a
+  // folded region can never be unfolded by convex swaps. So the quadrilateral must be strictly
+  // convex, with the same orientation, in the tangent plane at each of its corners (the corner
+  // bases are aligned with T, so "same orientation" is meaningful).
+  Eigen::MatrixXd corner_tangent;
+  for (const int v : {q.b, q.c, q.d}) {
+    if (!corners_tangents.tangent(mesh, v, T, corner_tangent)) {
       return SwapCheck::ProjectionFailed;
     }
     double corner_sign = sign;
-    if (!is_strictly_convex_in_plane(mesh, q, corner_linearization.tangent_basis(),
-                                     Eigen::VectorXd(mesh.point(v)), options, corner_sign)) {
+    if (!is_strictly_convex_in_plane(mesh, q, corner_tangent, Eigen::VectorXd(mesh.point(v)),
+                                     options, corner_sign)) {
       return SwapCheck::NonConvex;
     }
   }
@@ -316,9 +380,9 @@ SwapCheck check_edge_swap(const TriangleMesh& mesh, const ImplicitProblem& probl
   if (combinatorial != SwapCheck::Allowed) {
     return combinatorial;
   }
-  Linearization linearization;
-  Linearization corner_linearization;
-  return check_quad_geometry(mesh, problem, q, options, linearization, corner_linearization);
+  Linearization workspace;
+  CornerTangents corner_tangents(problem);
+  return check_quad_geometry(mesh, problem, q, options, workspace, corner_tangents);
 }
 
 SwapCheck swap_edge(TriangleMesh& mesh, const ImplicitProblem& problem, int a, int b,
@@ -328,9 +392,9 @@ SwapCheck swap_edge(TriangleMesh& mesh, const ImplicitProblem& problem, int a, i
   Quad q;
   SwapCheck check = find_quad(mesh.triangles(), a, b, q);
   if (check == SwapCheck::Allowed) {
-    Linearization linearization;
-    Linearization corner_linearization;
-    check = check_quad_geometry(mesh, problem, q, options, linearization, corner_linearization);
+    Linearization workspace;
+    CornerTangents corner_tangents(problem);
+    check = check_quad_geometry(mesh, problem, q, options, workspace, corner_tangents);
   }
   if (check == SwapCheck::Allowed) {
     std::vector<Triangle> triangles = mesh.triangles();
@@ -357,8 +421,7 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
       edges.insert(edge_key(tri[k], tri[(k + 1) % 3]));
     }
   }
-  Linearization linearization;
-  Linearization corner_linearization;
+  CornerTangents corner_tangents(problem);
   Linearization workspace;
   std::vector<std::uint8_t> is_changed;
   while (summary.sweeps < options.max_sweeps) {
@@ -399,7 +462,7 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
         continue;
       }
       const SwapCheck check =
-          check_quad_geometry(mesh, problem, q, options, linearization, corner_linearization);
+          check_quad_geometry(mesh, problem, q, options, workspace, corner_tangents);
       if (check == SwapCheck::NonConvex) {
         ++summary.rejected_non_convex;
         continue;
