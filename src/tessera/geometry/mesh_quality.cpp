@@ -5,10 +5,14 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
+#include <random>
+#include <vector>
 
 #include "tessera/core/corrector.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
+#include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/mesh_topology.h"
 
 namespace tessera {
@@ -27,6 +31,24 @@ double triangle_area(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const E
 void accumulate(Statistic& statistic, double value) {
   statistic.max = std::max(statistic.max, value);
   statistic.mean += (value - statistic.mean) / ++statistic.count;
+}
+
+// 0 … population − 1, or a uniform sample of `limit` of them (limit > 0) drawn with a fixed
+// seed, so that reports are reproducible.
+std::vector<int> sample_indices(int population, int limit) {
+  std::vector<int> indices(population);
+  std::iota(indices.begin(), indices.end(), 0);
+  if (limit <= 0 || population <= limit) {
+    return indices;
+  }
+  std::mt19937_64 generator(20261123);
+  for (int i = 0; i < limit; ++i) {  // partial Fisher–Yates
+    std::uniform_int_distribution<int> pick(i, population - 1);
+    std::swap(indices[i], indices[pick(generator)]);
+  }
+  indices.resize(limit);
+  std::sort(indices.begin(), indices.end());
+  return indices;
 }
 
 }  // namespace
@@ -90,11 +112,21 @@ bool project_onto_manifold(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vec
   return project_gauss_newton(problem, x, options, workspace).is_success();
 }
 
-MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem) {
+MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem,
+                            const QualityOptions& options) {
   TESSERA_CHECK(mesh.ambient_dimension() == problem.ambient_dimension(),
                 "the mesh is in R^" << mesh.ambient_dimension() << " but problem '"
                                     << problem.name() << "' is in R^"
                                     << problem.ambient_dimension());
+  TESSERA_CHECK(options.max_samples >= 0,
+                "QualityOptions::max_samples = " << options.max_samples << " must be >= 0");
+  const Eigen::VectorXd weights = metric_weights(problem);
+  if (weights.size() > 0) {
+    // In the metric's coordinates y = W x, where lengths are the problem's own.
+    const ScaledProblem scaled(problem, weights);
+    TriangleMesh scaled_mesh(weights.asDiagonal() * mesh.points(), mesh.triangles());
+    return measure_quality(scaled_mesh, scaled, options);
+  }
   MeshQuality quality = measure_shape(mesh);
   const int n = problem.ambient_dimension();
   Eigen::VectorXd F(n - 2);
@@ -108,20 +140,27 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& pro
     accumulate(statistic, (y - x).norm());
   };
   for (int v = 0; v < mesh.vertex_count(); ++v) {
-    const Eigen::VectorXd x = mesh.point(v);
-    problem.evaluate(x, F);
+    problem.evaluate(mesh.point(v), F);
     accumulate(quality.vertex_residual, F.norm());
-    distance(x, quality.vertex_distance);
   }
-  for (const Triangle& t : mesh.triangles()) {
-    const Eigen::VectorXd centroid = (mesh.point(t[0]) + mesh.point(t[1]) + mesh.point(t[2])) / 3.0;
-    distance(centroid, quality.centroid_distance);
+  quality.vertex_residual.population = mesh.vertex_count();
+  for (int v : sample_indices(mesh.vertex_count(), options.max_samples)) {
+    distance(mesh.point(v), quality.vertex_distance);
   }
+  quality.vertex_distance.population = mesh.vertex_count();
+  for (int t : sample_indices(mesh.triangle_count(), options.max_samples)) {
+    const Triangle& tri = mesh.triangle(t);
+    distance((mesh.point(tri[0]) + mesh.point(tri[1]) + mesh.point(tri[2])) / 3.0,
+             quality.centroid_distance);
+  }
+  quality.centroid_distance.population = mesh.triangle_count();
   const MeshTopology topology(mesh);
-  for (const auto& edge : topology.edges()) {
-    const Eigen::VectorXd midpoint = 0.5 * (mesh.point(edge[0]) + mesh.point(edge[1]));
-    distance(midpoint, quality.midpoint_distance);
+  const auto& edges = topology.edges();
+  for (int e : sample_indices(static_cast<int>(edges.size()), options.max_samples)) {
+    distance(0.5 * (mesh.point(edges[e][0]) + mesh.point(edges[e][1])),
+             quality.midpoint_distance);
   }
+  quality.midpoint_distance.population = static_cast<int>(edges.size());
   return quality;
 }
 

@@ -16,6 +16,7 @@
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
+#include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/spatial_hash.h"
@@ -935,6 +936,16 @@ MeshValidation validate(const TriangleMesh& mesh, const ImplicitProblem& problem
   TESSERA_CHECK(domain.is_unbounded() || domain.ambient_dimension() == mesh.ambient_dimension(),
                 "the domain (" << domain.describe() << ") is in R^" << domain.ambient_dimension()
                                << " but the mesh is in R^" << mesh.ambient_dimension());
+  const Eigen::VectorXd weights = metric_weights(problem);
+  if (weights.size() > 0) {
+    // Judged in the metric's coordinates y = W x, as the covering methods built the mesh: the
+    // overlap and same-point tests compare lengths.
+    const ScaledProblem scaled(problem, weights);
+    const Domain scaled_domain = scale_domain(domain, weights);
+    const TriangleMesh scaled_mesh(weights.asDiagonal() * mesh.points(), mesh.triangles());
+    const GeometricInput geometry{scaled, scaled_domain};
+    return validate_mesh(scaled_mesh, options, &geometry);
+  }
   const GeometricInput geometry{problem, domain};
   return validate_mesh(mesh, options, &geometry);
 }

@@ -13,7 +13,7 @@ namespace tessera {
 namespace {
 
 nlohmann::json statistic(const Statistic& s) {
-  return {{"max", s.max}, {"mean", s.mean}, {"count", s.count}};
+  return {{"max", s.max}, {"mean", s.mean}, {"count", s.count}, {"population", s.population}};
 }
 
 // The index lists of the geometric defects are complete in MeshValidation; the summary keeps
@@ -211,7 +211,11 @@ std::string to_text(const MeshReport& report) {
   }
   out << "on M           max |F| " << q.vertex_residual.max << " at vertices; distance to M: "
       << "vertices " << q.vertex_distance.max << ", centroids " << q.centroid_distance.max
-      << ", edge midpoints " << q.midpoint_distance.max << "\n";
+      << ", edge midpoints " << q.midpoint_distance.max;
+  if (q.centroid_distance.count < q.centroid_distance.population) {
+    out << " (largest of " << q.centroid_distance.count << " uniform samples of each)";
+  }
+  out << "\n";
   if (q.failed_projections > 0) {
     out << "  warning      " << q.failed_projections << " points could not be projected onto M\n";
   }
