@@ -273,10 +273,8 @@ TEST(SparseLuSolvers, NamesRoundTripAndEigenIsAlwaysAvailable) {
 TEST(SparseLuSolvers, EnvironmentVariableChoosesTheSolverOrSaysWhatIsAvailable) {
   {
     const SolverEnvironment environment("");
-    // Unset or empty: the built-in default, UMFPACK when the build has it.
-    EXPECT_EQ(default_sparse_lu_solver(), is_available(SparseLuSolver::Umfpack)
-                                              ? SparseLuSolver::Umfpack
-                                              : SparseLuSolver::Eigen);
+    // Unset or empty: the built-in default, the one solver every build has.
+    EXPECT_EQ(default_sparse_lu_solver(), SparseLuSolver::Eigen);
   }
   const SolverEnvironment environment("mumps");
   try {

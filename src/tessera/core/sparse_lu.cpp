@@ -100,8 +100,10 @@ SparseLuSolver default_sparse_lu_solver() {
                       << " (configure found no library for it); it has: " << available_names());
     return *solver;
   }
-  // The fastest by bench/RESULTS.md section 9 (one factorisation and ~30 solves per vertex).
-  return is_available(SparseLuSolver::Umfpack) ? SparseLuSolver::Umfpack : SparseLuSolver::Eigen;
+  // Eigen's SparseLU: the fastest per vertex (one factorisation and ~30 solves) on the 2-D
+  // problems at n ≥ 10⁴ and never more than ~2.5× from the best elsewhere; KLU, fastest on 1-D
+  // and small problems, is 10× slower at n = 10⁵ in 2-D (bench/RESULTS.md section 9).
+  return SparseLuSolver::Eigen;
 }
 
 std::unique_ptr<SparseLu> make_sparse_lu(SparseLuSolver solver) {

@@ -36,9 +36,11 @@ std::string_view name(SparseLuSolver solver);
 std::optional<SparseLuSolver> sparse_lu_solver_named(std::string_view name);
 
 /// The solver `Linearization` uses for sparse problems: the environment variable
-/// TESSERA_SPARSE_LU when it is set and not empty, otherwise the fastest available solver
-/// (UMFPACK, then Eigen: bench/RESULTS.md section 9). Read at every call, so that a test or a
-/// benchmark can switch solvers with setenv.
+/// TESSERA_SPARSE_LU when it is set and not empty, otherwise Eigen's SparseLU, the fastest on
+/// the 2-D PDE surfaces at n ≥ 10⁴ and within ~2.5× of the best everywhere measured
+/// (bench/RESULTS.md section 9; TESSERA_SPARSE_LU=klu is 2× faster on 1-D problems such as
+/// `bvp`, 10× slower on 2-D ones at n = 10⁵). Read at every call, so that a test or a benchmark
+/// can switch solvers with setenv.
 /// \throw InvalidArgument if TESSERA_SPARSE_LU names no solver or one this build does not have
 ///        (the message lists the available ones).
 SparseLuSolver default_sparse_lu_solver();
