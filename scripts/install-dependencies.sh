@@ -3,8 +3,11 @@
 # packages that a script needs besides (scripts/run-fuzzers.sh: clang and its libFuzzer runtime).
 set -euo pipefail
 # python3-meshio: tests/io/meshio_test.cpp checks that meshio reads the PLY files tessera writes.
+# libsuitesparse-dev (UMFPACK, KLU) and libsuperlu-dev: sparse LU solvers for large n
+# (core/sparse_lu.h); without them the build falls back to Eigen's SparseLU.
 packages=(cmake ninja-build g++ libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev
-          libbenchmark-dev ccache libcgal-dev python3-meshio "$@")
+          libbenchmark-dev ccache libcgal-dev python3-meshio libsuitesparse-dev libsuperlu-dev
+          "$@")
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||

@@ -4,12 +4,12 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 #include <algorithm>
-#include <random>
 
+#include "tessera/core/bordered_jacobian.h"
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/error.h"
+#include "tessera/core/sparse_lu.h"
 
 namespace tessera {
 
@@ -102,16 +102,18 @@ class DenseBackend final : public LinearizationBackend {
 
 class SparseBackend final : public LinearizationBackend {
  public:
+  // The solver is chosen once per backend (default_sparse_lu_solver: TESSERA_SPARSE_LU or the
+  // fastest available), so that one run does not mix solvers.
+  SparseBackend() : SparseBackend(default_sparse_lu_solver()) {}
+  explicit SparseBackend(SparseLuSolver solver) : lu_(make_sparse_lu(solver)) {}
+
   std::unique_ptr<LinearizationBackend> clone() const override {
-    // SparseLU is not copyable; a copy refactors lazily from the stored bordered matrix.
-    auto copy = std::make_unique<SparseBackend>();
+    // Factorisations are not copyable; a copy refactors from the stored bordered matrix.
+    auto copy = std::make_unique<SparseBackend>(lu_->solver());
     copy->bordered_ = bordered_;
     copy->last_tangent_ = last_tangent_;
-    if (bordered_.rows() > 0) {
-      copy->lu_.analyzePattern(copy->bordered_);
-      copy->lu_.factorize(copy->bordered_);
-      copy->analyzed_outer_ = analyzed_outer_;
-      copy->analyzed_inner_ = analyzed_inner_;
+    if (lu_->is_factored() && copy->lu_->analyze(copy->bordered_) == SparseLuStatus::Success) {
+      copy->lu_->factorize(copy->bordered_);
     }
     return copy;
   }
@@ -131,17 +133,17 @@ class SparseBackend final : public LinearizationBackend {
     // |det| of the reference tangent's rows i, j, so A is as well conditioned as the reference
     // allows. The last resort is two dense pseudo-random rows: transversal to ker J with
     // probability one, but they fill the LU (O(n²); bench/RESULTS.md).
-    const Eigen::MatrixXd* guide = reference != nullptr ? reference
+    const Eigen::MatrixXd* guide = reference != nullptr        ? reference
                                    : last_tangent_.rows() == n ? &last_tangent_
                                                                : nullptr;
     // Without a guide, try the last two coordinates first: in parameter-dependent problems
     // x = (u, λ, μ) the two parameters usually parametrise M locally (away from folds).
-    const Border last_two{{n - 2, n - 2, 1.0}, {n - 1, n - 1, 1.0}};
-    if (guide != nullptr && factor_bordered(n, coordinate_border(*guide), tangent)) {
+    const JacobianBorder last_two{{n - 2, n - 2, 1.0}, {n - 1, n - 1, 1.0}};
+    if (guide != nullptr && factor_bordered(coordinate_border(*guide), tangent)) {
       last_tangent_ = tangent;
-    } else if (guide == nullptr && factor_bordered(n, last_two, tangent)) {
+    } else if (guide == nullptr && factor_bordered(last_two, tangent)) {
       last_tangent_ = tangent;
-    } else if (factor_bordered(n, random_border(n), tangent)) {
+    } else if (factor_bordered(random_border(n), tangent)) {
       last_tangent_ = tangent;
     } else {
       return false;
@@ -157,77 +159,33 @@ class SparseBackend final : public LinearizationBackend {
   void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd& tangent,
              Eigen::Ref<Eigen::VectorXd> dx) const override {
     const int n = static_cast<int>(dx.size());
-    Eigen::VectorXd extended = Eigen::VectorXd::Zero(n);
-    extended.head(n - 2) = rhs;
-    Eigen::VectorXd solution = lu_.solve(extended);
+    Eigen::VectorXd solution = Eigen::VectorXd::Zero(n);
+    solution.head(n - 2) = rhs;
+    lu_->solve(solution, solution);
     // Remove the ker-J component: what remains is the minimum-norm solution.
     solution -= tangent * (tangent.transpose() * solution);
     dx = solution;
   }
 
  private:
-  // Border rows as triplets (row index n−2+j, column, value).
-  using Border = std::vector<Eigen::Triplet<double>>;
-
-  static Border coordinate_border(const Eigen::MatrixXd& T) {
-    const int n = static_cast<int>(T.rows());
-    int i = 0;
-    T.rowwise().squaredNorm().maxCoeff(&i);
-    int j = i == 0 ? 1 : 0;
-    double best = -1.0;
-    for (int k = 0; k < n; ++k) {
-      const double det = std::abs(T(i, 0) * T(k, 1) - T(i, 1) * T(k, 0));
-      if (k != i && det > best) {
-        best = det;
-        j = k;
-      }
-    }
-    return {{n - 2, i, 1.0}, {n - 1, j, 1.0}};
-  }
-
-  static Border random_border(int n) {
-    // A fixed seed keeps runs deterministic.
-    std::mt19937_64 generator(20261121);
-    std::normal_distribution<double> normal;
-    Border border;
-    for (int j = 0; j < 2; ++j) {
-      for (int i = 0; i < n; ++i) {
-        border.emplace_back(n - 2 + j, i, normal(generator));
-      }
-    }
-    return border;
-  }
-
   // Factors A = [J; border] and computes the orthonormal kernel basis of J; false if A is
   // singular or the basis is not accurate (the border was nearly tangent-blind).
-  bool factor_bordered(int n, const Border& border, Eigen::MatrixXd& tangent) {
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(jacobian_.nonZeros() + border.size());
-    for (int k = 0; k < jacobian_.outerSize(); ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(jacobian_, k); it; ++it) {
-        entries.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
-      }
-    }
-    entries.insert(entries.end(), border.begin(), border.end());
-    bordered_.resize(n, n);
-    bordered_.setFromTriplets(entries.begin(), entries.end());
-    bordered_.makeCompressed();
+  bool factor_bordered(const JacobianBorder& border, Eigen::MatrixXd& tangent) {
+    const int n = static_cast<int>(jacobian_.cols());
+    bordered_jacobian(jacobian_, border, bordered_);
     // The symbolic analysis (ordering) is redone only when the pattern changes.
-    if (!has_same_pattern(bordered_)) {
-      lu_.analyzePattern(bordered_);
-      analyzed_outer_.assign(bordered_.outerIndexPtr(), bordered_.outerIndexPtr() + n + 1);
-      analyzed_inner_.assign(bordered_.innerIndexPtr(),
-                             bordered_.innerIndexPtr() + bordered_.nonZeros());
-    }
-    lu_.factorize(bordered_);
-    ++factorisations_;
-    if (lu_.info() != Eigen::Success) {
+    if (!lu_->is_analyzed_for(bordered_) && lu_->analyze(bordered_) != SparseLuStatus::Success) {
       return false;
     }
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-    rhs(n - 2, 0) = 1.0;
-    rhs(n - 1, 1) = 1.0;
-    tangent = lu_.solve(rhs);
+    const SparseLuStatus status = lu_->factorize(bordered_);
+    ++factorisations_;
+    if (status != SparseLuStatus::Success) {
+      return false;
+    }
+    tangent = Eigen::MatrixXd::Zero(n, 2);
+    tangent(n - 2, 0) = 1.0;
+    tangent(n - 1, 1) = 1.0;
+    lu_->solve(tangent, tangent);
     if (!tangent.allFinite()) {
       return false;
     }
@@ -241,18 +199,9 @@ class SparseBackend final : public LinearizationBackend {
            (jacobian_ * tangent).norm() <= 1e-8 * std::max(1.0, jacobian_.norm());
   }
 
-  bool has_same_pattern(const Eigen::SparseMatrix<double>& A) const {
-    return static_cast<std::size_t>(A.outerSize()) + 1 == analyzed_outer_.size() &&
-           static_cast<std::size_t>(A.nonZeros()) == analyzed_inner_.size() &&
-           std::equal(analyzed_outer_.begin(), analyzed_outer_.end(), A.outerIndexPtr()) &&
-           std::equal(analyzed_inner_.begin(), analyzed_inner_.end(), A.innerIndexPtr());
-  }
-
   Eigen::SparseMatrix<double> jacobian_;
   Eigen::SparseMatrix<double> bordered_;
-  std::vector<int> analyzed_outer_;  // pattern of the last symbolic analysis
-  std::vector<int> analyzed_inner_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+  std::unique_ptr<SparseLu> lu_;
   Eigen::MatrixXd last_tangent_;  // guides the border of the next factorisation
 };
 

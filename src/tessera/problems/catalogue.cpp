@@ -271,6 +271,60 @@ ProblemSetup make_bvp(const ParameterValues& values) {
   return setup;
 }
 
+ProblemSetup make_bratu2d(const ParameterValues& values) {
+  const double grid_size = values.at("N");
+  TESSERA_CHECK(grid_size >= 1 && grid_size <= ArrheniusBratu2D::kMaxGridSize &&
+                    grid_size == std::floor(grid_size),
+                "bratu2d N = " << grid_size << " must be a whole number in [1, "
+                               << ArrheniusBratu2D::kMaxGridSize << "] (n = N² + 2 unknowns)");
+  const int N = static_cast<int>(grid_size);
+  auto problem = std::make_unique<ArrheniusBratu2D>(N);
+  ProblemSetup setup;
+  // Start on the middle sheet of the fold, between the ignition (u_c ≈ 2.9) and extinction
+  // (u_c ≈ 18) folds of the ε = 0.2 branch (λ ≈ 8.4), computed to full precision.
+  setup.start = problem->point_with_amplitude(6.0, 0.2);
+  // λ ∈ [0.5, 20], ε ∈ [0, 0.3] and u_c ≤ 20: contains the ignition fold for every ε, the
+  // extinction fold for ε ≳ 0.19 and the cusp (ε ≈ 0.242, u_c ≈ 6, λ ≈ 10.2); λ stays below 19
+  // on M ∩ {u_c ≤ 20, ε ≤ 0.3}, so the face λ = 20 is never reached. Positive solutions are
+  // largest at the centre, so bounding u_c bounds every u_ij: 5 half-spaces instead of a box's
+  // 2N² + 4.
+  const int centre = problem->centre_index();
+  const int n = N * N + 2;
+  const auto names = problem->coordinate_names();
+  setup.domain = Domain(n);
+  const auto add_bound = [&](int coordinate, double bound, bool is_lower) {
+    Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
+    Eigen::VectorXd point = Eigen::VectorXd::Zero(n);
+    normal(coordinate) = is_lower ? 1.0 : -1.0;
+    point(coordinate) = bound;
+    std::ostringstream label;
+    label << names[coordinate] << (is_lower ? " >= " : " <= ") << bound;
+    setup.domain.add_half_space(normal, point, label.str());
+  };
+  add_bound(n - 2, 0.5, true);
+  add_bound(n - 2, 20.0, false);
+  add_bound(n - 1, 0.0, true);
+  add_bound(n - 1, 0.3, false);
+  add_bound(centre, 20.0, false);
+  // A length in the metric of the coordinate blocks (u weighted by h, so that h‖u‖ is the L²
+  // norm on the unit square), the metric in which tessera measures M: unlike the 1-D bvp's
+  // Euclidean step it does not grow with N. In that metric M ∩ S has an area of ≈ 130 (N = 15;
+  // λ spans [0.5, 19], ‖u‖_L² reaches ≈ 10, ε only 0.3, so that 0.1 puts three edges across
+  // the strip near u = 0 where ε hardly matters): by that area a covering has a few thousand to
+  // 10⁴ vertices, one to three minutes at the default N = 32 if a vertex costs 2–5
+  // factorisations of the bordered n×n Jacobian (≈ 2 ms each there, ≈ 30 ms at N = 100,
+  // ≈ 0.5 s at N = 316; bench/RESULTS.md section 9). An estimate: the coverings do not measure in
+  // the weighted metric yet.
+  setup.suggested_step = 0.1;
+  // M is a graph over (u_c, ε) (point_with_amplitude's bordered Newton system is regular along
+  // every line scanned). Scans of λ along u_c ∈ [0, 20] every 0.25 for ε = 0, 0.01, …, 0.3 at
+  // N = 5 and 15, and ε = 0, 0.05, …, 0.3 at N = 32 (bench/bratu2d_folds.cpp, mode `disk`), show
+  // that {0.5 ≤ λ ≤ 20} is one interval on every such line: M ∩ S is a disk.
+  setup.expected_euler_characteristic = 1;
+  setup.problem = std::move(problem);
+  return setup;
+}
+
 // --- Parsing ---------------------------------------------------------------------------------
 
 std::string trim(const std::string& text) {
@@ -404,6 +458,12 @@ const std::vector<CatalogueEntry>& catalogue() {
                  "Gelfand–Bratu u'' + λ exp(u/(1+εu)) = 0, u(0) = u(1) = 0 on N points, "
                  "coordinates (u1…uN, lambda, epsilon); sparse J; a fold surface with a cusp",
                  {{"points", 100.0, "number N of interior grid points; n = N + 2"}}, make_bvp),
+      make_entry("bratu2d",
+                 "Gelfand–Bratu Δu + λ exp(u/(1+εu)) = 0 on the unit square, u = 0 on its "
+                 "boundary, N×N grid, coordinates (u_1_1…u_N_N, lambda, epsilon); sparse J; a "
+                 "fold surface with a cusp",
+                 {{"N", 32.0, "interior grid points per side, 1 … 1000; n = N² + 2"}},
+                 make_bratu2d),
   };
   return entries;
 }

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "tessera/core/bordered_jacobian.h"
 #include "tessera/core/error.h"
+#include "tessera/core/sparse_lu.h"
 
 namespace tessera {
 
@@ -388,6 +390,203 @@ Eigen::VectorXd ArrheniusBratu::point_with_amplitude(double amplitude, double ep
   }
   Eigen::VectorXd x(N + 2);
   x << u, lambda, epsilon;
+  return x;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Arrhenius–Bratu problem on the unit square.
+
+ArrheniusBratu2D::ArrheniusBratu2D(int grid_size) : grid_size_(grid_size) {
+  TESSERA_CHECK(
+      grid_size >= 1 && grid_size <= kMaxGridSize,
+      "ArrheniusBratu2D grid_size = " << grid_size << " must be in [1, " << kMaxGridSize << "]");
+}
+
+int ArrheniusBratu2D::centre_index() const {
+  const int middle = (grid_size_ - 1) / 2;  // 0-based row and column of ⌊(N+1)/2⌋
+  return middle * grid_size_ + middle;
+}
+
+void ArrheniusBratu2D::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                Eigen::Ref<Eigen::VectorXd> F) const {
+  const int N = grid_size_;
+  const int m = N * N;
+  const double h = 1.0 / (N + 1);
+  const double lambda = x(m);
+  const double epsilon = x(m + 1);
+  for (int row = 0; row < N; ++row) {
+    for (int column = 0; column < N; ++column) {
+      const int i = row * N + column;
+      const double u = x(i);
+      const double below = row > 0 ? x(i - N) : 0.0;
+      const double above = row + 1 < N ? x(i + N) : 0.0;
+      const double left = column > 0 ? x(i - 1) : 0.0;
+      const double right = column + 1 < N ? x(i + 1) : 0.0;
+      F(i) = below + above + left + right - 4.0 * u +
+             h * h * lambda * std::exp(u / (1.0 + epsilon * u));
+    }
+  }
+}
+
+void ArrheniusBratu2D::jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                Eigen::Ref<Eigen::MatrixXd> J) const {
+  Eigen::SparseMatrix<double> sparse;
+  sparse_jacobian(x, sparse);
+  J = Eigen::MatrixXd(sparse);
+}
+
+void ArrheniusBratu2D::sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                       Eigen::SparseMatrix<double>& J) const {
+  const int N = grid_size_;
+  const int m = N * N;
+  const double h2 = 1.0 / ((N + 1.0) * (N + 1.0));
+  const double lambda = x(m);
+  const double epsilon = x(m + 1);
+  const Eigen::Index nonzeros = 5 * static_cast<Eigen::Index>(m) - 4 * N + 2 * m;
+
+  // The compressed column arrays are written directly, as in ArrheniusBratu::sparse_jacobian:
+  // a J reused across calls keeps its storage.
+  J.resize(m, m + 2);
+  J.resizeNonZeros(nonzeros);
+  int* outer = J.outerIndexPtr();
+  int* inner = J.innerIndexPtr();
+  double* values = J.valuePtr();
+
+  // Column j (u_j) holds rows j−N, j−1, j, j+1, j+N of the stencil, in increasing row order.
+  int k = 0;
+  for (int j = 0; j < m; ++j) {
+    const int row = j / N;
+    const int column = j % N;
+    outer[j] = k;
+    if (row > 0) {
+      inner[k] = j - N;
+      values[k++] = 1.0;
+    }
+    if (column > 0) {
+      inner[k] = j - 1;
+      values[k++] = 1.0;
+    }
+    inner[k] = j;
+    values[k++] = -4.0 + h2 * lambda * arrhenius(x(j), epsilon).derivative_u;
+    if (column + 1 < N) {
+      inner[k] = j + 1;
+      values[k++] = 1.0;
+    }
+    if (row + 1 < N) {
+      inner[k] = j + N;
+      values[k++] = 1.0;
+    }
+  }
+  // Columns m (λ) and m+1 (ε) are dense.
+  outer[m] = k;
+  outer[m + 1] = k + m;
+  outer[m + 2] = k + 2 * m;
+  for (int i = 0; i < m; ++i) {
+    const Arrhenius term = arrhenius(x(i), epsilon);
+    inner[k + i] = i;
+    values[k + i] = h2 * term.value;
+    inner[k + m + i] = i;
+    values[k + m + i] = h2 * lambda * term.derivative_epsilon;
+  }
+  TESSERA_ASSERT(k + 2 * m == nonzeros);
+}
+
+std::vector<std::string> ArrheniusBratu2D::coordinate_names() const {
+  std::vector<std::string> names;
+  names.reserve(static_cast<std::size_t>(grid_size_) * grid_size_ + 2);
+  for (int row = 1; row <= grid_size_; ++row) {
+    for (int column = 1; column <= grid_size_; ++column) {
+      names.push_back("u_" + std::to_string(row) + "_" + std::to_string(column));
+    }
+  }
+  names.push_back("lambda");
+  names.push_back("epsilon");
+  return names;
+}
+
+std::vector<CoordinateBlock> ArrheniusBratu2D::coordinate_blocks() const {
+  return {{"u", 0, grid_size_ * grid_size_, 1.0 / (grid_size_ + 1.0)}};
+}
+
+Eigen::VectorXd ArrheniusBratu2D::point_with_amplitude(double amplitude, double epsilon) const {
+  TESSERA_CHECK(
+      std::isfinite(amplitude) && amplitude >= 0.0,
+      "ArrheniusBratu2D::point_with_amplitude: amplitude = " << amplitude << " must be >= 0");
+  TESSERA_CHECK(std::isfinite(epsilon) && epsilon >= 0.0,
+                "ArrheniusBratu2D::point_with_amplitude: epsilon = " << epsilon << " must be >= 0");
+  const int n = ambient_dimension();
+  const int m = n - 2;
+  const int centre = centre_index();
+
+  // Newton's method on F(u, λ, ε) = 0, u_c = α, ε fixed: the bordered matrix
+  // A = [J; e_cᵀ; e_εᵀ] is tessera's own (core/bordered_jacobian.h), regular wherever (u_c, ε)
+  // parametrise M, folds of λ ↦ u included. Its pattern does not change: one analysis.
+  const JacobianBorder border{{m, centre, 1.0}, {m + 1, m + 1, 1.0}};
+  const std::unique_ptr<SparseLu> lu = make_sparse_lu(default_sparse_lu_solver());
+  Eigen::SparseMatrix<double> J, A;
+  Eigen::VectorXd F(m), rhs(n), tangent(n);
+  const auto factor_at = [&](const Eigen::VectorXd& x) {
+    sparse_jacobian(x, J);
+    bordered_jacobian(J, border, A);
+    if (!lu->is_analyzed_for(A) && lu->analyze(A) != SparseLuStatus::Success) {
+      return false;
+    }
+    return lu->factorize(A) == SparseLuStatus::Success;
+  };
+  // Newton from x towards u_c = target; x is left at the last iterate. Stops on the residual of
+  // the h²-scaled equations, which sits at ~1e-15·max u for every N, not on the size of the
+  // correction (that cannot fall below cond(A)·rounding ~ N²·1e-16).
+  const auto newton = [&](Eigen::VectorXd& x, double target) {
+    const double tolerance = 1e-13 * (1.0 + target);
+    for (int iteration = 0; iteration < 30; ++iteration) {
+      evaluate(x, F);
+      const double residual = std::max(F.lpNorm<Eigen::Infinity>(), std::abs(x(centre) - target));
+      if (!std::isfinite(residual) || !factor_at(x)) {
+        return false;
+      }
+      if (residual <= tolerance) {
+        return true;  // and A is factored at x, for the next tangent
+      }
+      rhs << -F, target - x(centre), 0.0;
+      lu->solve(rhs, rhs);
+      x += rhs;
+    }
+    return false;
+  };
+
+  // Continuation in the amplitude α from u = 0, λ = 0 (a solution for every ε), predicting
+  // along the tangent d(u, λ)/dα = A⁻¹ e_c (ε fixed). Steps of at most 0.5 in α converge in 2–4
+  // Newton iterations; a step that does not is halved.
+  constexpr double kLargestStep = 0.5;
+  constexpr double kSmallestStep = 1e-3;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  x(m + 1) = epsilon;
+  if (!newton(x, 0.0)) {
+    throw ComputationFailed("ArrheniusBratu2D::point_with_amplitude: cannot factor at u = 0");
+  }
+  double reached = 0.0;
+  double step = kLargestStep;
+  while (reached < amplitude) {
+    tangent.setZero();
+    tangent(m) = 1.0;
+    lu->solve(tangent, tangent);
+    const double target = std::min(amplitude, reached + step);
+    Eigen::VectorXd candidate = x + (target - reached) * tangent;
+    if (newton(candidate, target)) {
+      x = candidate;
+      reached = target;
+      step = std::min(kLargestStep, 2.0 * step);
+      continue;
+    }
+    step /= 2.0;
+    if (step < kSmallestStep || !factor_at(x)) {
+      std::ostringstream message;
+      message << "ArrheniusBratu2D::point_with_amplitude: Newton's method did not converge "
+                 "beyond amplitude "
+              << reached << " (target " << amplitude << "), epsilon " << epsilon;
+      throw ComputationFailed(message.str());
+    }
+  }
   return x;
 }
 

@@ -216,4 +216,78 @@ class ArrheniusBratu final : public ImplicitProblem {
   int point_count_;
 };
 
+/// The two-dimensional Gelfand–Bratu problem with Arrhenius nonlinearity on the unit square,
+///     Δu + λ exp(u / (1 + ε u)) = 0 on (0, 1)²,  u = 0 on the boundary,
+/// discretised by the five-point Laplacian on the N×N interior grid (i h, j h), h = 1/(N + 1).
+/// Coordinates (u_1_1, u_1_2, … u_N_N, lambda, epsilon), row-major (u_i_j at index (i−1)N + j−1,
+/// i the row, y = i h; j the column, x = j h), n = N² + 2. Equation (i, j), multiplied by h² as in
+/// the one-dimensional ArrheniusBratu, with φ(u) = u / (1 + ε u):
+///     F_ij = u_{i−1,j} + u_{i+1,j} + u_{i,j−1} + u_{i,j+1} − 4 u_ij + h² λ exp(φ(u_ij)),
+/// with u = 0 on the boundary (i or j = 0 or N + 1).
+///
+/// The fold surface, from scans of λ along the centre value u_c at fixed ε with
+/// point_with_amplitude (bench/bratu2d_folds.cpp; N = 32, with N = 15 in brackets where it differs
+/// by more than the last digit shown):
+/// - ε = 0 (Gelfand's problem): one fold, λ* = 6.807 (6.802) at u_c = 1.39; λ → 0 as u_c → ∞.
+///   The continuous problem's λ* ≈ 6.808.
+/// - 0 < ε < ε_c: S-shaped branches, an ignition fold (largest λ) and, at larger u_c, an
+///   extinction fold (smallest λ): ε = 0.1: ignition at u_c = 1.81, λ = 7.698 (no extinction
+///   fold below u_c = 20); ε = 0.2: u_c = 2.88, λ = 9.133 and u_c = 18.2, λ = 7.097;
+///   ε = 0.22: u_c = 3.44, λ = 9.574 and u_c = 12.5, λ = 8.795; ε = 0.24: u_c = 5.01,
+///   λ = 10.163 and u_c = 7.21, λ = 10.145.
+/// - The two fold curves meet in a cusp at ε_c = 0.2418 (0.2420), u_c = 5.96, λ = 10.236
+///   (10.224), close to the 1-D problem's ε_c ≈ 0.2457; for ε > ε_c, λ increases with u_c
+///   (ε = 0.3: λ = 18.93 at u_c = 20).
+///
+/// J is the five-point stencil in the u-block plus two dense columns: has_sparse_jacobian() is
+/// true and `jacobian` (dense (N²)×(N²+2)) is for small N only.
+/// \see Bebernes & Eberly, "Mathematical Problems from Combustion Theory" (1989).
+class ArrheniusBratu2D final : public ImplicitProblem {
+ public:
+  /// Grids up to 1000×1000 (n ≈ 10⁶). The sparse LU of the bordered Jacobian grows like
+  /// n log n in memory (10⁷ nonzeros at N = 316, bench/RESULTS.md section 9), so the largest
+  /// grids need gigabytes and seconds per factorisation.
+  static constexpr int kMaxGridSize = 1000;
+
+  /// \throw InvalidArgument unless 1 <= grid_size <= kMaxGridSize.
+  explicit ArrheniusBratu2D(int grid_size = 32);
+
+  int ambient_dimension() const override { return grid_size_ * grid_size_ + 2; }
+  /// N, the number of interior grid points per side.
+  int grid_size() const { return grid_size_; }
+  /// Index of the centre value u_c, the grid point (⌊(N+1)/2⌋, ⌊(N+1)/2⌋) where u is largest.
+  int centre_index() const;
+
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override;
+  /// Dense N²×(N²+2) form; O(N⁴) memory, for small N only.
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override;
+  bool has_sparse_jacobian() const override { return true; }
+  /// 7N² − 4N nonzeros in compressed column storage (the five-point stencil, 5N² − 4N, and two
+  /// dense columns). When J already has this problem's shape the storage is reused, so repeated
+  /// calls do not allocate.
+  void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                       Eigen::SparseMatrix<double>& J) const override;
+  std::string name() const override { return "bratu2d"; }
+  /// u_1_1 … u_N_N (row, column), lambda, epsilon.
+  std::vector<std::string> coordinate_names() const override;
+  /// One block "u" (the N² grid values) of weight h = 1/(N + 1): the metric's norm of u,
+  /// h·‖u‖ = (h² Σ u_ij²)^½, approximates the L² norm on the unit square, so lengths on M do not
+  /// grow with N.
+  std::vector<CoordinateBlock> coordinate_blocks() const override;
+
+  /// The point of M whose centre value is u_c = `amplitude`, at the given ε. Positive solutions
+  /// are symmetric and, on the branches tessera meets, determined by (u_c, ε), so this reaches
+  /// the folds too. Computed by continuation in the amplitude from u = 0 (tangent predictor),
+  /// with Newton's method on F together with u_c = amplitude (a sparse LU of the bordered
+  /// (N²+1)×(N²+1) system per iteration, regular through the folds of λ ↦ u).
+  /// \pre amplitude >= 0, epsilon >= 0.
+  /// \throw ComputationFailed if Newton's method does not converge (the message says where).
+  Eigen::VectorXd point_with_amplitude(double amplitude, double epsilon) const;
+
+ private:
+  int grid_size_;
+};
+
 }  // namespace tessera

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+// The bordered Jacobian A = [J; B] of the sparse linearisation: J = DF(x), (n−2)×n, and two border
+// rows B that make A square and, when they are transversal to ker J, regular.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+namespace tessera {
+
+/// The two border rows as triplets (row, column, value) with rows n−2 and n−1.
+using JacobianBorder = std::vector<Eigen::Triplet<double>>;
+
+/// The coordinate rows e_iᵀ, e_jᵀ that best parametrise M near a point with tangent basis T
+/// (n×2): i is the row of T of largest norm, j maximises |det T([i, j], :)| (PITCON's local
+/// parametrisation). A = [J; e_iᵀ; e_jᵀ] is then as sparse as J and as well conditioned as T
+/// allows. \pre T is n×2, n ≥ 2.
+JacobianBorder coordinate_border(const Eigen::MatrixXd& T);
+
+/// Two dense pseudo-random rows (fixed seed): transversal to ker J with probability one, the
+/// last resort when no tangent guides the border. They fill the LU (bench/RESULTS.md, section 6).
+JacobianBorder random_border(int n);
+
+/// A = [J; border], n×n, compressed. \pre J is (n−2)×n; the border's rows are n−2 and n−1.
+void bordered_jacobian(const Eigen::SparseMatrix<double>& J, const JacobianBorder& border,
+                       Eigen::SparseMatrix<double>& A);
+
+}  // namespace tessera

@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/core/sparse_lu.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
+
+#include "tessera/core/detail/sparse_lu_implementations.h"
+#include "tessera/core/error.h"
+
+namespace tessera {
+namespace {
+
+std::string available_names() {
+  std::ostringstream out;
+  const auto solvers = available_sparse_lu_solvers();
+  for (std::size_t k = 0; k < solvers.size(); ++k) {
+    out << (k ? ", " : "") << name(solvers[k]);
+  }
+  return out.str();
+}
+
+}  // namespace
+
+const std::vector<SparseLuSolver>& all_sparse_lu_solvers() {
+  static const std::vector<SparseLuSolver> solvers = {
+      SparseLuSolver::Eigen, SparseLuSolver::Umfpack, SparseLuSolver::Klu, SparseLuSolver::SuperLu};
+  return solvers;
+}
+
+bool is_available(SparseLuSolver solver) {
+  switch (solver) {
+    case SparseLuSolver::Eigen:
+      return true;
+    case SparseLuSolver::Umfpack:
+#ifdef TESSERA_HAS_UMFPACK
+      return true;
+#else
+      return false;
+#endif
+    case SparseLuSolver::Klu:
+#ifdef TESSERA_HAS_KLU
+      return true;
+#else
+      return false;
+#endif
+    case SparseLuSolver::SuperLu:
+#ifdef TESSERA_HAS_SUPERLU
+      return true;
+#else
+      return false;
+#endif
+  }
+  return false;
+}
+
+std::vector<SparseLuSolver> available_sparse_lu_solvers() {
+  std::vector<SparseLuSolver> solvers;
+  for (SparseLuSolver solver : all_sparse_lu_solvers()) {
+    if (is_available(solver)) {
+      solvers.push_back(solver);
+    }
+  }
+  return solvers;
+}
+
+std::string_view name(SparseLuSolver solver) {
+  switch (solver) {
+    case SparseLuSolver::Eigen:
+      return "eigen";
+    case SparseLuSolver::Umfpack:
+      return "umfpack";
+    case SparseLuSolver::Klu:
+      return "klu";
+    case SparseLuSolver::SuperLu:
+      return "superlu";
+  }
+  return "unknown";
+}
+
+std::optional<SparseLuSolver> sparse_lu_solver_named(std::string_view solver_name) {
+  for (SparseLuSolver solver : all_sparse_lu_solvers()) {
+    if (name(solver) == solver_name) {
+      return solver;
+    }
+  }
+  return std::nullopt;
+}
+
+SparseLuSolver default_sparse_lu_solver() {
+  const char* requested = std::getenv("TESSERA_SPARSE_LU");
+  if (requested != nullptr && *requested != '\0') {
+    const auto solver = sparse_lu_solver_named(requested);
+    TESSERA_CHECK(solver.has_value(), "TESSERA_SPARSE_LU = '"
+                                          << requested << "' names no sparse LU solver; this "
+                                          << "build has: " << available_names());
+    TESSERA_CHECK(is_available(*solver),
+                  "TESSERA_SPARSE_LU = '"
+                      << requested << "': this build has no " << requested
+                      << " (configure found no library for it); it has: " << available_names());
+    return *solver;
+  }
+  // Eigen's SparseLU: the fastest per vertex (one factorisation and ~30 solves) on the 2-D
+  // problems at n ≥ 10⁴ and never more than ~2.5× from the best elsewhere; KLU, fastest on 1-D
+  // and small problems, is 10× slower at n = 10⁵ in 2-D (bench/RESULTS.md section 9).
+  return SparseLuSolver::Eigen;
+}
+
+std::unique_ptr<SparseLu> make_sparse_lu(SparseLuSolver solver) {
+  TESSERA_CHECK(is_available(solver),
+                "sparse LU solver '" << name(solver)
+                                     << "' is not in this build; it has: " << available_names());
+  switch (solver) {
+    case SparseLuSolver::Eigen:
+      return detail::make_eigen_sparse_lu();
+#ifdef TESSERA_HAS_UMFPACK
+    case SparseLuSolver::Umfpack:
+      return detail::make_umfpack_sparse_lu();
+#endif
+#ifdef TESSERA_HAS_KLU
+    case SparseLuSolver::Klu:
+      return detail::make_klu_sparse_lu();
+#endif
+#ifdef TESSERA_HAS_SUPERLU
+    case SparseLuSolver::SuperLu:
+      return detail::make_superlu_sparse_lu();
+#endif
+    default:
+      break;
+  }
+  TESSERA_ASSERT(false);
+  return nullptr;
+}
+
+SparseLu::~SparseLu() = default;
+
+SparseLuStatus SparseLu::analyze(const Eigen::SparseMatrix<double>& A) {
+  TESSERA_CHECK(A.rows() == A.cols() && A.rows() >= 1, "SparseLu::analyze: A is "
+                                                           << A.rows() << "×" << A.cols()
+                                                           << ", must be square and non-empty");
+  TESSERA_CHECK(A.isCompressed(), "SparseLu::analyze: A must be compressed (makeCompressed())");
+  is_analyzed_ = false;
+  is_factored_ = false;
+  last_message_.clear();
+  const SparseLuStatus status = do_analyze(A);
+  if (status != SparseLuStatus::Success) {
+    return status;
+  }
+  analyzed_outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+  analyzed_inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  is_analyzed_ = true;
+  return status;
+}
+
+bool SparseLu::is_analyzed_for(const Eigen::SparseMatrix<double>& A) const {
+  return is_analyzed_ && A.isCompressed() && A.rows() == A.cols() &&
+         static_cast<std::size_t>(A.outerSize()) + 1 == analyzed_outer_.size() &&
+         static_cast<std::size_t>(A.nonZeros()) == analyzed_inner_.size() &&
+         std::equal(analyzed_outer_.begin(), analyzed_outer_.end(), A.outerIndexPtr()) &&
+         std::equal(analyzed_inner_.begin(), analyzed_inner_.end(), A.innerIndexPtr());
+}
+
+SparseLuStatus SparseLu::factorize(const Eigen::SparseMatrix<double>& A) {
+  TESSERA_CHECK(is_analyzed_for(A), "SparseLu::factorize: the pattern of A ("
+                                        << A.rows() << "×" << A.cols() << ", " << A.nonZeros()
+                                        << " nonzeros) was not analysed");
+  is_factored_ = false;
+  last_message_.clear();
+  const SparseLuStatus status = do_factorize(A);
+  is_factored_ = status == SparseLuStatus::Success;
+  return status;
+}
+
+void SparseLu::solve(const Eigen::Ref<const Eigen::MatrixXd>& B,
+                     Eigen::Ref<Eigen::MatrixXd> X) const {
+  TESSERA_CHECK(is_factored_, "SparseLu::solve: no factorisation (factorize failed or not called)");
+  const Eigen::Index n = static_cast<Eigen::Index>(analyzed_outer_.size()) - 1;
+  TESSERA_CHECK(B.rows() == n && X.rows() == n && B.cols() == X.cols() && B.cols() >= 1,
+                "SparseLu::solve: B is " << B.rows() << "×" << B.cols() << " and X is " << X.rows()
+                                         << "×" << X.cols() << ", both must be " << n << "×k");
+  if (X.data() != B.data() || X.outerStride() != B.outerStride()) {
+    X = B;
+  }
+  do_solve_in_place(X);
+}
+
+}  // namespace tessera
