@@ -7,53 +7,18 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 
 #include "io/io_test_support.h"
-#include "io/npy_test_reader.h"
+#include "io/npy_test_support.h"
 
 namespace tessera {
 namespace {
 
 using namespace io_test;
+using npy_test::python_with_numpy;
 using npy_test::read_npy;
-
-// The first of $TESSERA_PYTHON, /usr/bin/python3 and python3 that can import numpy, or "".
-std::string python_with_numpy() {
-  std::vector<std::string> candidates;
-  if (const char* configured = std::getenv("TESSERA_PYTHON")) {
-    candidates.emplace_back(configured);
-  }
-  candidates.insert(candidates.end(), {"/usr/bin/python3", "python3"});
-  for (const auto& python : candidates) {
-    if (std::system((python + " -c 'import numpy' >/dev/null 2>&1").c_str()) == 0) {
-      return python;
-    }
-  }
-  return "";
-}
-
-// Standard output of `python -c script args…`, and its exit status.
-std::pair<std::string, int> run_python(const std::string& python, const std::string& script,
-                                       const std::vector<std::string>& arguments) {
-  std::string command = python + " -c \"" + script + "\"";
-  for (const auto& argument : arguments) {
-    command += " '" + argument + "'";
-  }
-  command += " 2>&1";
-  std::string output;
-  int status = -1;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char buffer[4096];
-    std::size_t count = 0;
-    while ((count = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) {
-      output.append(buffer, count);
-    }
-    status = pclose(pipe);
-  }
-  return {output, status};
-}
+using npy_test::run_python;
 
 TEST(Npy, PointsAreRowsOfADoubleArrayBitForBit) {
   // Random bit patterns: every exponent, subnormals, both zeros.

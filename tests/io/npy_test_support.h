@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
-// A reader of .npy files for the tests, written from the NPY format specification
-// (numpy.lib.format) independently of tessera's writer, strict about every byte of the header.
+// For the tests of .npy files: a reader written from the NPY format specification
+// (numpy.lib.format) independently of tessera's writer, strict about every byte of the header,
+// and Debian's numpy to read them too.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <bit>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -82,6 +85,44 @@ inline NpyArray read_npy(const std::string& path) {
     ADD_FAILURE() << "descr '" << array.descr << "' in " << path;
   }
   return array;
+}
+
+// The first of $TESSERA_PYTHON, /usr/bin/python3 and python3 that can import numpy (a python3
+// of pyenv or a virtualenv may not see Debian's packages), or "" if none can.
+inline std::string python_with_numpy() {
+  std::vector<std::string> candidates;
+  if (const char* configured = std::getenv("TESSERA_PYTHON")) {
+    candidates.emplace_back(configured);
+  }
+  candidates.insert(candidates.end(), {"/usr/bin/python3", "python3"});
+  for (const auto& python : candidates) {
+    if (std::system((python + " -c 'import numpy' >/dev/null 2>&1").c_str()) == 0) {
+      return python;
+    }
+  }
+  return "";
+}
+
+// Output (stdout and stderr) and exit status of `python -c script arguments…`. The script may not
+// contain double quotes; the arguments no single quotes.
+inline std::pair<std::string, int> run_python(const std::string& python, const std::string& script,
+                                              const std::vector<std::string>& arguments) {
+  std::string command = python + " -c \"" + script + "\"";
+  for (const auto& argument : arguments) {
+    command += " '" + argument + "'";
+  }
+  command += " 2>&1";
+  std::string output;
+  int status = -1;
+  if (FILE* pipe = popen(command.c_str(), "r")) {
+    char buffer[4096];
+    std::size_t count = 0;
+    while ((count = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) {
+      output.append(buffer, count);
+    }
+    status = pclose(pipe);
+  }
+  return {output, status};
 }
 
 }  // namespace tessera::npy_test
