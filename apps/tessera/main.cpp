@@ -56,8 +56,8 @@ int run_check(const std::string& mesh_path, const std::string& problem, bool jso
         (mesh.ambient_dimension() < n
              ? "; a mesh written in a view (tessera mesh --view, and by default for n > " +
                    std::to_string(tessera::kLargeAmbientDimension) +
-                   ") holds the view's functionals, not the states: check a mesh written "
-                   "with --view all"
+                   ") holds the view's functionals, not the states: check the states file of "
+                   "--states (FILE.npy) or a mesh written with --view all"
              : ""));
   }
   const tessera::MeshReport report = make_report(mesh, setup, problem);
@@ -108,7 +108,10 @@ int main(int argc, char** argv) {
   std::string check_problem;
   bool check_json = false;
   auto* check_app = app.add_subcommand("check", "validate a mesh and measure it against M");
-  check_app->add_option("mesh", check_mesh, "mesh file (.ply, .obj, .vtk or .vtu)")->required();
+  check_app
+      ->add_option("mesh", check_mesh,
+                   "mesh file (.ply, .obj, .vtk or .vtu) or the states of `mesh --states` (.npy)")
+      ->required();
   check_app->add_option("--problem,-p", check_problem, "catalogue name or problem file")
       ->required();
   check_app->add_flag("--json", check_json, "print the report as JSON");

@@ -176,6 +176,16 @@ TEST_F(CliLargeN, CheckOfAViewSaysWhereTheStatesAre) {
   EXPECT_TRUE(contains(check.output, "holds the view's functionals")) << check.output;
 }
 
+TEST_F(CliLargeN, CheckReadsTheStatesWithTheirTriangles) {
+  expect_files_written();
+  // The check a view cannot have: the states against M (valid, the known topology, on M).
+  const CommandResult check =
+      run_cli("check " + quoted(folder_ + "/bvp_states.npy") + " --problem " + kLargeProblem);
+  EXPECT_EQ(check.exit_code, result_->exit_code) << check.output;
+  EXPECT_TRUE(contains(check.output, "problem        " + kLargeProblem + " (n = 51)"))
+      << check.output;
+}
+
 // --- small n: views are asked for ---------------------------------------------------------
 
 TEST(CliView, ExplicitViewWithAnExpressionMatchesTheLibrary) {

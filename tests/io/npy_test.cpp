@@ -6,11 +6,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "io/io_test_support.h"
 #include "io/npy_test_support.h"
+#include "tessera/io/detail/file_buffer.h"
+#include "tessera/io/detail/mesh_parsers.h"
+#include "tessera/io/mesh_io.h"
 
 namespace tessera {
 namespace {
@@ -156,6 +161,206 @@ TEST(Npy, NumpyLoadsWhatIsWritten) {
       {points, triangles, test_path("expected_points.txt"), test_path("expected_triangles.txt")});
   EXPECT_EQ(status, 0) << output;
   EXPECT_NE(output.find("(25, 4) float64 (30, 3) int64\nsame"), std::string::npos) << output;
+}
+
+// ---- reading ---------------------------------------------------------------------------------
+
+TEST(NpyRead, StatesReadBackBitForBit) {
+  const TriangleMesh mesh = random_mesh(6, 40, 60, 3);
+  const std::string path = test_path("round_trip.npy");
+  write_states_npy(path, mesh);
+  for (const TriangleMesh& back : {read_states_npy(path), read_mesh(path)}) {
+    ASSERT_EQ(back.ambient_dimension(), 6);
+    EXPECT_EQ(std::memcmp(back.points().data(), mesh.points().data(), 6 * 40 * sizeof(double)), 0);
+    EXPECT_EQ(back.triangles(), mesh.triangles());
+  }
+}
+
+// An .npy file from its parts, as numpy.save would write it with other choices: `version` 1 or
+// 2 (4-byte header length), any header dictionary, the data bytes as given.
+std::string npy_bytes(const std::string& dictionary, const std::string& data, int version = 1) {
+  const std::size_t preamble = version == 1 ? 10 : 12;
+  std::string header = dictionary;
+  header.append((64 - (preamble + header.size() + 1) % 64) % 64, ' ');
+  header.push_back('\n');
+  std::string bytes = "\x93NUMPY";
+  bytes.push_back(static_cast<char>(version));
+  bytes.push_back(0);
+  for (std::size_t k = 0; k < preamble - 8; ++k) {
+    bytes.push_back(static_cast<char>((header.size() >> (8 * k)) & 0xff));
+  }
+  return bytes + header + data;
+}
+
+template <class T>
+std::string raw_bytes(std::initializer_list<T> values, bool big_endian = false) {
+  std::string bytes;
+  for (T value : values) {
+    char b[sizeof(T)];
+    std::memcpy(b, &value, sizeof(T));
+    if (big_endian) {
+      std::reverse(b, b + sizeof(T));
+    }
+    bytes.append(b, sizeof(T));
+  }
+  return bytes;
+}
+
+TEST(NpyRead, ReadsWhatNumpyWritesWithOtherTypesAndOrders) {
+  // Two points of R^3, (1, 2, 3) and (4, 5, 6).
+  const Eigen::MatrixXd expected = (Eigen::MatrixXd(3, 2) << 1, 4, 2, 5, 3, 6).finished();
+  const std::string c_order = "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }";
+  EXPECT_EQ(io_detail::parse_npy_points(npy_bytes(c_order, raw_bytes<double>({1, 2, 3, 4, 5, 6})),
+                                        "p.npy"),
+            expected);
+  // Big endian, and version 2.0.
+  EXPECT_EQ(io_detail::parse_npy_points(
+                npy_bytes("{'descr': '>f8', 'fortran_order': False, 'shape': (2, 3), }",
+                          raw_bytes<double>({1, 2, 3, 4, 5, 6}, true), 2),
+                "p.npy"),
+            expected);
+  // Single precision in Fortran order (columns of the (2, 3) array one after the other), keys
+  // in another order, double quotes.
+  EXPECT_EQ(io_detail::parse_npy_points(
+                npy_bytes("{\"shape\": (2, 3), \"fortran_order\": True, \"descr\": \"<f4\"}",
+                          raw_bytes<float>({1, 4, 2, 5, 3, 6})),
+                "p.npy"),
+            expected);
+  // Triangles as int32, big-endian int16 and uint8.
+  const std::vector<Triangle> triangles = {{0, 1, 2}, {2, 1, 3}};
+  EXPECT_EQ(io_detail::parse_npy_triangles(
+                npy_bytes("{'descr': '<i4', 'fortran_order': False, 'shape': (2, 3), }",
+                          raw_bytes<std::int32_t>({0, 1, 2, 2, 1, 3})),
+                "t.npy", 4),
+            triangles);
+  EXPECT_EQ(io_detail::parse_npy_triangles(
+                npy_bytes("{'descr': '>i2', 'fortran_order': False, 'shape': (2, 3), }",
+                          raw_bytes<std::int16_t>({0, 1, 2, 2, 1, 3}, true)),
+                "t.npy", 4),
+            triangles);
+  EXPECT_EQ(io_detail::parse_npy_triangles(
+                npy_bytes("{'descr': '|u1', 'fortran_order': False, 'shape': (2, 3), }",
+                          raw_bytes<std::uint8_t>({0, 1, 2, 2, 1, 3})),
+                "t.npy", 4),
+            triangles);
+}
+
+// Files numpy.save wrote (the seed corpus of the fuzz target, tests/fuzz/corpus/npy/).
+TEST(NpyRead, ReadsTheFilesNumpyWrote) {
+  const auto corpus = [](const std::string& name) {
+    return io_detail::read_file("NumPy", testing::source_path("tests/fuzz/corpus/npy/" + name));
+  };
+  // numpy.array([[0., 1, 2], [3, 4, 5], [6, 7, 8], [9, 10, 11]])
+  const Eigen::MatrixXd points = io_detail::parse_npy_points(corpus("points_f8.npy"), "p");
+  ASSERT_EQ(points.rows(), 3);
+  ASSERT_EQ(points.cols(), 4);
+  for (int v = 0; v < 4; ++v) {
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(points(i, v), 3 * v + i);
+    }
+  }
+  // numpy.asfortranarray(numpy.array([[0.5, 1, 2], [3, 4, 5]], dtype='>f4'))
+  EXPECT_EQ(io_detail::parse_npy_points(corpus("points_f4_big_fortran.npy"), "p"),
+            (Eigen::MatrixXd(3, 2) << 0.5, 3, 1, 4, 2, 5).finished());
+  EXPECT_EQ(io_detail::parse_npy_points(corpus("empty.npy"), "p").cols(), 0);
+  EXPECT_EQ(io_detail::parse_npy_triangles(corpus("triangles_i8.npy"), "t", 4),
+            (std::vector<Triangle>{{0, 1, 2}, {2, 1, 3}}));
+  EXPECT_EQ(io_detail::parse_npy_triangles(corpus("triangles_u1.npy"), "t", 3),
+            (std::vector<Triangle>{{0, 1, 2}}));
+  EXPECT_EQ(io_detail::parse_npy_triangles(corpus("version2.npy"), "t", 4),
+            (std::vector<Triangle>{{1, 2, 3}}));
+  expect_invalid_argument([&] { io_detail::parse_npy_points(corpus("one_dimensional.npy"), "p"); },
+                          {"the shape has 1 dimensions"});
+}
+
+TEST(NpyRead, MalformedFilesAreErrorsNamingTheFileAndTheProblem) {
+  const std::string f8 = "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }";
+  const std::string six = raw_bytes<double>({1, 2, 3, 4, 5, 6});
+  const auto points_error = [](const std::string& bytes, const std::vector<std::string>& parts) {
+    expect_invalid_argument([&] { io_detail::parse_npy_points(bytes, "s.npy"); },
+                            [&] {
+                              std::vector<std::string> all = {"NumPy file 's.npy'"};
+                              all.insert(all.end(), parts.begin(), parts.end());
+                              return all;
+                            }());
+  };
+  points_error("ply\nformat ascii 1.0\n", {"not an .npy file"});
+  points_error(npy_bytes(f8, six.substr(0, 40)), {"needs 48 bytes of data, the file has 40"});
+  points_error(npy_bytes(f8, six + "x"), {"needs 48 bytes", "has 49"});
+  points_error(npy_bytes("{'descr': '<f8', 'fortran_order': False, 'shape': (6,), }", six),
+               {"1 dimensions", "2-d array"});
+  points_error(npy_bytes("{'descr': '<i8', 'fortran_order': False, 'shape': (2, 3), }", six),
+               {"'<i8'", "floating-point"});
+  points_error(npy_bytes("{'descr': '<c16', 'fortran_order': False, 'shape': (1, 3), }", six),
+               {"descr '<c16' is not supported"});
+  points_error(npy_bytes("{'descr': '<f8', 'shape': (2, 3), }", six), {"lacks 'fortran_order'"});
+  points_error(npy_bytes("{'descr': '<f8', 'fortran_order': False, 'shape': (99999999999, "
+                         "99999999999), }",
+                         six),
+               {"needs more bytes of data"});
+  points_error(npy_bytes(f8, six, 4), {"format version 4.0"});
+  expect_invalid_argument(
+      [&] {
+        io_detail::parse_npy_triangles(
+            npy_bytes("{'descr': '<i8', 'fortran_order': False, 'shape': (1, 3), }",
+                      raw_bytes<std::int64_t>({0, 1, 7})),
+            "t.npy", 5);
+      },
+      {"NumPy file 't.npy'", "triangle 0 has vertex index 7", "5 vertices"});
+  expect_invalid_argument(
+      [&] {
+        io_detail::parse_npy_triangles(
+            npy_bytes("{'descr': '<i4', 'fortran_order': False, 'shape': (1, 3), }",
+                      raw_bytes<std::int32_t>({0, -1, 2})),
+            "t.npy", 5);
+      },
+      {"vertex index -1"});
+  expect_invalid_argument([&] { io_detail::parse_npy_triangles(npy_bytes(f8, six), "t.npy", 5); },
+                          {"the triangles are of type '<f8'"});
+  // States without their triangles.
+  const std::string lonely = test_path("lonely.npy");
+  write_npy(lonely, Eigen::MatrixXd::Zero(3, 4));
+  expect_invalid_argument([&] { read_states_npy(lonely); },
+                          {"lonely.triangles.npy", "does not exist"});
+}
+
+TEST(NpyRead, EveryTruncationAndByteChangeIsReadOrRefused) {
+  const TriangleMesh mesh = random_mesh(3, 4, 2);
+  const std::string path = test_path("small.npy");
+  write_states_npy(path, mesh);
+  const std::string points = file_text(path);
+  const std::string triangles = file_text(triangles_npy_path(path));
+  for (const std::string* file : {&points, &triangles}) {
+    const auto parse = [&](const std::string& bytes) {
+      try {
+        if (file == &points) {
+          io_detail::parse_npy_points(bytes, "s.npy");
+        } else {
+          io_detail::parse_npy_triangles(bytes, "t.npy", 4);
+        }
+      } catch (const InvalidArgument&) {
+      }
+    };
+    for (std::size_t length = 0; length < file->size(); ++length) {
+      expect_invalid_argument(
+          [&] {
+            if (file == &points) {
+              io_detail::parse_npy_points(file->substr(0, length), "s.npy");
+            } else {
+              io_detail::parse_npy_triangles(file->substr(0, length), "t.npy", 4);
+            }
+          },
+          {"NumPy file"});
+    }
+    for (std::size_t k = 0; k < file->size(); ++k) {
+      for (const int value :
+           {0, 1, 0x7f, 0x80, 0xff, int{'('}, int{')'}, int{','}, int{'\''}, int{'9'}}) {
+        std::string changed = *file;
+        changed[k] = static_cast<char>(value);
+        parse(changed);  // a mesh or InvalidArgument, never a crash (the sanitizer build checks)
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // NumPy .npy files: the vertices (the states, points of R^n) and the triangles of a mesh as arrays
-// that Python reads with numpy.load, at any n.
+// that Python reads with numpy.load, at any n; and the same files read back.
 #pragma once
 
 #include <Eigen/Core>
@@ -46,5 +46,19 @@ std::string triangles_npy_path(const std::string& states_path);
 /// \throw InvalidArgument if a triangle has an index outside [0, V) (nothing is written), or
 ///        naming the file that cannot be written.
 void write_states_npy(const std::string& path, const TriangleMesh& mesh);
+
+/// Reads what write_states_npy writes, as a mesh in R^n: the points from `path` and the
+/// triangles from triangles_npy_path(path), both written by tessera or by NumPy (numpy.save).
+///
+/// The points must be a 2-d array (V, n), n ≥ 1, of floating-point numbers ('f4' or 'f8'); the
+/// triangles a 2-d array (T, 3) of integers ('i1' … 'i8', 'u1' … 'u8') in [0, V). Either byte
+/// order, C or Fortran order, format versions 1.0, 2.0 and 3.0 are read. The whole files are read
+/// into memory (the points twice over for a moment: as bytes and as the mesh).
+///
+/// \throw InvalidArgument "NumPy file '<path>': <what is wrong>" if a file is missing, is not an
+///        .npy file, has another shape or type, is truncated or longer than its shape, or a
+///        triangle index is outside [0, V). Sizes are checked against the file before anything
+///        is allocated.
+TriangleMesh read_states_npy(const std::string& path);
 
 }  // namespace tessera
