@@ -166,6 +166,39 @@ TEST_F(CliLargeN, NumpyLoadsTheStatesAndTriangles) {
   EXPECT_EQ(output, "51 float64 3 int64 49 1 True True\n");
 }
 
+// The Python of docs/mesh-files.md, run as printed on the files of this run: it reads the states
+// and the summary, and writes a .vtu for ParaView with meshio.
+TEST_F(CliLargeN, TheDocumentedPythonRuns) {
+  expect_files_written();
+  const std::string python = npy_test::python_with_numpy();
+  if (python.empty() || npy_test::run_python(python, "import meshio", {}).second != 0) {
+    GTEST_SKIP() << "numpy or meshio is not installed (scripts/install-dependencies.sh)";
+  }
+  std::ifstream in(testing::source_path("docs/mesh-files.md"));
+  const std::string docs((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string script = "import os\nos.chdir(" + std::string("'") + folder_ + "')\n";
+  for (auto begin = docs.find("```python\n"); begin != std::string::npos;
+       begin = docs.find("```python\n", begin)) {
+    begin += 10;
+    const auto end = docs.find("```", begin);
+    script += docs.substr(begin, end - begin);
+  }
+  script +=
+      "assert X.shape[1] == 51 and T.shape[1] == 3\n"
+      "assert u.shape == (X.shape[0], 49) and lam.shape == (X.shape[0],)\n"
+      "assert (lam == X[:, 49]).all()\n"
+      "print('ok', points.shape)\n";
+  const std::string path = folder_ + "/documented.py";
+  std::ofstream(path) << script;
+  const auto [output, status] =
+      npy_test::run_python(python, "import runpy, sys; runpy.run_path(sys.argv[1])", {path});
+  EXPECT_EQ(status, 0) << output << "\n" << script;
+  EXPECT_TRUE(contains(output, "ok (")) << output;
+  EXPECT_TRUE(fs::exists(folder_ + "/bvp_middle.vtu"));
+  fs::remove(path);
+  fs::remove(folder_ + "/bvp_middle.vtu");
+}
+
 TEST_F(CliLargeN, CheckOfAViewSaysWhereTheStatesAre) {
   expect_files_written();
   const CommandResult check =
