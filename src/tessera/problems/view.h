@@ -96,13 +96,14 @@ class View {
   const std::vector<ViewFunctional>& functionals() const { return functionals_; }
   /// The column names (ViewFunctional::name), in order.
   std::vector<std::string> names() const;
-  /// The labels joined by ", ": a specification that parse_view reads back into this view.
+  /// The labels joined by ", " ("all" for the view of every coordinate): a specification that
+  /// parse_view reads back into this view.
   std::string specification() const;
   /// True if the view is x itself: the n coordinates in order (all_coordinates_view).
   bool is_all_coordinates() const;
 
   /// values(i) = f_i(x).
-  /// \pre x.size() == ambient_dimension(), values.size() == size().
+  /// \pre x.size() == ambient_dimension(), values.size() == size() (else InvalidArgument).
   /// Allocates only if `workspace` (for expressions) is too small.
   void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> values,
                 ViewWorkspace& workspace) const;
