@@ -5,9 +5,11 @@ set -euo pipefail
 # python3-meshio: tests/io/meshio_test.cpp checks that meshio reads the PLY files tessera writes.
 # libsuitesparse-dev (UMFPACK, KLU) and libsuperlu-dev: sparse LU solvers for large n
 # (core/sparse_lu.h); without them the build falls back to Eigen's SparseLU.
+# python3-numpy: tests/io/npy_test.cpp and tests/app/view_cli_test.cpp check that numpy.load reads
+# the .npy states tessera writes (meshio depends on it too).
 packages=(cmake ninja-build g++ libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev
-          libbenchmark-dev ccache libcgal-dev python3-meshio libsuitesparse-dev libsuperlu-dev
-          "$@")
+          libbenchmark-dev ccache libcgal-dev python3-meshio python3-numpy libsuitesparse-dev
+          libsuperlu-dev "$@")
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||

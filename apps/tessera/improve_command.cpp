@@ -46,7 +46,10 @@ void print_line(const char* label, const MeshQuality& quality, const MeshValidat
 CLI::App* add_improve_command(CLI::App& app, ImproveCommand& command) {
   auto* improve = app.add_subcommand(
       "improve", "improve a mesh of M by edge swaps judged in the tangent plane of M");
-  improve->add_option("mesh", command.mesh, "mesh file (.ply, .obj, .vtk or .vtu)")->required();
+  improve
+      ->add_option("mesh", command.mesh,
+                   "mesh file (.ply, .obj, .vtk or .vtu) or the states of `mesh --states` (.npy)")
+      ->required();
   improve->add_option("--problem,-p", command.problem, "catalogue name or problem file")
       ->required();
   improve

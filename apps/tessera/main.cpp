@@ -16,6 +16,7 @@
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/summary_json.h"
 #include "tessera/problems/catalogue.h"
+#include "tessera/problems/view.h"
 
 namespace {
 
@@ -45,6 +46,20 @@ int run_problems() {
 int run_check(const std::string& mesh_path, const std::string& problem, bool json) {
   const tessera::ProblemSetup setup = tessera::resolve_problem(problem);
   const tessera::TriangleMesh mesh = tessera::read_mesh(mesh_path);
+  const int n = setup.problem->ambient_dimension();
+  if (mesh.ambient_dimension() != n) {
+    // A view (tessera mesh --view, the default for n > 50) has lost the coordinates that
+    // `check` measures M in; say where they are.
+    throw tessera::InvalidArgument(
+        "the mesh in '" + mesh_path + "' is in R^" + std::to_string(mesh.ambient_dimension()) +
+        " but problem '" + problem + "' is in R^" + std::to_string(n) +
+        (mesh.ambient_dimension() < n
+             ? "; a mesh written in a view (tessera mesh --view, and by default for n > " +
+                   std::to_string(tessera::kLargeAmbientDimension) +
+                   ") holds the view's functionals, not the states: check the states file of "
+                   "--states (FILE.npy) or a mesh written with --view all"
+             : ""));
+  }
   const tessera::MeshReport report = make_report(mesh, setup, problem);
   std::cout << (json ? tessera::to_json(report) : tessera::to_text(report));
   // A mesh passes the check if it is valid, has the known topology, and its vertices lie on
@@ -93,7 +108,10 @@ int main(int argc, char** argv) {
   std::string check_problem;
   bool check_json = false;
   auto* check_app = app.add_subcommand("check", "validate a mesh and measure it against M");
-  check_app->add_option("mesh", check_mesh, "mesh file (.ply, .obj, .vtk or .vtu)")->required();
+  check_app
+      ->add_option("mesh", check_mesh,
+                   "mesh file (.ply, .obj, .vtk or .vtu) or the states of `mesh --states` (.npy)")
+      ->required();
   check_app->add_option("--problem,-p", check_problem, "catalogue name or problem file")
       ->required();
   check_app->add_flag("--json", check_json, "print the report as JSON");

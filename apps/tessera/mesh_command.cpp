@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "cli_support.h"
@@ -14,9 +15,12 @@
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/io/bezier_patches.h"
 #include "tessera/io/mesh_io.h"
+#include "tessera/io/npy.h"
 #include "tessera/io/summary_json.h"
+#include "tessera/io/view_mesh.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/problems/catalogue.h"
+#include "tessera/problems/view.h"
 
 namespace tessera::app {
 
@@ -57,8 +61,19 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_flag("--improve", mesh.improve,
                      "improve the mesh: edge swaps and tangential smoothing on M (as `tessera "
                      "improve --smooth 3`)");
+  mesh_app->add_option(
+      "--view", mesh.view,
+      "write the mesh in these functionals of x, comma separated: coordinate names, max:B, "
+      "min:B, mean:B, absmax:B, norm:B of a block B, norm, NAME=EXPRESSION, or all "
+      "(docs/mesh-files.md); e.g. lambda,epsilon,max:u. The first three place the vertices. "
+      "Default: the problem file's view, else every coordinate, or for n > 50 the coordinates "
+      "outside blocks and the maximum of each block");
+  mesh_app->add_option("--states", mesh.states,
+                       "also write the vertices, all n coordinates, as a NumPy array (V, n) to "
+                       "this .npy file, and the triangles (T, 3) to FILE.triangles.npy");
   mesh_app->add_option("--obj-coordinates", mesh.obj_coordinates,
-                       "the three coordinates written to an .obj file, e.g. 0,2,3 (default 0,1,2)");
+                       "deprecated, use --view: the view of three coordinate indices, e.g. 0,2,3 "
+                       "(every format)");
   mesh_app->add_flag("--quiet,-q", mesh.quiet, "print nothing but errors");
   mesh_app
       ->add_option("--max-vertices", mesh.settings.max_vertices, "stop after this many vertices")
@@ -102,6 +117,73 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   return mesh_app;
 }
 
+namespace {
+
+struct ChosenView {
+  View view;
+  std::string origin;  ///< ViewReport::origin
+};
+
+// The view the mesh file is written in: --view, else --obj-coordinates, else the problem file's,
+// else default_view (every coordinate unless n is large). Checked before any computation.
+ChosenView choose_view(const MeshCommand& command, const ProblemSetup& setup) {
+  const ImplicitProblem& problem = *setup.problem;
+  const int n = problem.ambient_dimension();
+  TESSERA_CHECK(command.view.empty() || command.obj_coordinates.empty(),
+                "--view and --obj-coordinates both choose what is written; give --view only "
+                "(--obj-coordinates I,J,K is --view with the names of coordinates I, J, K)");
+  ChosenView chosen;
+  std::string option;  // for messages: the option or file line the view came from
+  if (!command.view.empty()) {
+    option = "--view " + command.view;
+    try {
+      chosen = {parse_view(command.view, problem), "--view"};
+    } catch (const ViewSpecificationError& error) {
+      throw InvalidArgument(option + ": " + error.reason());
+    }
+  } else if (!command.obj_coordinates.empty()) {
+    option = "--obj-coordinates " + command.obj_coordinates;
+    const auto values = parse_numbers(command.obj_coordinates, "--obj-coordinates");
+    TESSERA_CHECK(values.size() == 3,
+                  "--obj-coordinates needs three coordinate indices, got " << values.size());
+    const auto names = problem.coordinate_names();
+    std::string specification;
+    for (int i = 0; i < 3; ++i) {
+      TESSERA_CHECK(values[i] == std::floor(values[i]) && values[i] >= 0 && values[i] < n,
+                    "--obj-coordinates: " << values[i] << " is not a coordinate index in [0, "
+                                          << n - 1 << "]");
+      specification += (i ? "," : "") + names[static_cast<std::size_t>(values[i])];
+    }
+    try {
+      chosen = {parse_view(specification, problem), "--obj-coordinates"};
+    } catch (const ViewSpecificationError& error) {
+      throw InvalidArgument(option + ": " + error.reason());
+    }
+  } else if (setup.view) {
+    option = "the problem file's view";
+    chosen = {*setup.view, "problem file"};
+  } else {
+    chosen.view = default_view(problem);
+    chosen.origin = chosen.view.is_all_coordinates() ? "default" : "default for large n";
+  }
+  TESSERA_CHECK(chosen.view.size() >= 2,
+                option << ": a view needs at least two functionals to place the vertices (three "
+                          "for a surface in space), got "
+                       << chosen.view.size());
+  return chosen;
+}
+
+void check_states_output(const std::string& path) {
+  check_output_folder(path);
+  TESSERA_CHECK(std::filesystem::path(path).extension() == ".npy",
+                "--states " << path << ": the states file must end in .npy (a NumPy array; the "
+                            << "triangles go beside it to "
+                            << std::filesystem::path(triangles_npy_path(path)).filename().string()
+                            << ")");
+}
+
+}  // namespace
+
 int run_mesh(const MeshCommand& command) {
   ProblemSetup setup = resolve_problem(command.problem);
   const int n = setup.problem->ambient_dimension();
@@ -134,18 +216,12 @@ int run_mesh(const MeshCommand& command) {
   TESSERA_CHECK(!(wants_patches && command.improve),
                 "--improve changes the triangles, so it cannot be combined with --refine or "
                 "--patches (the patches belong to the unimproved triangles)");
-  MeshFileOptions file_options;
-  if (!command.obj_coordinates.empty()) {
-    const auto values = parse_numbers(command.obj_coordinates, "--obj-coordinates");
-    TESSERA_CHECK(values.size() == 3,
-                  "--obj-coordinates needs three coordinate indices, got " << values.size());
-    for (int i = 0; i < 3; ++i) {
-      TESSERA_CHECK(values[i] == std::floor(values[i]) && values[i] >= 0 && values[i] < n,
-                    "--obj-coordinates: " << values[i] << " is not a coordinate index in [0, "
-                                          << n - 1 << "]");
-      file_options.obj_coordinates[i] = static_cast<int>(values[i]);
-    }
+  if (!command.states.empty()) {
+    check_states_output(command.states);
   }
+  const ChosenView chosen = choose_view(command, setup);
+  const View& view = chosen.view;
+  MeshFileOptions file_options;
   MethodSettings settings = command.settings;
   const bool show_progress = !command.quiet && isatty(STDERR_FILENO);
   if (show_progress) {
@@ -174,34 +250,56 @@ int run_mesh(const MeshCommand& command) {
   }
   // Whatever happened, keep the work: write the mesh and the summary before reporting.
   file_options.binary = !command.ascii;
-  // PLY keeps the standard names (x, y, z or x0 … x{n−1}) that readers look for; the problem's
-  // own names go into a comment, and into the arrays of VTK files.
-  const bool is_ply = command.output.size() >= 4 &&
-                      command.output.compare(command.output.size() - 4, 4, ".ply") == 0;
-  std::string names;
-  for (const auto& name : setup.problem->coordinate_names()) {
-    names += " " + name;
-  }
-  if (!is_ply) {
-    file_options.coordinate_names = setup.problem->coordinate_names();
-  }
-  file_options.comments = {"tessera mesh " + command.problem + ", method " + method.name,
-                           "coordinates:" + names};
+  file_options.comments = {"tessera mesh " + command.problem + ", method " + method.name};
   // An empty mesh (the start failed) is not written: it would replace a good file with nothing.
   const bool has_mesh = result.mesh.triangle_count() > 0;
-  if (has_mesh) {
+  std::vector<std::string> written;
+  if (has_mesh && view.is_all_coordinates()) {
+    // PLY keeps the standard names (x, y, z, x3, …) that readers look for; the problem's own
+    // names go into a comment, and into the arrays of VTK files.
+    const bool is_ply = std::filesystem::path(command.output).extension() == ".ply";
+    std::string names;
+    for (const auto& name : setup.problem->coordinate_names()) {
+      names += " " + name;
+    }
+    if (!is_ply) {
+      file_options.coordinate_names = setup.problem->coordinate_names();
+    }
+    file_options.comments.push_back("coordinates:" + names);
     write_mesh(command.output, result.mesh, file_options);
+    written.push_back(command.output);
+  } else if (has_mesh) {
+    file_options.comments.push_back("a view of the states in R^" + std::to_string(n) + ": " +
+                                    describe_coordinates(*setup.problem));
+    write_mesh_in_view(command.output, result.mesh, view, file_options);
+    written.push_back(command.output);
   }
   MeshReport report = make_report(result.mesh, setup, command.problem);
   report.run = result.summary;
+  report.view = ViewReport{view.specification(),
+                           view.is_all_coordinates() ? std::vector<std::string>() : view.names(),
+                           chosen.origin};
+  if (has_mesh && !command.states.empty()) {
+    write_states_npy(command.states, result.mesh);
+    report.states = StatesReport{command.states,
+                                 triangles_npy_path(command.states),
+                                 result.mesh.vertex_count(),
+                                 result.mesh.triangle_count(),
+                                 setup.problem->coordinate_names(),
+                                 setup.problem->coordinate_blocks()};
+    written.push_back(report.states->states_file);
+    written.push_back(report.states->triangles_file);
+  }
   if (!command.summary.empty()) {
     write_summary_json(command.summary, report);
+    written.push_back(command.summary);
   }
-  const std::string written = has_mesh ? command.output : std::string();
-  const std::string also = command.summary.empty() ? "" : command.summary;
-  if (!command.quiet && (has_mesh || !also.empty())) {
-    std::cout << to_text(report) << "wrote          " << written
-              << (written.empty() || also.empty() ? "" : " and ") << also << "\n";
+  if (!command.quiet && !written.empty()) {
+    std::cout << to_text(report) << "wrote          ";
+    for (std::size_t i = 0; i < written.size(); ++i) {
+      std::cout << (i == 0 ? "" : i + 1 == written.size() ? " and " : ", ") << written[i];
+    }
+    std::cout << "\n";
   }
   if (!result.summary.is_complete()) {
     std::cerr << "tessera: the " << method.name << " method stopped early ("

@@ -17,7 +17,9 @@ struct MeshCommand {
   std::string box;
   std::string output;
   std::string summary;
-  std::string obj_coordinates;
+  std::string obj_coordinates;  ///< deprecated: the view of three coordinate indices
+  std::string view;             ///< --view: a view specification (problems/view.h)
+  std::string states;           ///< --states: the vertices as .npy (and the triangles beside)
   bool ascii = false;
   bool quiet = false;
   bool improve = false;

@@ -20,10 +20,10 @@ void check_output_folder(const std::string& path) {
 void check_mesh_output(const std::string& path) {
   check_output_folder(path);
   const std::string extension = std::filesystem::path(path).extension().string();
-  TESSERA_CHECK(extension == ".ply" || extension == ".obj" || extension == ".vtk" ||
-                    extension == ".vtu",
-                "-o " << path << ": unknown extension '" << extension
-                      << "' (use .ply, .obj, .vtk or .vtu)");
+  TESSERA_CHECK(
+      extension == ".ply" || extension == ".obj" || extension == ".vtk" || extension == ".vtu",
+      "-o " << path << ": unknown extension '" << extension << "' (use .ply, .obj, .vtk or .vtu"
+            << (extension == ".npy" ? "; the states go to a .npy file with --states" : "") << ")");
 }
 
 }  // namespace tessera::app

@@ -14,6 +14,7 @@
 #include "tessera/io/bezier_patches.h"
 #include "tessera/io/detail/file_buffer.h"
 #include "tessera/io/mesh_io.h"
+#include "tessera/io/npy.h"
 #include "tessera/io/summary_json.h"
 #include "tessera/io/text_file.h"
 
@@ -73,6 +74,8 @@ std::vector<std::pair<std::string, std::function<void(const std::string&)>>> wri
        }},
       {"m.vtk", [](const std::string& p) { write_mesh(p, mesh); }},
       {"m.vtu", [](const std::string& p) { write_mesh(p, mesh); }},
+      {"states.npy", [](const std::string& p) { write_npy(p, mesh.points()); }},
+      {"triangles.npy", [](const std::string& p) { write_npy(p, mesh.triangles()); }},
       {"summary.json", [](const std::string& p) { write_summary_json(p, MeshReport{}); }},
       {"text.json", [](const std::string& p) { write_text_file(p, std::string(1 << 21, ' ')); }},
       {"patches.json",

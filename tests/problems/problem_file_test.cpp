@@ -209,6 +209,30 @@ TEST(ProblemFile, CstrExample) {
   EXPECT_NEAR(F(1), -2.0 * 1.2 + 7.0 * reaction, 1e-14);
 }
 
+TEST(ProblemFile, ViewLineNamesFunctionalsOfTheVariables) {
+  const std::string text = R"(variables x1 x2 Da B
+parameter beta = 0.5
+equation -x1 + Da*(1 - x1)*exp(x2)
+equation -(1 + beta)*x2 + B*Da*(1 - x1)*exp(x2)
+start 0.1 0.1 0.1 5
+view Da, B, heat = (1 + beta)*x2, norm    # a parameter in an expression
+)";
+  const ProblemSetup setup = parse_problem(text, "cstr.tsr");
+  ASSERT_TRUE(setup.view.has_value());
+  EXPECT_EQ(setup.view->names(), (std::vector<std::string>{"Da", "B", "heat", "norm"}));
+  const Eigen::Vector4d x(0.3, 1.2, 0.1, 7.0);
+  const Eigen::VectorXd values = setup.view->evaluate(x);
+  EXPECT_EQ(values(0), 0.1);
+  EXPECT_EQ(values(1), 7.0);
+  EXPECT_EQ(values(2), 1.5 * 1.2);
+  EXPECT_DOUBLE_EQ(values(3), x.norm());
+  // An override reaches the view's expressions as it reaches the equations.
+  const ProblemSetup other_beta = parse_problem(text, "cstr.tsr", {{"beta", 1.0}});
+  EXPECT_EQ(other_beta.view->evaluate(x)(2), 2.0 * 1.2);
+  // Without a view line the setup has none (the CLI then writes every coordinate).
+  EXPECT_FALSE(parse_problem(sphere_text, "sphere.tsr").view.has_value());
+}
+
 // ---- errors: each names the file, the line and what is wrong -------------------------------
 
 // Lines 1–5 are valid; a case appends or replaces lines to break one rule.
@@ -275,6 +299,21 @@ TEST(ProblemFile, EveryErrorNamesTheLineAndTheProblem) {
        {"t.tsr:1:6:", "one word"}},
       {equation + start, {"t.tsr:", "missing 'variables' line"}},
       {header + "equation\n" + start, {"t.tsr:4:", "expected an expression"}},
+      {header + equation + start + "view x, w\n",
+       {"t.tsr:6:9: view: 'w' is no coordinate", "coordinates: x, y, z", "NAME = EXPRESSION",
+        "\n    view x, w\n            ^"}},
+      {header + equation + start + "view x, y, s = x + q\n",
+       {"t.tsr:6:20: view: 's = x + q': unknown name 'q'", "parameters: r"}},
+      {header + equation + start + "view x, y, s = x +\n",
+       {"t.tsr:6:", "view: 's = x +': expected"}},
+      {header + equation + start + "view x, max:u\n",
+       {"t.tsr:6:13:", "no block 'u'", "has no coordinate blocks"}},
+      {header + equation + start + "view x, x\n", {"t.tsr:6:9:", "'x' is given twice"}},
+      {header + equation + start + "view x = 2*y, z\n",
+       {"t.tsr:6:6:", "'x = 2*y'", "give the expression another name"}},
+      {header + equation + start + "view z\n", {"t.tsr:6:", "1 functional given, need at least 2"}},
+      {header + equation + start + "view\n", {"t.tsr:6:", "expected functionals after 'view'"}},
+      {header + equation + start + "view x, y\nview x, z\n", {"t.tsr:7:1:", "duplicate 'view'"}},
   };
   for (const auto& test : cases) {
     try {

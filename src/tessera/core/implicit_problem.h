@@ -71,7 +71,7 @@ class ImplicitProblem {
 
 /// The n weights w of the problem's metric ‖x‖² = Σ (w_i x_i)², from its coordinate blocks;
 /// empty when every weight is 1 (the Euclidean norm).
-/// 	hrow InvalidArgument if a block lies outside 0 … n−1, overlaps another or has a weight
+/// \throw InvalidArgument if a block lies outside 0 … n−1, overlaps another or has a weight
 ///        that is not finite and > 0.
 Eigen::VectorXd metric_weights(const ImplicitProblem& problem);
 

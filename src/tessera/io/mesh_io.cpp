@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "tessera/core/error.h"
+#include "tessera/io/npy.h"
 
 namespace tessera {
 
@@ -59,8 +60,11 @@ TriangleMesh read_mesh(const std::string& path) {
   if (extension == ".vtu") {
     return read_vtu(path);
   }
+  if (extension == ".npy") {
+    return read_states_npy(path);
+  }
   TESSERA_CHECK(false, "cannot read '" << path << "': unknown extension '" << extension
-                                       << "'; supported: .ply, .obj, .vtk, .vtu");
+                                       << "'; supported: .ply, .obj, .vtk, .vtu, .npy (states)");
   return {};
 }
 

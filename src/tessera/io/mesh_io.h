@@ -39,8 +39,9 @@ struct MeshFileOptions {
 void write_mesh(const std::string& path, const TriangleMesh& mesh,
                 const MeshFileOptions& options = {});
 
-/// Reads a mesh from .ply (read_ply, any n), .obj (read_obj, n = 3), .vtk (read_vtk, any n) or
-/// .vtu (read_vtu, any n), by extension (case-insensitive).
+/// Reads a mesh from .ply (read_ply, any n), .obj (read_obj, n = 3), .vtk (read_vtk, any n),
+/// .vtu (read_vtu, any n) or .npy (read_states_npy: the states of `tessera mesh --states` with
+/// their triangles beside them), by extension (case-insensitive).
 ///
 /// \throw InvalidArgument for another extension (the message lists the supported ones), and
 ///        whatever the chosen reader throws.

@@ -8,6 +8,7 @@
 
 #include "tessera/core/error.h"
 #include "tessera/io/text_file.h"
+#include "tessera/problems/view.h"
 
 namespace tessera {
 namespace {
@@ -39,6 +40,33 @@ nlohmann::json geometry(const MeshValidation& v) {
        {{"count", v.vertex_outside_domain_count},
         {"vertices", first_entries(v.vertices_outside_domain)}}},
       {"unoriented_triangles", v.unoriented_triangle_count}};
+}
+
+// A block is one entry with its range, a coordinate outside blocks one entry of size 1: the
+// column ranges of the states array without n names.
+nlohmann::json state_columns(const StatesReport& states) {
+  nlohmann::json columns = nlohmann::json::array();
+  const int n = static_cast<int>(states.coordinate_names.size());
+  for (int i = 0; i < n;) {
+    const auto block =
+        std::find_if(states.blocks.begin(), states.blocks.end(),
+                     [&](const CoordinateBlock& b) { return b.first == i && b.size >= 1; });
+    if (block != states.blocks.end()) {
+      columns.push_back({{"name", block->name},
+                         {"first", block->first},
+                         {"size", block->size},
+                         {"block", true},
+                         {"weight", block->weight}});
+      i += block->size;
+    } else {
+      columns.push_back({{"name", states.coordinate_names[static_cast<std::size_t>(i)]},
+                         {"first", i},
+                         {"size", 1},
+                         {"block", false}});
+      ++i;
+    }
+  }
+  return columns;
 }
 
 }  // namespace
@@ -93,6 +121,21 @@ std::string to_json(const MeshReport& report) {
                                 {"factorisations", r.factorisations / V}};
     }
     j["run"]["notes"] = r.notes;
+  }
+  if (report.view) {
+    j["view"] = {{"specification", report.view->specification}, {"origin", report.view->origin}};
+    if (!report.view->columns.empty()) {
+      j["view"]["columns"] = report.view->columns;
+    }
+  }
+  if (report.states) {
+    const StatesReport& states = *report.states;
+    j["states"] = {
+        {"file", states.states_file},
+        {"triangles_file", states.triangles_file},
+        {"shape", {states.vertex_count, static_cast<int>(states.coordinate_names.size())}},
+        {"triangles_shape", {states.triangle_count, 3}},
+        {"columns", state_columns(states)}};
   }
   j["counts"] = {
       {"vertices", v.referenced_vertex_count},   {"edges", v.edge_count},
@@ -186,6 +229,24 @@ std::string to_text(const MeshReport& report) {
       }
       out << " DF/factorisations per vertex\n";
     }
+  }
+  if (report.view && !(report.view->specification == "all" && report.view->origin == "default")) {
+    out << "view           " << report.view->specification << " (";
+    if (report.view->origin == "default for large n") {
+      // Say why the file does not hold the coordinates, and how to get them.
+      out << "the default for n = " << report.ambient_dimension << " > " << kLargeAmbientDimension
+          << "; --view all writes all " << report.ambient_dimension
+          << " coordinates, --states FILE.npy the states";
+    } else {
+      out << "from " << report.view->origin;
+    }
+    out << ")\n";
+  }
+  if (report.states) {
+    const StatesReport& states = *report.states;
+    out << "states         " << states.states_file << " (" << states.vertex_count << " × "
+        << states.coordinate_names.size() << ", <f8) and " << states.triangles_file << " ("
+        << states.triangle_count << " × 3, <i8)\n";
   }
   out << "mesh           " << v.referenced_vertex_count << " vertices, " << v.edge_count
       << " edges, " << v.triangle_count << " triangles, " << v.boundary_loop_count

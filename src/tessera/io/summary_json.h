@@ -4,6 +4,9 @@
 
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "tessera/core/implicit_problem.h"
 
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
@@ -11,10 +14,33 @@
 
 namespace tessera {
 
+/// The view a mesh file was written in (`tessera mesh --view`, problems/view.h).
+struct ViewReport {
+  std::string specification;         ///< View::specification(): "lambda, epsilon, max:u", "all"
+  std::vector<std::string> columns;  ///< View::names(), the names in the file; empty for "all"
+  /// Who chose it: "--view", "--obj-coordinates", "problem file", "default for large n" or
+  /// "default" (every coordinate).
+  std::string origin;
+};
+
+/// The states written as NumPy arrays (`tessera mesh --states`, io/npy.h).
+struct StatesReport {
+  std::string states_file;     ///< shape (vertices, n), '<f8'
+  std::string triangles_file;  ///< shape (triangles, 3), '<i8'
+  int vertex_count = 0;
+  int triangle_count = 0;
+  /// The n columns of the states: the problem's coordinate names and blocks (the JSON lists a
+  /// block as one entry with its range, so that the summary stays small at n = 10⁵).
+  std::vector<std::string> coordinate_names;
+  std::vector<CoordinateBlock> blocks;
+};
+
 /// What one report is made of; `run` is absent for `tessera check` of an existing mesh.
 struct MeshReport {
   std::string problem;
   int ambient_dimension = 0;
+  std::optional<ViewReport> view;      ///< absent for `tessera check`
+  std::optional<StatesReport> states;  ///< present when the states were written
   std::optional<CoveringSummary> run;
   MeshValidation validation;
   MeshQuality quality;

@@ -15,6 +15,7 @@
 #include "tessera/problems/detail/statement_reader.h"
 #include "tessera/problems/expression.h"
 #include "tessera/problems/expression_problem.h"
+#include "tessera/problems/view.h"
 
 namespace tessera {
 
@@ -25,7 +26,7 @@ using detail::Word;
 
 const std::vector<std::string> all_keywords = {"name",      "description", "variables", "parameter",
                                                "equation",  "start",       "step",      "box",
-                                               "halfspace", "euler",       "area"};
+                                               "halfspace", "euler",       "area",      "view"};
 const std::vector<std::string> repeatable_keywords = {"parameter", "equation", "box", "halfspace"};
 
 bool contains(const std::vector<std::string>& list, const std::string& word) {
@@ -79,6 +80,9 @@ class ProblemFileParser {
     setup.problem = std::make_unique<ExpressionProblem>(name_, std::move(equations));
     setup.description = describe();
     check_start(setup);
+    if (const Statement* view = single("view")) {
+      setup.view = read_view(*view, *setup.problem);
+    }
     return setup;
   }
 
@@ -379,6 +383,32 @@ class ProblemFileParser {
     }
     label << " >= " << normal.dot(point);
     return label.str();
+  }
+
+  // The functionals the surface is written in: variables, `norm`, `NAME = EXPRESSION` (the file
+  // declares no blocks, so no max:B); errors point at their column in the line.
+  View read_view(const Statement& statement, const ImplicitProblem& problem) const {
+    if (statement.rest.empty()) {
+      fail(statement,
+           "view: expected functionals after 'view', e.g. 'view " +
+               join(std::vector<std::string>(variables_.begin(), variables_.begin() + 3)) +
+               "' or 'view " + variables_[0] + ", " + variables_[1] + ", r = sqrt(" +
+               variables_[0] + "^2 + " + variables_[1] + "^2)'",
+           statement.rest_column);
+    }
+    View view;
+    try {
+      view = parse_view(statement.rest, problem, parameters_);
+    } catch (const ViewSpecificationError& error) {
+      fail(statement, "view: " + error.reason(), statement.rest_column + error.column() - 1);
+    }
+    if (view.size() < 2) {
+      fail(statement,
+           "view: " + plural(static_cast<std::size_t>(view.size()), "functional") +
+               " given, need at least 2 to place the vertices (3 for a surface in space)",
+           statement.rest_column);
+    }
+    return view;
   }
 
   int read_euler(const Statement& statement) const {

@@ -9,6 +9,7 @@
 
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
+#include "tessera/problems/view.h"
 
 namespace tessera {
 
@@ -25,6 +26,9 @@ struct ProblemSetup {
   std::optional<int> expected_euler_characteristic;
   /// Exact area of that component, when known (used by the convergence tests and reports).
   std::optional<double> exact_area;
+  /// The view the surface is written in unless another is asked for (a problem file's `view`
+  /// line); none: default_view(*problem), which is every coordinate unless n is large.
+  std::optional<View> view;
 };
 
 }  // namespace tessera

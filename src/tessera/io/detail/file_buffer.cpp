@@ -177,6 +177,13 @@ void OutputFile::little_endian_int32(std::int32_t value) {
   bytes(&value, sizeof value);
 }
 
+void OutputFile::little_endian_int64(std::int64_t value) {
+  if constexpr (std::endian::native == std::endian::big) {
+    value = byte_swapped(value);
+  }
+  bytes(&value, sizeof value);
+}
+
 void OutputFile::flush() {
   if (used_ > 0) {
     write_all(buffer_.data(), used_);

@@ -88,6 +88,7 @@ class OutputFile {
   /// Little-endian binary values, whatever the byte order of this machine.
   void little_endian_double(double value);
   void little_endian_int32(std::int32_t value);
+  void little_endian_int64(std::int64_t value);
 
   /// Writes the rest of the buffer, syncs, closes and renames the temporary over the target.
   /// \throw InvalidArgument naming the target and the system's reason (e.g. "No space left on

@@ -4,7 +4,9 @@
 // and call these.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tessera/geometry/triangle_mesh.h"
@@ -18,5 +20,11 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path,
 TriangleMesh parse_vtk(const std::string& content, const std::string& path);
 /// read_vtu on `content`, the whole file; `path` only names it in messages.
 TriangleMesh parse_vtu(const std::string& content, const std::string& path);
+/// The points of read_states_npy from the content of the states file: n×V, one point per column.
+Eigen::MatrixXd parse_npy_points(std::string_view content, const std::string& path);
+/// The triangles of read_states_npy from the content of the triangles file, each index checked
+/// against `vertex_count`.
+std::vector<Triangle> parse_npy_triangles(std::string_view content, const std::string& path,
+                                          int vertex_count);
 
 }  // namespace tessera::io_detail
