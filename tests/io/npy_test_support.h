@@ -75,12 +75,17 @@ inline NpyArray read_npy(const std::string& path) {
     return array;
   }
   static_assert(std::endian::native == std::endian::little, "the test reader reads '<' arrays");
+  // (memcpy from an empty vector's null data() is undefined even for 0 bytes.)
   if (array.descr == "<f8") {
     array.reals.resize(count);
-    std::memcpy(array.reals.data(), bytes.data() + array.data_offset, 8 * count);
+    if (count > 0) {
+      std::memcpy(array.reals.data(), bytes.data() + array.data_offset, 8 * count);
+    }
   } else if (array.descr == "<i8") {
     array.integers.resize(count);
-    std::memcpy(array.integers.data(), bytes.data() + array.data_offset, 8 * count);
+    if (count > 0) {
+      std::memcpy(array.integers.data(), bytes.data() + array.data_offset, 8 * count);
+    }
   } else {
     ADD_FAILURE() << "descr '" << array.descr << "' in " << path;
   }
