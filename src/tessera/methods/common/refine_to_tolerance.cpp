@@ -109,6 +109,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   // third vertex or so, instead of several per Gauss–Newton projection: for sparse problems
   // factorisations are the cost). The chord lands on M, so its displacement bounds the
   // distance from above: the estimate errs towards splitting.
+  const bool is_sparse = problem.has_sparse_jacobian();
   Linearization frozen;
   int frozen_at = -1;
   bool frozen_ok = false;
@@ -205,14 +206,18 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const std::vector<int> faces = shared_faces(domain, a, b, options.face_tolerance);
       bool projected = false;
       if (faces.empty()) {
-        // The chord frozen at an endpoint first (the pairs are sorted, so one factorisation
-        // serves the edges of a vertex), full Gauss–Newton where it does not contract.
+        // Sparse problems: the chord frozen at an endpoint first (the pairs are sorted, so one
+        // factorisation serves the edges of a vertex), full Gauss–Newton where it does not
+        // contract. Dense problems take Gauss–Newton's nearest point: the chord projects along
+        // the endpoint's normal space, which where two sheets nearly touch (the trough) can
+        // land the new vertex on the other sheet.
         const Eigen::VectorXd start = x;
-        if (frozen_at != u) {
+        if (frozen_at != u && is_sparse) {
           frozen_ok = frozen.factor(problem, a);
           frozen_at = u;
         }
-        projected = frozen_ok && project_chord(problem, frozen, x, options.corrector).is_success() &&
+        projected = is_sparse && frozen_ok &&
+                    project_chord(problem, frozen, x, options.corrector).is_success() &&
                     (x - start).norm() <= length;
         if (!projected) {
           x = start;
