@@ -31,19 +31,20 @@ void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::
   }
 }
 
+namespace {
+
+enum class FaceProjection { Converged, FirstStepTooFar, Failed };
+
 // Minimum-norm Gauss–Newton on F(x) = 0 together with the linear constraints of the faces in
 // `faces` (g_f(x) = b_f·(x − p_f) = 0). The step reuses the linearisation of F alone: write
 // dx = J⁺(−F) + T z with T the tangent basis; then J dx = −F for every z, the faces require
 // (BᵀT) z = −g − Bᵀ J⁺(−F), and since J⁺(−F) ⟂ T z, the minimum-norm dx of the whole bordered
 // system has the minimum-norm z of that c×2 system (Hohmann's example 3 solves the same system
 // densely).
-namespace {
-
+//
 // The iteration of project_onto_faces. With `frozen` (a factorisation at a nearby point of M)
 // it is the chord iteration: every step reuses J⁺ and T of that point and no factorisation is
 // made; without, each step factors DF at the iterate (Gauss–Newton).
-enum class FaceProjection { Converged, FirstStepTooFar, Failed };
-
 FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& domain,
                         const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
                         const CorrectorOptions& options, double* first_contraction,
