@@ -2,6 +2,7 @@
 #include "tessera/core/corrector.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace tessera {
@@ -113,6 +114,53 @@ CorrectorSummary project_chord(const ImplicitProblem& problem, const Linearizati
                                Eigen::Ref<Eigen::VectorXd> x, const CorrectorOptions& options) {
   // `iterate` never refactors here, so the const_cast never mutates the factorisation.
   return iterate(problem, x, options, const_cast<Linearization&>(frozen), /*refactor=*/false);
+}
+
+double chord_distance_bound(const ImplicitProblem& problem, const Linearization& frozen,
+                            const Eigen::Ref<const Eigen::VectorXd>& x, double accuracy,
+                            const CorrectorOptions& options) {
+  const int n = problem.ambient_dimension();
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  thread_local Eigen::VectorXd y;
+  thread_local Eigen::VectorXd F;
+  thread_local Eigen::VectorXd dx;
+  y = x;
+  F.resize(n - 2);
+  dx.resize(n);
+  double previous = 0.0;
+  double theta = 0.0;
+  for (int k = 0; k < options.max_iterations; ++k) {
+    problem.evaluate(y, F);
+    if (!F.allFinite()) {
+      return kInfinity;
+    }
+    F = -F;
+    frozen.solve_minimum_norm(F, dx);
+    y += dx;
+    const double correction = dx.norm();
+    const double displacement = (y - x).norm();
+    if (!std::isfinite(correction) || displacement > options.max_displacement) {
+      return kInfinity;
+    }
+    if (k > 0) {
+      // Converged to solver tolerance: the remainder is rounding.
+      if (correction <= options.tolerance * (1.0 + y.norm())) {
+        return displacement;
+      }
+      theta = std::max(theta, correction / previous);
+      if (theta > options.max_contraction) {
+        return kInfinity;
+      }
+      const double remainder = theta / (1.0 - theta) * correction;
+      if (remainder <= accuracy) {
+        return displacement + remainder;
+      }
+    } else if (correction == 0.0) {
+      return 0.0;  // x lies on M
+    }
+    previous = correction;
+  }
+  return kInfinity;
 }
 
 }  // namespace tessera

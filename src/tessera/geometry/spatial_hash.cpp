@@ -6,91 +6,15 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include "tessera/core/error.h"
+#include "tessera/geometry/principal_view.h"
 
 namespace tessera {
 namespace {
 
 constexpr int view_dimension = 3;
 using ViewPoint = std::array<double, view_dimension>;
-
-// The three-dimensional view of R^n that the grid hashes: the coordinates for n ≤ 3 (padded
-// with zeros), else the three principal directions of the points. Any orthonormal view is
-// correct (it shortens no overlap), but a random one of R^n shrinks the surface's extent by
-// about √(3/n), so at n = 1000 every box meets hundreds of others; the principal directions
-// keep the spread of the points (M of a discretised PDE lies close to a few directions).
-// They are found by subspace iteration started from three directions drawn from a fixed seed,
-// so that every run and every platform hashes alike.
-class View {
- public:
-  View(int n, const Eigen::Ref<const Eigen::MatrixXd>& points) : n_(n) {
-    if (n <= view_dimension) {
-      return;
-    }
-    std::mt19937_64 generator(0x7e55e7a);  // fixed: deterministic hashing
-    std::normal_distribution<double> normal;
-    directions_.resize(n, view_dimension);
-    for (int j = 0; j < view_dimension; ++j) {
-      for (int i = 0; i < n; ++i) {
-        directions_(i, j) = normal(generator);
-      }
-    }
-    orthonormalise();
-    if (points.cols() < 2) {
-      return;
-    }
-    const Eigen::VectorXd mean = points.rowwise().mean();
-    // (X − m)(X − m)ᵀ D without forming the n×n covariance: O(n·N) per iteration.
-    constexpr int kIterations = 8;
-    for (int iteration = 0; iteration < kIterations; ++iteration) {
-      const Eigen::MatrixXd coordinates =
-          points.transpose() * directions_ -
-          Eigen::VectorXd::Ones(points.cols()) * (mean.transpose() * directions_);
-      directions_ = points * coordinates - mean * coordinates.colwise().sum();
-      if (!directions_.allFinite() || directions_.norm() == 0.0) {
-        return;  // degenerate cloud: keep the last orthonormal directions
-      }
-      orthonormalise();
-    }
-  }
-  ViewPoint operator()(const Eigen::Ref<const Eigen::VectorXd>& x) const {
-    ViewPoint y{0.0, 0.0, 0.0};
-    if (n_ <= view_dimension) {
-      for (int i = 0; i < n_; ++i) {
-        y[i] = x(i);
-      }
-    } else {
-      for (int j = 0; j < view_dimension; ++j) {
-        y[j] = directions_.col(j).dot(x);
-      }
-    }
-    return y;
-  }
-
- private:
-  // Gram–Schmidt, twice for stability; a column that vanishes is replaced by a unit vector.
-  void orthonormalise() {
-    for (int pass = 0; pass < 2; ++pass) {
-      for (int j = 0; j < view_dimension; ++j) {
-        for (int k = 0; k < j; ++k) {
-          directions_.col(j) -= directions_.col(k).dot(directions_.col(j)) * directions_.col(k);
-        }
-        const double norm = directions_.col(j).norm();
-        if (norm > 0 && std::isfinite(norm)) {
-          directions_.col(j) /= norm;
-        } else {
-          directions_.col(j).setZero();
-          directions_(j, j) = 1.0;
-        }
-      }
-    }
-  }
-
-  int n_;
-  Eigen::MatrixXd directions_;  // n×3, orthonormal columns (n > 3 only)
-};
 
 struct ViewBox {
   ViewPoint lower;
@@ -192,7 +116,7 @@ std::vector<std::pair<int, int>> nearby_triangle_pairs(
                 "nearby_triangle_pairs: " << margins.size() << " margins for " << triangles.size()
                                           << " triangles");
   const int triangle_count = static_cast<int>(triangles.size());
-  const View view(static_cast<int>(points.rows()), points);
+  const PrincipalView view(static_cast<int>(points.rows()), points);
   std::vector<ViewBox> boxes(triangle_count);
   double smallest_extent = std::numeric_limits<double>::infinity();
   double largest_coordinate = 0.0;
@@ -204,7 +128,8 @@ std::vector<std::pair<int, int>> nearby_triangle_pairs(
     box.lower.fill(std::numeric_limits<double>::infinity());
     box.upper.fill(-std::numeric_limits<double>::infinity());
     for (int v : triangles[t]) {
-      const ViewPoint y = view(points.col(v));
+      const Eigen::Vector3d projected = view(points.col(v));
+      const ViewPoint y{projected(0), projected(1), projected(2)};
       for (int j = 0; j < view_dimension; ++j) {
         box.lower[j] = std::min(box.lower[j], y[j] - margins[t]);
         box.upper[j] = std::max(box.upper[j], y[j] + margins[t]);

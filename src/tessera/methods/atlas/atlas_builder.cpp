@@ -331,6 +331,9 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   tangents_.insert(tangents_.end(), T.data(), T.data() + 2 * n_);
   connect_neighbours(k);
   index_.insert(k, x, radius);
+  if (index_.refit_due()) {
+    index_.refit(Eigen::Map<const Eigen::MatrixXd>(centers_.data(), n_, chart_count()));
+  }
   for (int m : too_close) {
     const double half = 0.5 * (center(m) - center(k)).norm();
     if (charts_[m].radius > half && half >= min_radius_) {

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/methods/atlas/chart_index.h"
 
+#include <algorithm>
 #include <cmath>
 
-#include "tessera/methods/common/point_grid.h"
 
 namespace tessera {
 
-ChartIndex::ChartIndex(int ambient_dimension) : projection_(grid_projection(ambient_dimension)) {}
+ChartIndex::ChartIndex(int ambient_dimension) : view_(ambient_dimension) {}
 
 std::int64_t ChartIndex::key(std::int64_t i, std::int64_t j, std::int64_t k) {
   // 21 bits per axis: far cells may collide, which costs a distance check, never a miss.
@@ -17,11 +17,35 @@ std::int64_t ChartIndex::key(std::int64_t i, std::int64_t j, std::int64_t k) {
 
 void ChartIndex::insert(int chart, const Eigen::Ref<const Eigen::VectorXd>& center,
                         double radius) {
+  inserted_.emplace_back(chart, radius);
+  hash(chart, center, radius);
+}
+
+void ChartIndex::refit(const Eigen::Ref<const Eigen::MatrixXd>& centers) {
+  // The principal directions of an evenly spaced sample: a few hundred centres show the
+  // spread as well as all of them, and keep a refit at n = 10⁵ well below a factorisation's
+  // cost per chart.
+  constexpr int kMaxSample = 256;
+  const int count = static_cast<int>(inserted_.size());
+  const int stride = std::max(1, (count + kMaxSample - 1) / kMaxSample);
+  Eigen::MatrixXd sample(centers.rows(), (count + stride - 1) / stride);
+  for (int i = 0, column = 0; i < count; i += stride, ++column) {
+    sample.col(column) = centers.col(inserted_[i].first);
+  }
+  view_.fit(sample);
+  levels_.clear();
+  for (const auto& [chart, radius] : inserted_) {
+    hash(chart, centers.col(chart), radius);
+  }
+}
+
+void ChartIndex::hash(int chart, const Eigen::Ref<const Eigen::VectorXd>& center,
+                      double radius) {
   const int level_index = static_cast<int>(std::floor(std::log2(radius)));
   Level& level = levels_[level_index];
   level.max_radius = std::ldexp(1.0, level_index + 1);
   level.cell_size = 2.0 * level.max_radius;
-  const Eigen::Vector3d p = projection_ * center;
+  const Eigen::Vector3d p = view_(center);
   level.cells[key(static_cast<std::int64_t>(std::floor(p(0) / level.cell_size)),
                   static_cast<std::int64_t>(std::floor(p(1) / level.cell_size)),
                   static_cast<std::int64_t>(std::floor(p(2) / level.cell_size)))]
@@ -31,7 +55,7 @@ void ChartIndex::insert(int chart, const Eigen::Ref<const Eigen::VectorXd>& cent
 void ChartIndex::candidates(const Eigen::Ref<const Eigen::VectorXd>& center, double radius,
                             std::vector<int>& out) const {
   out.clear();
-  const Eigen::Vector3d p = projection_ * center;
+  const Eigen::Vector3d p = view_(center);
   for (const auto& [level_index, level] : levels_) {
     // Every disk of this level has radius < cell_size/2, so overlapping centres lie within
     // radius + cell_size/2 of p (in the projection too, which does not increase distances).

@@ -8,16 +8,24 @@
 #include <unordered_map>
 #include <vector>
 
+#include "tessera/geometry/principal_view.h"
+
 namespace tessera {
 
-/// Disks (centre in R^n, radius) bucketed by a 3-D projection of the centre, one grid per
-/// power-of-two radius level so that small disks are found in small cells even when other
-/// parts of M carry large ones.
+/// Disks (centre in R^n, radius) bucketed by a 3-D view of the centre (PrincipalView), one grid
+/// per power-of-two radius level so that small disks are found in small cells even when other
+/// parts of M carry large ones. The view is refitted to the centres as the atlas grows.
 class ChartIndex {
  public:
   explicit ChartIndex(int ambient_dimension);
 
   void insert(int chart, const Eigen::Ref<const Eigen::VectorXd>& center, double radius);
+
+  /// Whether the view should be refitted now (the number of disks doubled since the last fit).
+  bool refit_due() { return schedule_.due(static_cast<int>(inserted_.size())); }
+  /// Refits the view to the principal directions of the centres and rehashes every disk.
+  /// `centers` (n × count) holds the centre of chart c in column c for every inserted c.
+  void refit(const Eigen::Ref<const Eigen::MatrixXd>& centers);
 
   /// Charts whose disk might overlap the disk (center, radius): a superset of those with
   /// ‖c_j − center‖ < r_j + radius. Appended to `out` (cleared first), in no fixed order.
@@ -35,8 +43,11 @@ class ChartIndex {
     std::unordered_map<std::int64_t, std::vector<Entry>> cells;
   };
   static std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k);
+  void hash(int chart, const Eigen::Ref<const Eigen::VectorXd>& center, double radius);
 
-  Eigen::MatrixXd projection_;  // 3×n
+  PrincipalView view_;
+  RefitSchedule schedule_;
+  std::vector<std::pair<int, double>> inserted_;  // (chart, radius) in insertion order
   std::unordered_map<int, Level> levels_;  // by floor(log2(radius))
 };
 

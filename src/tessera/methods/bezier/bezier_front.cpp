@@ -76,6 +76,7 @@ void BezierBuilder::update_front_membership(int v) {
   if (front && !data.in_grid) {
     grid_.insert(v, data.x);
     data.in_grid = true;
+    grid_.refit_if_due([this](int id) -> const Eigen::VectorXd& { return vertices_[id].x; });
   } else if (!front && data.in_grid) {
     grid_.remove(v, data.x);
     data.in_grid = false;

@@ -1,45 +1,20 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/methods/common/point_grid.h"
 
-#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "tessera/core/error.h"
 
 namespace tessera {
 
-Eigen::MatrixXd grid_projection(int ambient_dimension) {
-  const int n = ambient_dimension;
-  Eigen::MatrixXd projection = Eigen::MatrixXd::Zero(3, n);
-  if (n <= 3) {
-    for (int i = 0; i < n; ++i) {
-      projection(i, i) = 1.0;
-    }
-    return projection;
-  }
-  // A fixed pseudo-random orthonormal 3×n projection: deterministic, and it spreads points of a
-  // surface in R^n over the cells far better than dropping all but three coordinates.
-  std::mt19937_64 generator(7);
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd random(n, 3);
-  for (int j = 0; j < 3; ++j) {
-    for (int i = 0; i < n; ++i) {
-      random(i, j) = normal(generator);
-    }
-  }
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr(random);
-  return (qr.householderQ() * Eigen::MatrixXd::Identity(n, 3)).transpose();
-}
-
 PointGrid::PointGrid(int ambient_dimension, double cell_size)
-    : projection_(grid_projection(ambient_dimension)), cell_size_(cell_size) {
+    : ambient_dimension_(ambient_dimension), view_(ambient_dimension), cell_size_(cell_size) {
   TESSERA_CHECK(cell_size > 0, "PointGrid cell size " << cell_size << " must be > 0");
 }
 
 Eigen::Vector3d PointGrid::cell_of(const Eigen::Ref<const Eigen::VectorXd>& x) const {
-  Eigen::Vector3d projected = projection_ * x;
+  Eigen::Vector3d projected = view_(x);
   return (projected / cell_size_).array().floor();
 }
 
@@ -53,6 +28,7 @@ std::int64_t PointGrid::key(const Eigen::Vector3d& cell) const {
 
 void PointGrid::insert(int id, const Eigen::Ref<const Eigen::VectorXd>& x) {
   cells_[key(cell_of(x))].push_back(id);
+  ++size_;
 }
 
 void PointGrid::remove(int id, const Eigen::Ref<const Eigen::VectorXd>& x) {
@@ -61,7 +37,9 @@ void PointGrid::remove(int id, const Eigen::Ref<const Eigen::VectorXd>& x) {
     return;
   }
   auto& ids = it->second;
-  ids.erase(std::remove(ids.begin(), ids.end(), id), ids.end());
+  const auto removed = std::remove(ids.begin(), ids.end(), id);
+  size_ -= static_cast<int>(ids.end() - removed);
+  ids.erase(removed, ids.end());
 }
 
 std::vector<int> PointGrid::candidates(const Eigen::Ref<const Eigen::VectorXd>& x) const {

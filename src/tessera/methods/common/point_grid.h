@@ -3,17 +3,17 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
 
+#include "tessera/geometry/principal_view.h"
+
 namespace tessera {
 
-/// The 3×n matrix with orthonormal rows that spatial grids bucket points of R^n by: the identity
-/// for n ≤ 3, a fixed pseudo-random projection otherwise. ‖P(x − y)‖ ≤ ‖x − y‖.
-Eigen::MatrixXd grid_projection(int ambient_dimension);
-
-/// Points are bucketed by a 3-D projection P·x (P has orthonormal rows; the identity when n = 3).
+/// Points are bucketed by a 3-D view P·x (PrincipalView: orthonormal rows, the identity when
+/// n = 3, refitted to the points' principal directions as their number doubles).
 /// Since ‖P(x − y)‖ ≤ ‖x − y‖, every point within `radius` of a query lies in the 27 cells
 /// around it; candidates are then checked with the true distance in R^n. Cost per query is
 /// O(1) for meshes of bounded density, independent of the number of points.
@@ -23,6 +23,10 @@ class PointGrid {
 
   void insert(int id, const Eigen::Ref<const Eigen::VectorXd>& x);
   void remove(int id, const Eigen::Ref<const Eigen::VectorXd>& x);
+  /// Refits the view to the stored points and rehashes them when their number has doubled
+  /// since the last fit (O(n) per point in all). `position(id)` returns the stored point.
+  template <typename PositionFunction>
+  void refit_if_due(PositionFunction position);
   /// Ids of inserted points whose stored position is within `radius` ≤ cell_size of x,
   /// in increasing id order (deterministic). `position(id)` returns the stored point.
   template <typename PositionFunction>
@@ -34,10 +38,39 @@ class PointGrid {
   Eigen::Vector3d cell_of(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   std::vector<int> candidates(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
-  Eigen::MatrixXd projection_;  // 3×n
+  int ambient_dimension_;
+  PrincipalView view_;
+  RefitSchedule schedule_;
+  int size_ = 0;
   double cell_size_;
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
 };
+
+template <typename PositionFunction>
+void PointGrid::refit_if_due(PositionFunction position) {
+  if (ambient_dimension_ <= 3 || !schedule_.due(size_)) {
+    return;
+  }
+  std::vector<int> ids;
+  ids.reserve(size_);
+  for (const auto& [cell, members] : cells_) {
+    ids.insert(ids.end(), members.begin(), members.end());
+  }
+  std::sort(ids.begin(), ids.end());  // deterministic sample, whatever the hash order
+  constexpr int kMaxSample = 256;  // a few hundred points show the spread as well as all
+  const int count = static_cast<int>(ids.size());
+  const int stride = std::max(1, (count + kMaxSample - 1) / kMaxSample);
+  Eigen::MatrixXd sample(ambient_dimension_, (count + stride - 1) / stride);
+  for (int i = 0, column = 0; i < count; i += stride, ++column) {
+    sample.col(column) = position(ids[i]);
+  }
+  view_.fit(sample);
+  cells_.clear();
+  size_ = 0;
+  for (int id : ids) {
+    insert(id, position(id));
+  }
+}
 
 template <typename PositionFunction>
 std::vector<int> PointGrid::near(const Eigen::Ref<const Eigen::VectorXd>& x, double radius,

@@ -12,6 +12,10 @@
 namespace tessera {
 namespace {
 
+// Sampled distances are measured to this fraction of the refinement threshold: enough to
+// decide "split or not", and a bound from above, so the decision errs towards splitting.
+constexpr double kDistanceAccuracy = 0.02;
+
 std::uint64_t edge_key(int a, int b) {
   if (a > b) {
     std::swap(a, b);
@@ -108,22 +112,30 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   // vertices, its anchor, which serves all triangles around it (a factorisation for every
   // third vertex or so, instead of several per Gauss–Newton projection: for sparse problems
   // factorisations are the cost). The chord lands on M, so its displacement bounds the
-  // distance from above: the estimate errs towards splitting.
+  // distance from above: the estimate errs towards splitting. It is only needed to a small
+  // fraction of the threshold, which two or three chord steps give (chord_distance_bound).
+  const double accuracy = kDistanceAccuracy * threshold;
   const bool is_sparse = problem.has_sparse_jacobian();
   Linearization frozen;
   int frozen_at = -1;
   bool frozen_ok = false;
   auto distance_to_m = [&](const Eigen::VectorXd& point) {
-    Eigen::VectorXd x = point;
-    if (frozen_ok && project_chord(problem, frozen, x, options.corrector).is_success()) {
-      return (x - point).norm();
+    if (frozen_ok) {
+      const double bound =
+          chord_distance_bound(problem, frozen, point, accuracy, options.corrector);
+      if (std::isfinite(bound)) {
+        return bound;
+      }
     }
-    x = point;
+    Eigen::VectorXd x = point;
     if (!project_gauss_newton(problem, x, options.corrector, workspace).is_success()) {
       return std::numeric_limits<double>::infinity();
     }
     return (x - point).norm();
   };
+  // An edge's midpoint is sampled once for both triangles that share it (vertices never move,
+  // so the distance stays valid across rounds).
+  std::unordered_map<std::uint64_t, double> midpoint_distance;
   // The largest sampled distance of triangle t to M, and where it is.
   Eigen::VectorXd where;
   auto sample = [&](int anchor, int t) {
@@ -136,17 +148,25 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       frozen_at = anchor;
     }
     double worst = -1.0;
-    auto consider = [&](const Eigen::VectorXd& point) {
-      const double d = distance_to_m(point);
+    auto consider = [&](const Eigen::VectorXd& point, double d) {
       if (!(d <= worst)) {
         worst = d;
         where = point;
       }
     };
-    consider((a + b + c) / 3.0);
-    consider(0.5 * (a + b));
-    consider(0.5 * (b + c));
-    consider(0.5 * (c + a));
+    auto consider_midpoint = [&](int u, int v) {
+      const Eigen::VectorXd point = 0.5 * (mesh.point(u) + mesh.point(v));
+      const auto [known, inserted] = midpoint_distance.emplace(edge_key(u, v), 0.0);
+      if (inserted) {
+        known->second = distance_to_m(point);
+      }
+      consider(point, known->second);
+    };
+    const Eigen::VectorXd centroid = (a + b + c) / 3.0;
+    consider(centroid, distance_to_m(centroid));
+    consider_midpoint(tri[0], tri[1]);
+    consider_midpoint(tri[1], tri[2]);
+    consider_midpoint(tri[2], tri[0]);
     // On a surface of constant curvature the farthest point is the circumcentre (when it
     // lies inside the triangle); sampling it makes the estimate nearly exact.
     const Eigen::VectorXd ab = b - a;
@@ -157,7 +177,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const double beta = ww * (uu - uw) / det;
       const double gamma = uu * (ww - uw) / det;
       if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) {
-        consider(a + beta * ab + gamma * ac);
+        const Eigen::VectorXd circumcentre = a + beta * ab + gamma * ac;
+        consider(circumcentre, distance_to_m(circumcentre));
       }
     }
     return worst;

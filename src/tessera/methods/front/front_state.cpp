@@ -40,6 +40,7 @@ int FrontState::add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexTyp
   types_.push_back(type);
   incident_.emplace_back();
   grid_.insert(v, x);
+  grid_.refit_if_due([this](int id) { return point(id); });
   ++live_vertices_;
   if (type == VertexType::Frontal) {
     queue_.push_back(v);

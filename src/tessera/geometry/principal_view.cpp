@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/geometry/principal_view.h"
+
+#include <cmath>
+#include <random>
+
+namespace tessera {
+
+PrincipalView::PrincipalView(int ambient_dimension) : n_(ambient_dimension) {
+  if (n_ <= 3) {
+    return;
+  }
+  std::mt19937_64 generator(0x7e55e7a);  // fixed: deterministic hashing
+  std::normal_distribution<double> normal;
+  directions_.resize(n_, 3);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < n_; ++i) {
+      directions_(i, j) = normal(generator);
+    }
+  }
+  orthonormalise();
+}
+
+PrincipalView::PrincipalView(int ambient_dimension,
+                             const Eigen::Ref<const Eigen::MatrixXd>& points)
+    : PrincipalView(ambient_dimension) {
+  fit(points);
+}
+
+void PrincipalView::fit(const Eigen::Ref<const Eigen::MatrixXd>& points) {
+  if (n_ <= 3 || points.cols() < 2) {
+    return;
+  }
+  const Eigen::VectorXd mean = points.rowwise().mean();
+  // (X − m)(X − m)ᵀ D without forming the n×n covariance: O(n·N) per iteration. The largest
+  // spreads separate quickly; the view only needs to keep most of the spread, not to be exact.
+  constexpr int kIterations = 8;
+  Eigen::MatrixXd next;
+  for (int iteration = 0; iteration < kIterations; ++iteration) {
+    const Eigen::MatrixXd coordinates =
+        points.transpose() * directions_ -
+        Eigen::VectorXd::Ones(points.cols()) * (mean.transpose() * directions_);
+    next = points * coordinates - mean * coordinates.colwise().sum();
+    if (!next.allFinite() || next.norm() == 0.0) {
+      return;  // degenerate cloud: keep the last orthonormal directions
+    }
+    directions_ = next;
+    orthonormalise();
+  }
+}
+
+Eigen::Vector3d PrincipalView::operator()(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  if (n_ > 3) {
+    return directions_.transpose() * x;
+  }
+  Eigen::Vector3d y = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n_; ++i) {
+    y(i) = x(i);
+  }
+  return y;
+}
+
+// Gram–Schmidt, twice for stability; a column that vanishes is replaced by a unit vector.
+void PrincipalView::orthonormalise() {
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int j = 0; j < 3; ++j) {
+      for (int k = 0; k < j; ++k) {
+        directions_.col(j) -= directions_.col(k).dot(directions_.col(j)) * directions_.col(k);
+      }
+      const double norm = directions_.col(j).norm();
+      if (norm > 0 && std::isfinite(norm)) {
+        directions_.col(j) /= norm;
+      } else {
+        directions_.col(j).setZero();
+        directions_(j, j) = 1.0;
+      }
+    }
+  }
+}
+
+}  // namespace tessera
