@@ -14,6 +14,7 @@
 #include "tessera/core/bordered_jacobian.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
+#include "tessera/problems/examples.h"
 
 namespace tessera {
 namespace {
@@ -292,6 +293,38 @@ TEST(SparseLuSolvers, EnvironmentVariableChoosesTheSolverOrSaysWhatIsAvailable) 
       EXPECT_THROW(make_sparse_lu(solver), InvalidArgument);
     }
   }
+}
+
+// The bordered Jacobian of a catalogue problem at (u = 0, λ = 1, ε = 0.1), bordered by the two
+// parameter rows: its pattern is the one the covering factors.
+template <typename Problem>
+Eigen::SparseMatrix<double> bordered_catalogue_jacobian(const Problem& problem) {
+  const int n = problem.ambient_dimension();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  x(n - 2) = 1.0;
+  x(n - 1) = 0.1;
+  Eigen::SparseMatrix<double> J, A;
+  problem.sparse_jacobian(x, J);
+  bordered_jacobian(J, {{n - 2, n - 2, 1.0}, {n - 1, n - 1, 1.0}}, A);
+  return A;
+}
+
+// Without TESSERA_SPARSE_LU the solver follows the fill: KLU for a 1-D problem (fill 1.2×),
+// Eigen's supernodal LU for a 2-D one on a fine grid (KLU predicts 7× and is slower there).
+TEST(SparseLuSolvers, ChoosesKluForLowFillAndEigenForHighFill) {
+  const SolverEnvironment unset("");
+  const Eigen::SparseMatrix<double> one_d = bordered_catalogue_jacobian(ArrheniusBratu(2000));
+  const Eigen::SparseMatrix<double> two_d = bordered_catalogue_jacobian(ArrheniusBratu2D(150));
+  if (is_available(SparseLuSolver::Klu)) {
+    EXPECT_EQ(sparse_lu_solver_for(one_d), SparseLuSolver::Klu);
+    EXPECT_EQ(sparse_lu_solver_for(one_d), SparseLuSolver::Klu);  // remembered
+  } else {
+    EXPECT_EQ(sparse_lu_solver_for(one_d), SparseLuSolver::Eigen);
+  }
+  EXPECT_EQ(sparse_lu_solver_for(two_d), SparseLuSolver::Eigen);
+  // The environment overrides the choice.
+  const SolverEnvironment forced("eigen");
+  EXPECT_EQ(sparse_lu_solver_for(one_d), SparseLuSolver::Eigen);
 }
 
 TEST(BorderedJacobian, CoordinateBorderPicksTheBestParametrisingPair) {

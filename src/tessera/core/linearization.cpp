@@ -102,17 +102,19 @@ class DenseBackend final : public LinearizationBackend {
 
 class SparseBackend final : public LinearizationBackend {
  public:
-  // The solver is chosen once per backend (default_sparse_lu_solver: TESSERA_SPARSE_LU or the
-  // fastest available), so that one run does not mix solvers.
-  SparseBackend() : SparseBackend(default_sparse_lu_solver()) {}
+  // The solver is chosen at the first factorisation, from the bordered matrix's pattern
+  // (sparse_lu_solver_for: TESSERA_SPARSE_LU, else by the fill), and kept.
+  SparseBackend() = default;
   explicit SparseBackend(SparseLuSolver solver) : lu_(make_sparse_lu(solver)) {}
 
   std::unique_ptr<LinearizationBackend> clone() const override {
     // Factorisations are not copyable; a copy refactors from the stored bordered matrix.
-    auto copy = std::make_unique<SparseBackend>(lu_->solver());
+    auto copy = lu_ ? std::make_unique<SparseBackend>(lu_->solver())
+                    : std::make_unique<SparseBackend>();
     copy->bordered_ = bordered_;
     copy->last_tangent_ = last_tangent_;
-    if (lu_->is_factored() && copy->lu_->analyze(copy->bordered_) == SparseLuStatus::Success) {
+    if (lu_ && lu_->is_factored() &&
+        copy->lu_->analyze(copy->bordered_) == SparseLuStatus::Success) {
       copy->lu_->factorize(copy->bordered_);
     }
     return copy;
@@ -173,6 +175,9 @@ class SparseBackend final : public LinearizationBackend {
   bool factor_bordered(const JacobianBorder& border, Eigen::MatrixXd& tangent) {
     const int n = static_cast<int>(jacobian_.cols());
     bordered_jacobian(jacobian_, border, bordered_);
+    if (!lu_) {
+      lu_ = make_sparse_lu(sparse_lu_solver_for(bordered_));
+    }
     // The symbolic analysis (ordering) is redone only when the pattern changes.
     if (!lu_->is_analyzed_for(bordered_) && lu_->analyze(bordered_) != SparseLuStatus::Success) {
       return false;

@@ -2,7 +2,10 @@
 #include "tessera/core/sparse_lu.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
+#include <map>
+#include <mutex>
 #include <sstream>
 
 #include "tessera/core/detail/sparse_lu_implementations.h"
@@ -100,10 +103,53 @@ SparseLuSolver default_sparse_lu_solver() {
                       << " (configure found no library for it); it has: " << available_names());
     return *solver;
   }
-  // Eigen's SparseLU: the fastest per vertex (one factorisation and ~30 solves) on the 2-D
-  // problems at n ≥ 10⁴ and never more than ~2.5× from the best elsewhere; KLU, fastest on 1-D
-  // and small problems, is 10× slower at n = 10⁵ in 2-D (bench/RESULTS.md section 9).
   return SparseLuSolver::Eigen;
+}
+
+SparseLuSolver sparse_lu_solver_for(const Eigen::SparseMatrix<double>& A) {
+  const char* requested = std::getenv("TESSERA_SPARSE_LU");
+  if ((requested != nullptr && *requested != '\0') || !is_available(SparseLuSolver::Klu)) {
+    return default_sparse_lu_solver();
+  }
+  // Measured (bench/RESULTS.md section 9): KLU is the fastest where the fill is low, nnz(L + U)
+  // ≤ 5.5·nnz(A) (bvp at every n, bratu2d up to N = 32), and 1.7–10× slower than Eigen's
+  // supernodal SparseLU where it is high (bratu2d N = 100: 12×, N = 316: 26×). The map keeps
+  // one entry per pattern a run factors (a handful: the borders differ in two rows).
+  constexpr double kLowFill = 6.0;
+  static std::mutex mutex;
+  static std::map<std::pair<long, std::uint64_t>, SparseLuSolver> decided;
+  // The pattern's hash (FNV-1a over the compressed indices, O(nnz)): the fill depends on more
+  // than the size (one border row elsewhere can change it by half).
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  const auto mix = [&hash](const int* first, Eigen::Index count) {
+    for (Eigen::Index k = 0; k < count; ++k) {
+      hash = (hash ^ static_cast<std::uint32_t>(first[k])) * 0x100000001b3ULL;
+    }
+  };
+  if (A.isCompressed()) {
+    mix(A.outerIndexPtr(), A.outerSize() + 1);
+    mix(A.innerIndexPtr(), A.nonZeros());
+  }
+  const std::pair<long, std::uint64_t> key{static_cast<long>(A.rows()), hash};
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (const auto found = decided.find(key); found != decided.end()) {
+      return found->second;
+    }
+  }
+  SparseLuSolver choice = SparseLuSolver::Eigen;
+  if (A.rows() == A.cols() && A.rows() > 0 && A.isCompressed()) {
+    const std::unique_ptr<SparseLu> klu = make_sparse_lu(SparseLuSolver::Klu);
+    if (klu->analyze(A) == SparseLuStatus::Success) {
+      const std::optional<long> predicted = klu->predicted_factor_nonzeros();
+      if (predicted.has_value() && *predicted <= kLowFill * static_cast<double>(A.nonZeros())) {
+        choice = SparseLuSolver::Klu;
+      }
+    }
+  }
+  const std::lock_guard<std::mutex> lock(mutex);
+  decided.emplace(key, choice);
+  return choice;
 }
 
 std::unique_ptr<SparseLu> make_sparse_lu(SparseLuSolver solver) {

@@ -35,15 +35,21 @@ std::string_view name(SparseLuSolver solver);
 /// The solver of that name (case-sensitive), or nothing.
 std::optional<SparseLuSolver> sparse_lu_solver_named(std::string_view name);
 
-/// The solver `Linearization` uses for sparse problems: the environment variable
-/// TESSERA_SPARSE_LU when it is set and not empty, otherwise Eigen's SparseLU, the fastest on
-/// the 2-D PDE surfaces at n ≥ 10⁴ and within ~2.5× of the best everywhere measured
-/// (bench/RESULTS.md section 9; TESSERA_SPARSE_LU=klu is 2× faster on 1-D problems such as
-/// `bvp`, 10× slower on 2-D ones at n = 10⁵). Read at every call, so that a test or a benchmark
-/// can switch solvers with setenv.
+/// The solver the environment asks for: TESSERA_SPARSE_LU when it is set and not empty,
+/// otherwise Eigen's SparseLU. Read at every call, so that a test or a benchmark can switch
+/// solvers with setenv. `Linearization` asks `sparse_lu_solver_for` instead.
 /// \throw InvalidArgument if TESSERA_SPARSE_LU names no solver or one this build does not have
 ///        (the message lists the available ones).
 SparseLuSolver default_sparse_lu_solver();
+
+/// The solver `Linearization` uses for matrices with A's pattern: TESSERA_SPARSE_LU when set;
+/// otherwise KLU where its symbolic analysis predicts little fill, nnz(L + U) at most
+/// 6·nnz(A) (1-D and small 2-D problems, where it is 2–7× faster than the others: no
+/// supernodes to set up, and a refactorisation that keeps the pivots), else Eigen's SparseLU,
+/// the fastest on 2-D problems at n ≥ 10⁴ (bench/RESULTS.md section 9). The choice depends on
+/// the pattern only, so it is deterministic; it is remembered per (n, nnz(A)), so the analysis
+/// that decides is paid once per pattern size, not per factorisation.
+SparseLuSolver sparse_lu_solver_for(const Eigen::SparseMatrix<double>& A);
 
 /// The outcome of an analysis or a factorisation. Numerical outcomes are values, not exceptions.
 enum class SparseLuStatus {
@@ -96,6 +102,8 @@ class SparseLu {
   /// included; KLU adds the off-diagonal blocks of its block triangular form); nothing when the
   /// solver does not say (SuperLU) or there is no factorisation.
   virtual std::optional<long> factor_nonzeros() const = 0;
+  /// nnz(L) + nnz(U) as the symbolic analysis predicts it, where the solver predicts one (KLU).
+  virtual std::optional<long> predicted_factor_nonzeros() const { return std::nullopt; }
 
   /// The solver's own words about the last failure, empty after a success.
   const std::string& last_message() const { return last_message_; }

@@ -35,6 +35,13 @@ class KluSparseLu final : public SparseLu {
     return static_cast<long>(numeric_->lnz) + numeric_->unz + numeric_->nzoff;
   }
 
+  std::optional<long> predicted_factor_nonzeros() const override {
+    if (symbolic_ == nullptr) {
+      return std::nullopt;
+    }
+    return static_cast<long>(symbolic_->lnz + symbolic_->unz) + symbolic_->nzoff;
+  }
+
  protected:
   SparseLuStatus do_analyze(const Eigen::SparseMatrix<double>& A) override {
     release();

@@ -522,12 +522,15 @@ Eigen::VectorXd ArrheniusBratu2D::point_with_amplitude(double amplitude, double 
   // A = [J; e_cᵀ; e_εᵀ] is tessera's own (core/bordered_jacobian.h), regular wherever (u_c, ε)
   // parametrise M, folds of λ ↦ u included. Its pattern does not change: one analysis.
   const JacobianBorder border{{m, centre, 1.0}, {m + 1, m + 1, 1.0}};
-  const std::unique_ptr<SparseLu> lu = make_sparse_lu(default_sparse_lu_solver());
+  std::unique_ptr<SparseLu> lu;
   Eigen::SparseMatrix<double> J, A;
   Eigen::VectorXd F(m), rhs(n), tangent(n);
   const auto factor_at = [&](const Eigen::VectorXd& x) {
     sparse_jacobian(x, J);
     bordered_jacobian(J, border, A);
+    if (!lu) {
+      lu = make_sparse_lu(sparse_lu_solver_for(A));
+    }
     if (!lu->is_analyzed_for(A) && lu->analyze(A) != SparseLuStatus::Success) {
       return false;
     }
