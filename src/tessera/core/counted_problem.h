@@ -54,8 +54,13 @@ class CountedProblem final : public ImplicitProblem {
     return inner_.coordinate_blocks();
   }
 
-  /// Called by Linearization::factor with the factorisations it made for this problem.
-  void record_factorisations(long count) const { factorisations_ += count; }
+  /// Called by Linearization::factor with the factorisations it made for this problem and the
+  /// wall time they took (evaluating DF, bordering, analysing and factoring).
+  void record_factorisations(long count, double seconds) const {
+    factorisations_ += count;
+    factorisation_seconds_ += seconds;
+  }
+  double factorisation_seconds() const { return factorisation_seconds_; }
 
   long function_evaluations() const { return function_evaluations_; }
   long jacobian_evaluations() const { return jacobian_evaluations_; }
@@ -69,6 +74,7 @@ class CountedProblem final : public ImplicitProblem {
   mutable long function_evaluations_ = 0;
   mutable long jacobian_evaluations_ = 0;
   mutable long factorisations_ = 0;
+  mutable double factorisation_seconds_ = 0.0;
 };
 
 }  // namespace tessera

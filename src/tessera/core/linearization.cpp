@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/core/linearization.h"
 
+#include <chrono>
+
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <Eigen/SparseCore>
@@ -29,6 +31,8 @@ class LinearizationBackend {
                      Eigen::Ref<Eigen::VectorXd> dx) const = 0;
   /// Numerical factorisations made so far (a sparse factor() may try more than one border).
   long factorisations() const { return factorisations_; }
+  /// Heap bytes held (the factors, the Jacobian), approximately.
+  virtual std::size_t memory_bytes() const = 0;
 
  protected:
   long factorisations_ = 0;
@@ -93,6 +97,11 @@ class DenseBackend final : public LinearizationBackend {
   void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd&,
              Eigen::Ref<Eigen::VectorXd> dx) const override {
     minimum_norm_from_qr(qr_, rhs, dx);
+  }
+
+  std::size_t memory_bytes() const override {
+    return sizeof(double) * static_cast<std::size_t>(jacobian_.size() + qr_.matrixQR().size() +
+                                                     qr_.hCoeffs().size());
   }
 
  private:
@@ -169,6 +178,21 @@ class SparseBackend final : public LinearizationBackend {
     dx = solution;
   }
 
+  std::size_t memory_bytes() const override {
+    // A compressed sparse matrix: a value and an index per entry, an index per column.
+    const auto matrix = [](const Eigen::SparseMatrix<double>& A) {
+      return static_cast<std::size_t>(A.nonZeros()) * (sizeof(double) + sizeof(int)) +
+             static_cast<std::size_t>(A.outerSize() + 1) * sizeof(int);
+    };
+    std::size_t factors = 0;
+    if (lu_ && lu_->is_factored()) {
+      factors = static_cast<std::size_t>(lu_->factor_nonzeros().value_or(2 * bordered_.nonZeros())) *
+                (sizeof(double) + sizeof(int));
+    }
+    return matrix(jacobian_) + matrix(bordered_) + factors +
+           sizeof(double) * static_cast<std::size_t>(last_tangent_.size());
+  }
+
  private:
   // Factors A = [J; border] and computes the orthonormal kernel basis of J; false if A is
   // singular or the basis is not accurate (the border was nearly tangent-blind).
@@ -230,6 +254,11 @@ Linearization& Linearization::operator=(const Linearization& other) {
   return *this;
 }
 
+std::size_t Linearization::memory_bytes() const {
+  return (backend_ ? backend_->memory_bytes() : 0) +
+         sizeof(double) * static_cast<std::size_t>(point_.size() + tangent_.size());
+}
+
 bool Linearization::factor(const ImplicitProblem& problem,
                            const Eigen::Ref<const Eigen::VectorXd>& x,
                            const Eigen::MatrixXd* reference_tangent) {
@@ -252,11 +281,15 @@ bool Linearization::factor(const ImplicitProblem& problem,
   }
   point_ = x;
   const long before = backend_->factorisations();
+  const auto started = std::chrono::steady_clock::now();
   const bool is_factored =
       backend_->factor(problem, x, reference_tangent, tangent_, reciprocal_condition_);
-  // Factorisations are the currency of continuation at large n: the run's counter sees them.
+  // Factorisations are the currency of continuation at large n: the run's counter sees them,
+  // and their time, so that a run states its cost per vertex in factorisations' worth.
   if (const auto* counted = dynamic_cast<const CountedProblem*>(&problem)) {
-    counted->record_factorisations(backend_->factorisations() - before);
+    counted->record_factorisations(
+        backend_->factorisations() - before,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   }
   if (!is_factored) {
     return false;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <memory>
 
 #include "tessera/core/implicit_problem.h"
@@ -45,6 +46,9 @@ class Linearization {
   /// dx with J dx = rhs and dx ⟂ ker J (the minimum-norm solution). \pre is_factored().
   void solve_minimum_norm(const Eigen::Ref<const Eigen::VectorXd>& rhs,
                           Eigen::Ref<Eigen::VectorXd> dx) const;
+  /// Heap bytes this factorisation holds (factors, Jacobian, point, basis), approximately: what
+  /// a covering weighs when it decides how many factorisations to keep.
+  std::size_t memory_bytes() const;
   /// Estimate of the reciprocal condition number of J (smallest/largest |R_ii|), in (0, 1].
   double reciprocal_condition() const { return reciprocal_condition_; }
 

@@ -88,6 +88,7 @@ std::string to_json(const MeshReport& report) {
                 {"function_evaluations", r.function_evaluations},
                 {"jacobian_evaluations", r.jacobian_evaluations},
                 {"factorisations", r.factorisations},
+                {"factorisation_seconds", r.factorisation_seconds},
                 {"merges", r.merges},
                 {"front_connections", r.front_connections},
                 {"step_reductions", r.step_reductions},
@@ -118,7 +119,14 @@ std::string to_json(const MeshReport& report) {
       const double V = r.vertex_count;
       j["run"]["per_vertex"] = {{"function_evaluations", r.function_evaluations / V},
                                 {"jacobian_evaluations", r.jacobian_evaluations / V},
-                                {"factorisations", r.factorisations / V}};
+                                {"factorisations", r.factorisations / V},
+                                {"wall_seconds", r.wall_seconds / V}};
+      if (r.factorisations > 0 && r.factorisation_seconds > 0) {
+        // Time per vertex in units of the run's mean factorisation: the cost of a vertex in
+        // factorisations' worth, comparable across n and machines.
+        j["run"]["per_vertex"]["factorisations_worth"] =
+            r.wall_seconds / V / (r.factorisation_seconds / r.factorisations);
+      }
     }
     j["run"]["notes"] = r.notes;
   }
@@ -218,6 +226,12 @@ std::string to_text(const MeshReport& report) {
           << r.factorisations / V << " per vertex)";
     }
     out << "\n";
+    if (r.vertex_count > 0 && r.factorisations > 0 && r.factorisation_seconds > 0) {
+      const double one = r.factorisation_seconds / r.factorisations;
+      out << "  per vertex   " << 1000.0 * r.wall_seconds / r.vertex_count << " ms = "
+          << r.wall_seconds / r.vertex_count / one << " factorisations' time (one: " << 1000.0 * one
+          << " ms, DF and analysis included)\n";
+    }
     if (r.vertex_count > 0 && !r.work_by_phase.empty()) {
       // Where the work went, per vertex of the result: DF evaluations/factorisations per step.
       const double V = r.vertex_count;

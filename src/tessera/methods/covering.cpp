@@ -339,6 +339,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
     summary.function_evaluations = problem.function_evaluations();
     summary.jacobian_evaluations = problem.jacobian_evaluations();
     summary.factorisations = problem.factorisations();
+    summary.factorisation_seconds = problem.factorisation_seconds();
     summary.work_by_phase = phases;
     summary.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();

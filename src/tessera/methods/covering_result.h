@@ -40,6 +40,9 @@ struct CoveringSummary {
   long function_evaluations = 0;
   long jacobian_evaluations = 0;
   long factorisations = 0;  ///< numerical factorisations of DF (or of [DF; border])
+  /// Wall time spent in them (with the DF evaluations and analyses they needed): the run's
+  /// own measure of one factorisation, factorisation_seconds / factorisations.
+  double factorisation_seconds = 0.0;
   double wall_seconds = 0.0;
   /// The same work split by pipeline step, in the order the steps ran.
   std::vector<PhaseWork> work_by_phase;

@@ -38,6 +38,9 @@ void AtlasOptions::validate() const {
                 "AtlasOptions::min_sheet_cosine = " << min_sheet_cosine << " must lie in [0, 1)");
   TESSERA_CHECK(domain_margin >= 0 && domain_margin <= 4,
                 "AtlasOptions::domain_margin = " << domain_margin << " must lie in [0, 4]");
+  TESSERA_CHECK(max_factorisation_bytes >= 0,
+                "AtlasOptions::max_factorisation_bytes = " << max_factorisation_bytes
+                                                            << " must be >= 0");
   TESSERA_CHECK(
       min_radius_fraction > 0 && min_radius_fraction < 1,
       "AtlasOptions::min_radius_fraction = " << min_radius_fraction << " must lie in (0, 1)");

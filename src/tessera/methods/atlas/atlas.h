@@ -62,6 +62,12 @@ struct AtlasOptions : CoveringOptions {
   /// of the power cells is already a weighted Delaunay triangulation, and measured swaps
   /// changed nothing on the catalogue while costing 2× the run time.
   bool swap_edges = false;
+  /// The factorisations of the charts waiting in the queue are kept until the chart projects
+  /// its children, at most this many bytes of them (the newest are dropped first and factored
+  /// again when their turn comes). At n = 10⁴ on a 2-D grid one factorisation holds about
+  /// 10 MB and the boundary of an atlas a few hundred charts, so without a bound the boundary
+  /// alone would outgrow the machine.
+  double max_factorisation_bytes = 2.0 * 1024 * 1024 * 1024;
 
   /// \throw InvalidArgument naming the first option out of range.
   void validate() const;

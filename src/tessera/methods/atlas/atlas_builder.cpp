@@ -546,6 +546,19 @@ Eigen::Vector2d AtlasBuilder::child_position(int c, int vertex) const {
   return p;
 }
 
+// The queue is first in, first out: the newest chart is processed last, so it is the one whose
+// factorisation is dropped when the budget is spent (the older ones are used sooner).
+void AtlasBuilder::keep_factorisation(int c, Linearization&& linearization) {
+  const std::size_t bytes = linearization.memory_bytes();
+  if (!factored_.empty() &&
+      static_cast<double>(kept_bytes_ + bytes) > options_.max_factorisation_bytes) {
+    ++refactored_charts_;
+    return;  // refactored when the chart's turn comes
+  }
+  kept_bytes_ += bytes;
+  factored_.emplace(c, KeptFactorisation{std::move(linearization), bytes});
+}
+
 void AtlasBuilder::enqueue(int c) {
   charts_[c].queued = true;
   open_.push_back(c);
@@ -565,7 +578,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       return;
     }
     enqueue(first);
-    factored_.emplace(first, std::move(linearization));
+    keep_factorisation(first, std::move(linearization));
   }
   int next_progress = 1000;
   Eigen::VectorXd y(n_);
@@ -576,7 +589,8 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     auto found = factored_.find(c);
     Linearization at_center;
     if (found != factored_.end()) {
-      at_center = std::move(found->second);
+      at_center = std::move(found->second.linearization);
+      kept_bytes_ -= found->second.bytes;
       factored_.erase(found);
     } else {
       Eigen::MatrixXd T = tangent(c);
@@ -664,7 +678,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
         }
       }
       if (shrunk) {
-        spare_.push_back(std::move(at_child));
+        give_back(std::move(at_child));
         smallest_child = std::min(smallest_child, charts_[c].radius);
         continue;
       }
@@ -677,9 +691,9 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       }
       smallest_child = std::min(smallest_child, charts_[child].radius);
       enqueue(child);
-      factored_.emplace(child, std::move(at_child));
+      keep_factorisation(child, std::move(at_child));
     }
-    spare_.push_back(std::move(at_center));
+    give_back(std::move(at_center));
     if (options_.progress && chart_count() >= next_progress) {
       next_progress = chart_count() + 1000;
       options_.progress({chart_count(), 0, static_cast<int>(open_.size())});
@@ -708,6 +722,14 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
            << " radii were reduced later, where pointOnDisk failed on the disk or another part "
               "of M came near";
     }
+    summary.notes.push_back(note.str());
+  }
+  if (refactored_charts_ > 0) {
+    std::ostringstream note;
+    note << refactored_charts_ << " of " << chart_count()
+         << " charts were factored twice: the factorisations of the charts waiting on the "
+            "boundary outgrew max_factorisation_bytes ("
+         << options_.max_factorisation_bytes / (1024.0 * 1024.0) << " MB)";
     summary.notes.push_back(note.str());
   }
   if (singular_crossings_ > 0) {

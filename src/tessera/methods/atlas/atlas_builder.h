@@ -103,8 +103,23 @@ class AtlasBuilder {
   std::vector<double> tangents_;  // n×2 per chart, column-major
   std::vector<Chart> charts_;
   std::deque<int> open_;  // charts that may have eligible exterior vertices
-  std::unordered_map<int, Linearization> factored_;  // factorisations of queued charts
-  std::vector<Linearization> spare_;  // factorisations of processed charts, reused (no allocation)
+  // Factorisations of queued charts, at most options_.max_factorisation_bytes of them.
+  struct KeptFactorisation {
+    Linearization linearization;
+    std::size_t bytes = 0;
+  };
+  std::unordered_map<int, KeptFactorisation> factored_;
+  std::size_t kept_bytes_ = 0;
+  int refactored_charts_ = 0;  // charts whose factorisation was dropped (over the budget)
+  void keep_factorisation(int c, Linearization&& linearization);
+  // A few factorisations of processed charts, reused (fewer allocations at small n).
+  std::vector<Linearization> spare_;
+  void give_back(Linearization&& linearization) {
+    if (spare_.size() < kMaxSpares) {
+      spare_.push_back(std::move(linearization));
+    }
+  }
+  static constexpr std::size_t kMaxSpares = 2;
   Linearization take_spare() {
     if (spare_.empty()) {
       return Linearization();
