@@ -87,13 +87,15 @@ constexpr int kSampledReportDimension = 500;
 constexpr int kReportSamples = 300;
 
 MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
-                       const std::string& problem_argument) {
+                       const std::string& problem_argument, const MeshValidation* known) {
   MeshReport report;
   report.problem = problem_argument;  // as the user spelled it, e.g. "torus:R=2"
   report.ambient_dimension = setup.problem->ambient_dimension();
   // The geometric checks (orientation along M, overlaps on M, vertices in S) need the problem,
   // which every caller of make_report has.
-  report.validation = validate(mesh, *setup.problem, setup.domain);
+  const bool is_known = known != nullptr && known->vertex_count == mesh.vertex_count() &&
+                        known->triangle_count == mesh.triangle_count();
+  report.validation = is_known ? *known : validate(mesh, *setup.problem, setup.domain);
   // Distances are Gauss–Newton projections, a few factorisations each: at large n they are
   // measured on a uniform sample (the report says how many) instead of at every point.
   QualityOptions quality;

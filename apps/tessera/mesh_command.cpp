@@ -274,7 +274,8 @@ int run_mesh(const MeshCommand& command) {
     write_mesh_in_view(command.output, result.mesh, view, file_options);
     written.push_back(command.output);
   }
-  MeshReport report = make_report(result.mesh, setup, command.problem);
+  MeshReport report = make_report(result.mesh, setup, command.problem,
+                                  result.validation ? &*result.validation : nullptr);
   report.run = result.summary;
   report.view = ViewReport{view.specification(),
                            view.is_all_coordinates() ? std::vector<std::string>() : view.names(),

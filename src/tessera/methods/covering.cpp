@@ -149,11 +149,13 @@ std::string describe_triangle(const TriangleMesh& mesh, int t) {
 int validate_and_repair(const ImplicitProblem& problem, const Domain& domain,
                         CoveringResult& result) {
   TriangleMesh& mesh = result.mesh;
+  result.validation.reset();
   if (mesh.triangle_count() == 0) {
     return 0;
   }
   const MeshValidation validation = validate(mesh, problem, domain);
   if (validation.is_valid()) {
+    result.validation = validation;
     return 0;
   }
   if (validation.vertices_outside_domain.empty() &&
@@ -169,8 +171,10 @@ int validate_and_repair(const ImplicitProblem& problem, const Domain& domain,
     for (int rings : {1, 2}) {
       TriangleMesh repaired = mesh;
       const LocalRepair repair = repair_locally(problem, repaired, defective, rings);
-      if (repair.is_repaired && validate(repaired, problem, domain).is_valid()) {
+      MeshValidation check;
+      if (repair.is_repaired && (check = validate(repaired, problem, domain)).is_valid()) {
         mesh = std::move(repaired);
+        result.validation = std::move(check);
         result.summary.removed_triangles += repair.removed_triangles;
         result.summary.repaired_holes += repair.filled_holes;
         result.summary.notes.push_back(

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "tessera/core/counted_problem.h"
 #include "tessera/geometry/bezier_patch.h"
+#include "tessera/geometry/mesh_validation.h"
 #include "tessera/geometry/triangle_mesh.h"
 
 namespace tessera {
@@ -80,6 +82,9 @@ struct CoveringResult {
   /// l_ij/‖y_j − y_i‖ of the patches' edge curves (Hohmann eq. 3.4), so that the patches of
   /// triangles made after the build (refinement, repair) are built as the method built its own.
   double patch_edge_length_factor = 1.0;
+  /// The final geometric check of `mesh` when it passed (validate() in the problem's metric),
+  /// so that a caller's report need not repeat it; empty if the check removed triangles.
+  std::optional<MeshValidation> validation;
 };
 
 /// Progress of a long run, reported to an optional callback (the CLI draws a status line).

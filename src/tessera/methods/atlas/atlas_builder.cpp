@@ -6,10 +6,12 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <sstream>
 
 #include "tessera/core/corrector.h"
 #include "tessera/core/describe.h"
+#include "tessera/core/error.h"
 #include "tessera/methods/common/clip_to_domain.h"
 
 namespace tessera::detail {
@@ -44,7 +46,18 @@ AtlasBuilder::AtlasBuilder(const ImplicitProblem& problem, const Domain& domain,
       index_(problem.ambient_dimension()),
       watch_crossings_(!problem.has_sparse_jacobian() &&
                        problem.ambient_dimension() <= kMaxCrossingTestDimension),
-      first_step_probes_(problem.has_sparse_jacobian()) {}
+      first_step_probes_(problem.has_sparse_jacobian()) {
+  std::mt19937_64 generator(0x7a11a5);  // fixed: deterministic frames
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd random(n_, 3);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < n_; ++i) {
+      random(i, j) = normal(generator);
+    }
+  }
+  frame_directions_ = Eigen::HouseholderQR<Eigen::MatrixXd>(random).householderQ() *
+                      Eigen::MatrixXd::Identity(n_, std::min(3, n_));
+}
 
 // Henderson's section 2.4: with a(s,t) the offset of M from the tangent plane,
 // R = sqrt(2ε/|a_ss|). Instead of second derivatives of F, the offset is measured where it
@@ -328,7 +341,10 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   charts_.push_back(std::move(chart));
   centers_.insert(centers_.end(), x.data(), x.data() + n_);
   const Eigen::MatrixXd& T = linearization.tangent_basis();
-  tangents_.insert(tangents_.end(), T.data(), T.data() + 2 * n_);
+  tangents_.push_back(T);
+  Eigen::Matrix<double, 2, 3> frame = Eigen::Matrix<double, 2, 3>::Zero();
+  frame.leftCols(frame_directions_.cols()) = T.transpose() * frame_directions_;
+  frames_.push_back(frame);
   connect_neighbours(k);
   index_.insert(k, x, radius);
   if (index_.refit_due()) {
@@ -450,7 +466,7 @@ bool AtlasBuilder::is_eligible(int c) const {
   }
   const double margin = options_.domain_margin * charts_[c].radius;
   const auto x = center(c);
-  const auto T = tangent(c);
+  const Eigen::MatrixXd& T = tangent(c);
   for (int k = 0; k < static_cast<int>(domain_.half_spaces().size()); ++k) {
     const double d = domain_.signed_distance(k, x);
     if (d < -margin ||
@@ -544,6 +560,52 @@ Eigen::Vector2d AtlasBuilder::child_position(int c, int vertex) const {
     p = 0.5 * R * at.normalized();
   }
   return p;
+}
+
+// A retired chart's basis again: factored at its centre (one factorisation), then turned onto the
+// old frame. With B = T'ᵀP for the new basis T' and S = TᵀP stored, T = T'Q where Qᵀ B = S, so
+// Qᵀ = S Bᵀ(B Bᵀ)⁻¹, made exactly orthogonal by its polar factor.
+void AtlasBuilder::restore_tangent(int c) const {
+  Linearization linearization;
+  TESSERA_CHECK(linearization.factor(problem_, center(c)),
+                "atlas: the tangent plane of the chart at " << describe_point(center(c))
+                                                           << " cannot be computed again");
+  const Eigen::MatrixXd& restored = linearization.tangent_basis();
+  Eigen::Matrix<double, 2, 3> B = Eigen::Matrix<double, 2, 3>::Zero();
+  B.leftCols(frame_directions_.cols()) = restored.transpose() * frame_directions_;
+  const Eigen::Matrix2d Qt = frames_[c] * B.transpose() * (B * B.transpose()).inverse();
+  const Eigen::JacobiSVD<Eigen::Matrix2d> svd(Qt, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Matrix2d Q = (svd.matrixU() * svd.matrixV().transpose()).transpose();
+  tangents_[c] = restored * Q;
+  ++restored_tangents_;
+}
+
+// Chart m is finished when it is closed (its polygon cut down to its disk by neighbours on every
+// side) and so is every chart whose disk overlaps it: new charts are placed on the rims of open
+// charts, so none will cut it again unless M comes back (then restore_tangent). Its basis, 2n
+// numbers, is dropped. Checked around the chart c just processed.
+void AtlasBuilder::retire_finished_charts(int c) {
+  std::vector<int> around;
+  index_.candidates(center(c), charts_[c].radius, around);
+  std::vector<int> neighbours;
+  for (int m : around) {
+    if (tangents_[m].size() == 0 || charts_[m].queued || !is_closed(m) ||
+        (m != c && (center(m) - center(c)).norm() >= charts_[m].radius + charts_[c].radius)) {
+      continue;
+    }
+    index_.candidates(center(m), charts_[m].radius, neighbours);
+    bool finished = true;
+    for (int j : neighbours) {
+      if (j != m && (center(j) - center(m)).norm() < charts_[j].radius + charts_[m].radius &&
+          (charts_[j].queued || !is_closed(j))) {
+        finished = false;
+        break;
+      }
+    }
+    if (finished) {
+      tangents_[m] = Eigen::MatrixXd();
+    }
+  }
 }
 
 // The queue is first in, first out: the newest chart is processed last, so it is the one whose
@@ -694,6 +756,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       keep_factorisation(child, std::move(at_child));
     }
     give_back(std::move(at_center));
+    retire_finished_charts(c);
     if (options_.progress && chart_count() >= next_progress) {
       next_progress = chart_count() + 1000;
       options_.progress({chart_count(), 0, static_cast<int>(open_.size())});

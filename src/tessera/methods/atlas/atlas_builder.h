@@ -51,8 +51,14 @@ class AtlasBuilder {
   Eigen::Map<const Eigen::VectorXd> center(int c) const {
     return {centers_.data() + static_cast<std::ptrdiff_t>(c) * n_, n_};
   }
-  Eigen::Map<const Eigen::MatrixXd> tangent(int c) const {
-    return {tangents_.data() + static_cast<std::ptrdiff_t>(c) * 2 * n_, n_, 2};
+  /// The chart's tangent basis (n×2), the frame its polygon lives in. Retired charts (closed,
+  /// among closed neighbours) do not keep it; it is recomputed if they are touched again.
+  /// The reference stays valid until the next chart is added.
+  const Eigen::MatrixXd& tangent(int c) const {
+    if (tangents_[c].size() == 0) {
+      restore_tangent(c);
+    }
+    return tangents_[c];
   }
   const Chart& chart(int c) const { return charts_[c]; }
   bool is_closed(int c) const {
@@ -99,8 +105,17 @@ class AtlasBuilder {
   const bool watch_crossings_;
   // Radius probes by the chord's first step only (sparse problems, where solves are the cost).
   const bool first_step_probes_;
-  std::vector<double> centers_;   // n per chart
-  std::vector<double> tangents_;  // n×2 per chart, column-major
+  std::vector<double> centers_;  // n per chart
+  // n×2 per chart while it may still be cut; empty once retired (memory that grows like n per
+  // vertex, not 3n). Mutable: a retired chart's basis is restored on demand (a cache).
+  mutable std::vector<Eigen::MatrixXd> tangents_;
+  // Tᵀ·P for a fixed pseudo-random orthonormal P (n×3): fixes the frame of a restored basis
+  // (any basis of the plane, rotated onto the old one), so the chart's polygon stays valid.
+  std::vector<Eigen::Matrix<double, 2, 3>> frames_;
+  Eigen::MatrixXd frame_directions_;  // P
+  mutable int restored_tangents_ = 0;
+  void restore_tangent(int c) const;
+  void retire_finished_charts(int c);
   std::vector<Chart> charts_;
   std::deque<int> open_;  // charts that may have eligible exterior vertices
   // Factorisations of queued charts, at most options_.max_factorisation_bytes of them.

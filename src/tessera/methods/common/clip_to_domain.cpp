@@ -153,7 +153,9 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
                ? 0.0
                : domain.signed_distance(k, mesh.point(v));
   }
-  TriangleMesh work = mesh;
+  // The caller's `mesh` is its own attempt, replaced on success and dropped on failure: it is
+  // moved, not copied (at large n a copy of the mesh costs more than the clipping).
+  TriangleMesh work = std::move(mesh);
   auto work_faces = on_faces;
   // After v moves onto the face, only triangles with another vertex strictly inside are kept;
   // the others (all corners on or outside the face) are dropped by step 3 whatever their shape.
@@ -444,6 +446,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   // 4. Compact: drop vertices no longer used.
   std::vector<int> new_index(work.vertex_count(), -1);
   TriangleMesh clipped(work.ambient_dimension());
+  clipped.reserve(work.vertex_count(), static_cast<int>(kept.size()));
   FaceSets clipped_faces;
   for (Triangle& t : kept) {
     for (int& v : t) {
@@ -478,6 +481,7 @@ void drop_outside(const Domain& domain, int k, TriangleMesh& mesh, FaceSets& on_
   const std::vector<bool> keep = keep_largest_fans(mesh.vertex_count(), inside);
   std::vector<int> new_index(mesh.vertex_count(), -1);
   TriangleMesh result(mesh.ambient_dimension());
+  result.reserve(mesh.vertex_count(), static_cast<int>(inside.size()));
   FaceSets result_faces;
   std::vector<Triangle> triangles;
   for (std::size_t i = 0; i < inside.size(); ++i) {
@@ -622,6 +626,7 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
     // Collapsing leaves the moved-away vertices unused: drop them.
     std::vector<int> new_index(mesh.vertex_count(), -1);
     TriangleMesh compact(mesh.ambient_dimension());
+    compact.reserve(mesh.vertex_count(), mesh.triangle_count());
     std::vector<Triangle> triangles = mesh.triangles();
     for (Triangle& t : triangles) {
       for (int& v : t) {
