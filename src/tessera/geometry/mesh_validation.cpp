@@ -245,16 +245,19 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
       }
     }
   };
-  // For sparse (large n) problems the tangent planes of a vertex's neighbours come from its
-  // factorisation (tangent_basis_near: one evaluation of DF and a few solves each), so that
-  // only about one vertex in five is factored; the orientation test needs the planes to a few
-  // digits only. Dense problems factor at every vertex, which costs little there and keeps
+  // For sparse (large n) problems the tangent planes of a vertex's neighbours and their
+  // neighbours (two rings) come from its factorisation (tangent_basis_near: one evaluation of DF
+  // and a few solves each), so that only about one vertex in ten is factored; the orientation
+  // test needs the planes to a few digits only, and the chord from two edges away still
+  // contracts fast (where it does not, the vertex is factored itself later). Dense problems factor at every vertex, which costs little there and keeps
   // planes that differ by 90° between neighbours (thin tubes) exact.
   const bool is_sparse = geometry.problem.has_sparse_jacobian();
   constexpr double kNearTangentTolerance = 1e-6;
   std::vector<std::uint8_t> is_done(vertex_count, 0);
   Linearization linearization;
   Eigen::MatrixXd near_tangent;
+  std::vector<int> ring;
+  std::vector<int> next_ring;
   for (int v = 0; v < vertex_count; ++v) {
     if (is_done[v] || topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v]) {
       continue;
@@ -267,17 +270,25 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
     if (!is_sparse) {
       continue;
     }
-    for (int t : topology.vertex_triangles(v)) {
-      for (int w : triangles[t]) {
-        if (is_done[w] || !view.is_finite_vertex[w]) {
-          continue;
-        }
-        if (tangent_basis_near(geometry.problem, linearization, points.col(w), near_tangent,
-                               kNearTangentTolerance)) {
-          is_done[w] = 1;
-          judge_corners(w, near_tangent);
+    ring.assign(1, v);
+    for (int rings = 0; rings < 2; ++rings) {
+      next_ring.clear();
+      for (int u : ring) {
+        for (int t : topology.vertex_triangles(u)) {
+          for (int w : triangles[t]) {
+            if (is_done[w] || !view.is_finite_vertex[w]) {
+              continue;
+            }
+            if (tangent_basis_near(geometry.problem, linearization, points.col(w), near_tangent,
+                                   kNearTangentTolerance)) {
+              is_done[w] = 1;
+              judge_corners(w, near_tangent);
+              next_ring.push_back(w);
+            }
+          }
         }
       }
+      ring.swap(next_ring);
     }
   }
   auto corner_of = [&](int t, int v) {
