@@ -140,6 +140,19 @@ std::string describe_face(const Domain& domain, int k) {
 
 // Clips to face k. Returns false (with `message` set, mesh unchanged) if a cut point cannot be
 // found or a triangle would fold.
+// Keeps the triangles with keep[t] and the vertices they use, in place (no second copy of the
+// mesh, which at large n is most of the memory), with the vertices' face sets.
+void compact(TriangleMesh& mesh, FaceSets& on_faces, const std::vector<bool>& keep) {
+  const std::vector<int> new_index = mesh.keep_triangles(keep);
+  FaceSets kept_faces(mesh.vertex_count());
+  for (std::size_t v = 0; v < new_index.size(); ++v) {
+    if (new_index[v] >= 0) {
+      kept_faces[new_index[v]] = std::move(on_faces[v]);
+    }
+  }
+  on_faces = std::move(kept_faces);
+}
+
 bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, double snap_distance,
                   const CorrectorOptions& corrector, TriangleMesh& mesh, FaceSets& on_faces,
                   ClipSummary& summary) {
@@ -156,6 +169,17 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   // The caller's `mesh` is its own attempt, replaced on success and dropped on failure: it is
   // moved, not copied (at large n a copy of the mesh costs more than the clipping).
   TriangleMesh work = std::move(mesh);
+  {
+    // Room for the cut vertices (at most one per edge across the face, fewer than the
+    // triangles across it), so that adding them does not double the mesh's storage.
+    int across = 0;
+    for (const Triangle& t : work.triangles()) {
+      const double low = std::min({d[t[0]], d[t[1]], d[t[2]]});
+      const double high = std::max({d[t[0]], d[t[1]], d[t[2]]});
+      across += low < 0 && high > 0 ? 1 : 0;
+    }
+    work.reserve(vertex_count + 2 * across + 16, work.triangle_count() + 2 * across + 16);
+  }
   auto work_faces = on_faces;
   // After v moves onto the face, only triangles with another vertex strictly inside are kept;
   // the others (all corners on or outside the face) are dropped by step 3 whatever their shape.
@@ -443,23 +467,12 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     summary.message = fold;
     return false;
   }
-  // 4. Compact: drop vertices no longer used.
-  std::vector<int> new_index(work.vertex_count(), -1);
-  TriangleMesh clipped(work.ambient_dimension());
-  clipped.reserve(work.vertex_count(), static_cast<int>(kept.size()));
-  FaceSets clipped_faces;
-  for (Triangle& t : kept) {
-    for (int& v : t) {
-      if (new_index[v] < 0) {
-        new_index[v] = clipped.add_vertex(work.point(v));
-        clipped_faces.push_back(work_faces[v]);
-      }
-      v = new_index[v];
-    }
-  }
-  clipped.set_triangles(std::move(kept));
-  mesh = std::move(clipped);
-  on_faces = std::move(clipped_faces);
+  // 4. Compact in place: drop vertices no longer used.
+  const std::size_t kept_count = kept.size();
+  work.set_triangles(std::move(kept));
+  compact(work, work_faces, std::vector<bool>(kept_count, true));
+  mesh = std::move(work);
+  on_faces = std::move(work_faces);
   return true;
 }
 
@@ -479,28 +492,8 @@ void drop_outside(const Domain& domain, int k, TriangleMesh& mesh, FaceSets& on_
     }
   }
   const std::vector<bool> keep = keep_largest_fans(mesh.vertex_count(), inside);
-  std::vector<int> new_index(mesh.vertex_count(), -1);
-  TriangleMesh result(mesh.ambient_dimension());
-  result.reserve(mesh.vertex_count(), static_cast<int>(inside.size()));
-  FaceSets result_faces;
-  std::vector<Triangle> triangles;
-  for (std::size_t i = 0; i < inside.size(); ++i) {
-    if (!keep[i]) {
-      continue;
-    }
-    Triangle t = inside[i];
-    for (int& v : t) {
-      if (new_index[v] < 0) {
-        new_index[v] = result.add_vertex(mesh.point(v));
-        result_faces.push_back(on_faces[v]);
-      }
-      v = new_index[v];
-    }
-    triangles.push_back(t);
-  }
-  result.set_triangles(std::move(triangles));
-  mesh = std::move(result);
-  on_faces = std::move(result_faces);
+  mesh.set_triangles(std::move(inside));
+  compact(mesh, on_faces, keep);
 }
 
 // Collapses boundary edges shorter than `min_length`: the vertex on fewer faces moves into the
@@ -624,20 +617,7 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
     summary.collapsed_edges =
         collapse_short_boundary_edges(problem, mesh, on_faces, options.min_boundary_edge);
     // Collapsing leaves the moved-away vertices unused: drop them.
-    std::vector<int> new_index(mesh.vertex_count(), -1);
-    TriangleMesh compact(mesh.ambient_dimension());
-    compact.reserve(mesh.vertex_count(), mesh.triangle_count());
-    std::vector<Triangle> triangles = mesh.triangles();
-    for (Triangle& t : triangles) {
-      for (int& v : t) {
-        if (new_index[v] < 0) {
-          new_index[v] = compact.add_vertex(mesh.point(v));
-        }
-        v = new_index[v];
-      }
-    }
-    compact.set_triangles(std::move(triangles));
-    mesh = std::move(compact);
+    mesh.keep_triangles(std::vector<bool>(mesh.triangle_count(), true));
   }
   return summary;
 }
