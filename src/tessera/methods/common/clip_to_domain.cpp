@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <deque>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -71,18 +72,27 @@ double projected_area(const Eigen::MatrixXd& T, const Corners& p) {
 // projections onto the faces near that vertex.
 class OrientationGuard {
  public:
-  explicit OrientationGuard(const ImplicitProblem& problem) : problem_(problem) {}
+  /// `neighbours[v]`: the vertices sharing a triangle with v when the clipping began.
+  OrientationGuard(const ImplicitProblem& problem, std::vector<std::vector<int>> neighbours)
+      : problem_(problem),
+        shares_factorisations_(problem.has_sparse_jacobian()),
+        neighbours_(std::move(neighbours)) {}
 
-  /// The factorisation of DF at vertex v (at x, its point); null where DF is rank deficient.
+  /// A factorisation of DF at vertex v (at x, its point) or, for sparse problems, at one of its
+  /// neighbours (the chord from there converges as well, and one factorisation serves the
+  /// vertices around it); null where DF is rank deficient. Valid until the next call.
   const Linearization* at_vertex(int v, const Eigen::VectorXd& x) {
-    if (factored_vertex_ != v) {
-      factored_vertex_ = v;
-      is_factored_ = linearization_.factor(problem_, x);
-      if (is_factored_) {
-        tangents_[v] = linearization_.tangent_basis();
+    if (const Linearization* own = cached(v)) {
+      return own;
+    }
+    if (shares_factorisations_ && v < static_cast<int>(neighbours_.size())) {
+      for (int u : neighbours_[v]) {
+        if (const Linearization* near = cached(u)) {
+          return near;
+        }
       }
     }
-    return is_factored_ ? &linearization_ : nullptr;
+    return factor_at(v, x);
   }
 
   /// True if `after` (a reshaped or cut part of `before`) has before's orientation in the
@@ -92,10 +102,22 @@ class OrientationGuard {
                          const Corners& after) {
     auto found = tangents_.find(v);
     if (found == tangents_.end()) {
-      if (at_vertex(v, x) == nullptr) {
-        return false;
+      // A neighbour's factorisation gives the plane by tangent_basis_near (one DF, a few
+      // solves); the vertex's own where that does not converge.
+      const Linearization* near = at_vertex(v, x);
+      Eigen::MatrixXd T;
+      const bool is_own = near != nullptr && near->point() == x;
+      if (near == nullptr ||
+          (!is_own && !tangent_basis_near(problem_, *near, x, T, kNearTangentTolerance))) {
+        near = factor_at(v, x);
+        if (near == nullptr) {
+          return false;
+        }
+        T = near->tangent_basis();
+      } else if (is_own) {
+        T = near->tangent_basis();
       }
-      found = tangents_.find(v);
+      found = tangents_.emplace(v, std::move(T)).first;
     }
     const Eigen::MatrixXd& T = found->second;
     const double area_before = projected_area(T, before);
@@ -108,12 +130,55 @@ class OrientationGuard {
   }
 
  private:
+  // The orientation test needs the planes to a few digits only.
+  static constexpr double kNearTangentTolerance = 1e-6;
+  // Factorisations kept at once: the most recent (vertices are visited mostly in mesh order,
+  // so neighbours' are usually among them), bounded because at large n each holds megabytes.
+  static constexpr std::size_t kKeptFactorisations = 8;
+
+  const Linearization* cached(int v) {
+    for (auto& entry : kept_) {
+      if (entry.first == v) {
+        return entry.second.is_factored() ? &entry.second : nullptr;
+      }
+    }
+    return nullptr;
+  }
+  const Linearization* factor_at(int v, const Eigen::VectorXd& x) {
+    if (kept_.size() >= kKeptFactorisations) {
+      kept_.pop_front();
+    }
+    kept_.emplace_back(v, Linearization());
+    Linearization& linearization = kept_.back().second;
+    if (!linearization.factor(problem_, x)) {
+      return nullptr;
+    }
+    tangents_.emplace(v, linearization.tangent_basis());
+    return &linearization;
+  }
+
   const ImplicitProblem& problem_;
-  Linearization linearization_;
-  int factored_vertex_ = -1;
-  bool is_factored_ = false;
+  const bool shares_factorisations_;
+  std::vector<std::vector<int>> neighbours_;
+  std::deque<std::pair<int, Linearization>> kept_;
   std::unordered_map<int, Eigen::MatrixXd> tangents_;
 };
+
+// The vertices that share a triangle with each vertex.
+std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& mesh) {
+  std::vector<std::vector<int>> neighbours(mesh.vertex_count());
+  for (const Triangle& t : mesh.triangles()) {
+    for (int r = 0; r < 3; ++r) {
+      neighbours[t[r]].push_back(t[(r + 1) % 3]);
+      neighbours[t[r]].push_back(t[(r + 2) % 3]);
+    }
+  }
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return neighbours;
+}
 
 // Records which bounding hyperplanes each vertex already lies on (to kOnFaceTolerance) and
 // puts it on them exactly.
@@ -158,7 +223,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
                   ClipSummary& summary) {
   const int n = problem.ambient_dimension();
   const int m = problem.equation_count();
-  OrientationGuard guard(problem);
+  OrientationGuard guard(problem, vertex_neighbours(mesh));
   const int vertex_count = mesh.vertex_count();
   std::vector<double> d(vertex_count);
   for (int v = 0; v < vertex_count; ++v) {
@@ -502,7 +567,7 @@ void drop_outside(const Domain& domain, int k, TriangleMesh& mesh, FaceSets& on_
 // oriented and the result is valid.
 int collapse_short_boundary_edges(const ImplicitProblem& problem, TriangleMesh& mesh,
                                   const FaceSets& on_faces, double min_length) {
-  OrientationGuard guard(problem);
+  OrientationGuard guard(problem, vertex_neighbours(mesh));
   int collapsed = 0;
   bool changed = true;
   std::set<std::pair<int, int>> rejected;  // each edge is judged once: O(N) per collapse

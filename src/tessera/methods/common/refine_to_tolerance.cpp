@@ -38,11 +38,13 @@ std::vector<int> shared_faces(const Domain& domain, const Eigen::VectorXd& a,
 }
 
 // The triangles `candidates` in an order that lets few factorisations serve them all: each is
-// paired with an anchor, one of its vertices, and the pairs are sorted by anchor. The anchors
-// are chosen greedily (the vertex with the most unanchored triangles around it first), so about
-// one vertex in three is an anchor instead of one factorisation per triangle.
+// paired with an anchor and the pairs are sorted by anchor. The anchors are chosen greedily
+// (of an unanchored triangle's vertices, the one with the most unanchored triangles around it),
+// and an anchor serves the triangles that touch it or one of its neighbours (`rings` = 2), or
+// only those that touch it (`rings` = 1): about one vertex in ten, or in three, is an anchor
+// instead of one factorisation per triangle.
 std::vector<std::pair<int, int>> anchored(const TriangleMesh& mesh,
-                                          const std::vector<int>& candidates) {
+                                          const std::vector<int>& candidates, int rings) {
   const int V = mesh.vertex_count();
   std::vector<int> start(V + 1, 0);  // candidates around each vertex, compressed rows
   for (int t : candidates) {
@@ -76,14 +78,30 @@ std::vector<std::pair<int, int>> anchored(const TriangleMesh& mesh,
         best = v;
       }
     }
-    for (int i = start[best]; i < start[best + 1]; ++i) {
-      const int j = around[i];
-      if (anchor[j] < 0) {
-        anchor[j] = best;
-        for (int v : mesh.triangle(candidates[j])) {
-          --open_around[v];
+    const auto serve_around = [&](int w) {
+      for (int i = start[w]; i < start[w + 1]; ++i) {
+        const int j = around[i];
+        if (anchor[j] < 0) {
+          anchor[j] = best;
+          for (int v : mesh.triangle(candidates[j])) {
+            --open_around[v];
+          }
         }
       }
+    };
+    if (rings == 1) {
+      serve_around(best);
+      continue;
+    }
+    // The neighbours are collected first: serving changes the counts, not the adjacency.
+    std::vector<int> neighbours{best};
+    for (int i = start[best]; i < start[best + 1]; ++i) {
+      for (int v : mesh.triangle(candidates[around[i]])) {
+        neighbours.push_back(v);
+      }
+    }
+    for (int w : neighbours) {
+      serve_around(w);
     }
   }
   std::vector<std::pair<int, int>> pairs;
@@ -119,10 +137,28 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   Linearization frozen;
   int frozen_at = -1;
   bool frozen_ok = false;
-  auto distance_to_m = [&](const Eigen::VectorXd& point) {
+  // Sparse problems anchor across two rings (fewer factorisations); where the anchor's chord
+  // does not contract at a point, the triangle's own first corner is factored and tried.
+  const int rings = is_sparse ? 2 : 1;
+  Linearization corner;
+  int corner_at = -1;
+  bool corner_ok = false;
+  auto distance_to_m = [&](const Eigen::VectorXd& point, const Triangle& tri) {
     if (frozen_ok) {
       const double bound =
           chord_distance_bound(problem, frozen, point, accuracy, options.corrector);
+      if (std::isfinite(bound)) {
+        return bound;
+      }
+    }
+    if (frozen_at != tri[0] && frozen_at != tri[1] && frozen_at != tri[2]) {
+      if (corner_at != tri[0]) {
+        corner_ok = corner.factor(problem, mesh.point(tri[0]));
+        corner_at = tri[0];
+      }
+      const double bound =
+          corner_ok ? chord_distance_bound(problem, corner, point, accuracy, options.corrector)
+                    : std::numeric_limits<double>::infinity();
       if (std::isfinite(bound)) {
         return bound;
       }
@@ -158,12 +194,12 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const Eigen::VectorXd point = 0.5 * (mesh.point(u) + mesh.point(v));
       const auto [known, inserted] = midpoint_distance.emplace(edge_key(u, v), 0.0);
       if (inserted) {
-        known->second = distance_to_m(point);
+        known->second = distance_to_m(point, tri);
       }
       consider(point, known->second);
     };
     const Eigen::VectorXd centroid = (a + b + c) / 3.0;
-    consider(centroid, distance_to_m(centroid));
+    consider(centroid, distance_to_m(centroid, tri));
     consider_midpoint(tri[0], tri[1]);
     consider_midpoint(tri[1], tri[2]);
     consider_midpoint(tri[2], tri[0]);
@@ -178,7 +214,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const double gamma = uu * (ww - uw) / det;
       if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) {
         const Eigen::VectorXd circumcentre = a + beta * ab + gamma * ac;
-        consider(circumcentre, distance_to_m(circumcentre));
+        consider(circumcentre, distance_to_m(circumcentre, tri));
       }
     }
     return worst;
@@ -189,7 +225,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     // 1. Which edges to split: the longest edge of every candidate that is too far from M.
     std::unordered_map<std::uint64_t, int> midpoint_of;  // edge → new vertex
     std::vector<std::pair<int, int>> to_split;
-    for (const auto& [anchor, t] : anchored(mesh, candidates)) {
+    for (const auto& [anchor, t] : anchored(mesh, candidates, rings)) {
       const Triangle tri = mesh.triangle(t);
       const double worst = sample(anchor, t);
       if (worst <= threshold) {
@@ -335,7 +371,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   // once more, so that `remaining` and `max_distance` describe the mesh returned.
   if (exhausted) {
     double worst_remaining = -1.0;
-    for (const auto& [anchor, t] : anchored(mesh, candidates)) {
+    for (const auto& [anchor, t] : anchored(mesh, candidates, rings)) {
       const double worst = sample(anchor, t);
       summary.max_distance = std::max(summary.max_distance, worst);
       if (!(worst <= threshold)) {
