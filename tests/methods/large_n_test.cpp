@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "tessera/core/scaled_problem.h"
+#include "tessera/methods/atlas/atlas.h"
 #include "tessera/methods/covering_methods.h"
 #include "tessera/problems/catalogue.h"
 
@@ -40,16 +41,18 @@ PerVertex per_vertex(const tessera::CoveringSummary& summary) {
   return {summary.factorisations / V, summary.jacobian_evaluations / V};
 }
 
-// The target is 2 factorisations and 4 Jacobians per vertex of the final mesh. These
-// bounds hold what the pipeline reaches today (atlas ≈ 2.5 and 3.2 on bvp, front ≈ 2.3 and
-// 3.1), so that a change that spends more fails here.
+// The target is 2 factorisations and 4 Jacobians per vertex of the final mesh. The atlas
+// meets it on bvp (1.95 and 2.9 measured), the front nearly (2.13 and 3.04); the bounds hold
+// that, so that a change that spends more fails here. Evaluations of F (the chord's steps)
+// are bounded too: 34 per vertex for the atlas, 6 for the front.
 TEST(LargeN, AtlasWorkPerVertexIsBounded) {
   const auto setup = tessera::make_catalogue_problem("bvp:points=60");
   const auto result = cover(setup, "atlas");
   ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
   const PerVertex work = per_vertex(result.summary);
-  EXPECT_LE(work.factorisations, 2.8);
-  EXPECT_LE(work.jacobians, 3.6);
+  EXPECT_LE(work.factorisations, 2.0);
+  EXPECT_LE(work.jacobians, 3.0);
+  EXPECT_LE(result.summary.function_evaluations, 36.0 * result.summary.vertex_count);
   // The summary splits the work by step, and the steps add up to the whole.
   tessera::WorkCounts total;
   for (const auto& phase : result.summary.work_by_phase) {
@@ -65,8 +68,33 @@ TEST(LargeN, FrontWorkPerVertexIsBounded) {
   const auto result = cover(setup, "front");
   ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
   const PerVertex work = per_vertex(result.summary);
-  EXPECT_LE(work.factorisations, 2.6);
-  EXPECT_LE(work.jacobians, 3.4);
+  EXPECT_LE(work.factorisations, 2.2);
+  EXPECT_LE(work.jacobians, 3.1);
+  EXPECT_LE(result.summary.function_evaluations, 6.5 * result.summary.vertex_count);
+}
+
+// The atlas keeps the factorisations of the charts waiting in its queue within a memory budget;
+// over it, the newest are dropped and factored again when their turn comes. The covering is the
+// same (the same charts, in the same order), it only costs more factorisations, and says why.
+TEST(LargeN, AtlasFactorisationBudgetChangesTheWorkNotTheMesh) {
+  const auto setup = tessera::make_catalogue_problem("bvp:points=40");
+  tessera::AtlasOptions options;
+  options.step = 2.0 * setup.suggested_step;
+  options.tolerance = 0.01;
+  const auto unbounded = tessera::cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  options.max_factorisation_bytes = 1.0;  // keeps only the chart being processed
+  const auto bounded = tessera::cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  ASSERT_TRUE(unbounded.summary.is_complete()) << unbounded.summary.message;
+  ASSERT_TRUE(bounded.summary.is_complete()) << bounded.summary.message;
+  EXPECT_EQ(bounded.summary.charts, unbounded.summary.charts);
+  ASSERT_EQ(bounded.mesh.vertex_count(), unbounded.mesh.vertex_count());
+  EXPECT_EQ(bounded.mesh.triangles(), unbounded.mesh.triangles());
+  EXPECT_LT((bounded.mesh.points() - unbounded.mesh.points()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_GT(bounded.summary.factorisations, unbounded.summary.factorisations);
+  const auto& notes = bounded.summary.notes;
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& note) {
+    return note.find("max_factorisation_bytes") != std::string::npos;
+  }));
 }
 
 TEST(LargeN, BratuSquareVerticesLieOnM) {

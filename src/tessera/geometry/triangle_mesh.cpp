@@ -27,6 +27,14 @@ int TriangleMesh::add_triangle(int a, int b, int c) {
   return triangle_count() - 1;
 }
 
+TriangleMesh TriangleMesh::copy_with_room(int extra_vertices, int extra_triangles) const {
+  TriangleMesh copy(dimension_);
+  copy.reserve(vertex_count() + extra_vertices, triangle_count() + extra_triangles);
+  copy.coordinates_.assign(coordinates_.begin(), coordinates_.end());
+  copy.triangles_.assign(triangles_.begin(), triangles_.end());
+  return copy;
+}
+
 void TriangleMesh::reserve(int vertices, int triangles) {
   coordinates_.reserve(static_cast<std::size_t>(vertices) * dimension_);
   triangles_.reserve(triangles);

@@ -48,6 +48,9 @@ class TriangleMesh {
   /// Replaces all triangles.
   void set_triangles(std::vector<Triangle> triangles) { triangles_ = std::move(triangles); }
   void reserve(int vertices, int triangles);
+  /// A copy with room for `extra_vertices` and `extra_triangles` more, so that growing it does
+  /// not copy it again (at large n the vertices are most of the memory).
+  TriangleMesh copy_with_room(int extra_vertices, int extra_triangles) const;
   /// Keeps the triangles t with keep[t] (in order) and the vertices they use (in order).
   /// \return the new index of every old vertex, −1 for a vertex dropped.
   /// \pre keep.size() == triangle_count(), indices in range.

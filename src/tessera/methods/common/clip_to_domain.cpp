@@ -649,7 +649,9 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
     bool done = false;
     std::string failure;
     for (const double snap : {options.snap_distance, 0.0}) {
-      TriangleMesh attempt = mesh;
+      // Room for the cut vertices (one per edge across the face: a few per hundred vertices).
+      const int room = mesh.vertex_count() / 8 + 64;
+      TriangleMesh attempt = mesh.copy_with_room(room, 2 * room);
       FaceSets attempt_faces = on_faces;
       ClipSummary attempt_summary;
       if (!clip_to_face(problem, domain, k, snap, options.corrector, attempt, attempt_faces,
