@@ -22,6 +22,10 @@ class PrincipalView {
 
   /// Refits to the points' principal directions; a degenerate cloud keeps the current view.
   void fit(const Eigen::Ref<const Eigen::MatrixXd>& points);
+  /// Refits to an evenly spaced sample of at most 256 of `count` points, point(i) the i-th: a
+  /// few hundred show the spread as well as all of them, and keep a refit at n = 10⁵ cheap.
+  template <typename PointFunction>
+  void fit_sample(int count, PointFunction point);
 
   Eigen::Vector3d operator()(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
@@ -31,6 +35,20 @@ class PrincipalView {
   int n_;
   Eigen::MatrixXd directions_;  // n×3, orthonormal columns (n > 3 only)
 };
+
+template <typename PointFunction>
+void PrincipalView::fit_sample(int count, PointFunction point) {
+  constexpr int kMaxSample = 256;
+  if (n_ <= 3 || count < 2) {
+    return;
+  }
+  const int stride = (count + kMaxSample - 1) / kMaxSample;
+  Eigen::MatrixXd sample(n_, (count + stride - 1) / stride);
+  for (int i = 0, column = 0; i < count; i += stride, ++column) {
+    sample.col(column) = point(i);
+  }
+  fit(sample);
+}
 
 /// When a growing set of points should refit its view: at 32 points, then each time the count
 /// doubles, so that refits cost O(n) per point in all.

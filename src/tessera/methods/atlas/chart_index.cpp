@@ -22,17 +22,8 @@ void ChartIndex::insert(int chart, const Eigen::Ref<const Eigen::VectorXd>& cent
 }
 
 void ChartIndex::refit(const Eigen::Ref<const Eigen::MatrixXd>& centers) {
-  // The principal directions of an evenly spaced sample: a few hundred centres show the
-  // spread as well as all of them, and keep a refit at n = 10⁵ well below a factorisation's
-  // cost per chart.
-  constexpr int kMaxSample = 256;
-  const int count = static_cast<int>(inserted_.size());
-  const int stride = std::max(1, (count + kMaxSample - 1) / kMaxSample);
-  Eigen::MatrixXd sample(centers.rows(), (count + stride - 1) / stride);
-  for (int i = 0, column = 0; i < count; i += stride, ++column) {
-    sample.col(column) = centers.col(inserted_[i].first);
-  }
-  view_.fit(sample);
+  view_.fit_sample(static_cast<int>(inserted_.size()),
+                   [&](int i) { return centers.col(inserted_[i].first); });
   levels_.clear();
   for (const auto& [chart, radius] : inserted_) {
     hash(chart, centers.col(chart), radius);

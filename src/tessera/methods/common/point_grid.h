@@ -57,14 +57,7 @@ void PointGrid::refit_if_due(PositionFunction position) {
     ids.insert(ids.end(), members.begin(), members.end());
   }
   std::sort(ids.begin(), ids.end());  // deterministic sample, whatever the hash order
-  constexpr int kMaxSample = 256;  // a few hundred points show the spread as well as all
-  const int count = static_cast<int>(ids.size());
-  const int stride = std::max(1, (count + kMaxSample - 1) / kMaxSample);
-  Eigen::MatrixXd sample(ambient_dimension_, (count + stride - 1) / stride);
-  for (int i = 0, column = 0; i < count; i += stride, ++column) {
-    sample.col(column) = position(ids[i]);
-  }
-  view_.fit(sample);
+  view_.fit_sample(static_cast<int>(ids.size()), [&](int i) { return position(ids[i]); });
   cells_.clear();
   size_ = 0;
   for (int id : ids) {
