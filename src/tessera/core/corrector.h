@@ -70,8 +70,8 @@ CorrectorSummary project_chord(const ImplicitProblem& problem, const Linearizati
 /// corrections seen): ‖x_k − x‖ plus that remainder bounds ‖x* − x‖ ≥ dist(x, M). At least two
 /// steps are taken (θ needs two). A refinement that only asks "nearer than the tolerance?"
 /// stops after two or three steps instead of the six or seven that solver tolerance needs.
-/// Returns +∞ where the chord does not contract (θ > options.max_contraction) or does not
-/// settle within options.max_iterations: the caller measures another way.
+/// Returns +∞ where the chord does not contract (θ above 0.8 and above options.max_contraction)
+/// or does not settle within options.max_iterations: the caller measures another way.
 double chord_distance_bound(const ImplicitProblem& problem, const Linearization& frozen,
                             const Eigen::Ref<const Eigen::VectorXd>& x, double accuracy,
                             const CorrectorOptions& options);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <deque>
 #include <unordered_map>
 
 #include "tessera/core/linearization.h"
@@ -138,11 +139,26 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   int frozen_at = -1;
   bool frozen_ok = false;
   // Sparse problems anchor across two rings (fewer factorisations); where the anchor's chord
-  // does not contract at a point, the triangle's own first corner is factored and tried.
+  // does not contract at a point, a corner of the triangle is tried: one already factored if
+  // any (the last few are kept), else its first.
   const int rings = is_sparse ? 2 : 1;
-  Linearization corner;
-  int corner_at = -1;
-  bool corner_ok = false;
+  constexpr std::size_t kKeptCorners = 6;
+  std::deque<std::pair<int, Linearization>> corners;  // (vertex, factorisation), newest last
+  const auto corner_of = [&](const Triangle& tri) -> const Linearization* {
+    for (int v : tri) {
+      for (const auto& [at, factored] : corners) {
+        if (at == v) {
+          return factored.is_factored() ? &factored : nullptr;
+        }
+      }
+    }
+    if (corners.size() >= kKeptCorners) {
+      corners.pop_front();
+    }
+    corners.emplace_back(tri[0], Linearization());
+    Linearization& factored = corners.back().second;
+    return factored.factor(problem, mesh.point(tri[0])) ? &factored : nullptr;
+  };
   auto distance_to_m = [&](const Eigen::VectorXd& point, const Triangle& tri) {
     if (frozen_ok) {
       const double bound =
@@ -152,13 +168,11 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       }
     }
     if (frozen_at != tri[0] && frozen_at != tri[1] && frozen_at != tri[2]) {
-      if (corner_at != tri[0]) {
-        corner_ok = corner.factor(problem, mesh.point(tri[0]));
-        corner_at = tri[0];
-      }
+      const Linearization* corner = corner_of(tri);
       const double bound =
-          corner_ok ? chord_distance_bound(problem, corner, point, accuracy, options.corrector)
-                    : std::numeric_limits<double>::infinity();
+          corner != nullptr
+              ? chord_distance_bound(problem, *corner, point, accuracy, options.corrector)
+              : std::numeric_limits<double>::infinity();
       if (std::isfinite(bound)) {
         return bound;
       }
