@@ -132,9 +132,10 @@ class OrientationGuard {
  private:
   // The orientation test needs the planes to a few digits only.
   static constexpr double kNearTangentTolerance = 1e-6;
-  // Factorisations kept at once: the most recent (vertices are visited mostly in mesh order,
-  // so neighbours' are usually among them), bounded because at large n each holds megabytes.
-  static constexpr std::size_t kKeptFactorisations = 8;
+  // Factorisations kept at once: the most recent, up to 64 and 256 MB (at n = 10⁵ on a 2-D grid
+  // one holds about 100 MB, so there only the last two are kept).
+  static constexpr std::size_t kMaxKept = 64;
+  static constexpr std::size_t kMaxKeptBytes = std::size_t{256} << 20;
 
   const Linearization* cached(int v) {
     for (auto& entry : kept_) {
@@ -145,12 +146,15 @@ class OrientationGuard {
     return nullptr;
   }
   const Linearization* factor_at(int v, const Eigen::VectorXd& x) {
-    if (kept_.size() >= kKeptFactorisations) {
+    while (kept_.size() >= kMaxKept || (kept_.size() >= 2 && kept_bytes_ > kMaxKeptBytes)) {
+      kept_bytes_ -= kept_.front().second.memory_bytes();
       kept_.pop_front();
     }
     kept_.emplace_back(v, Linearization());
     Linearization& linearization = kept_.back().second;
-    if (!linearization.factor(problem_, x)) {
+    const bool is_factored = linearization.factor(problem_, x);
+    kept_bytes_ += linearization.memory_bytes();
+    if (!is_factored) {
       return nullptr;
     }
     tangents_.emplace(v, linearization.tangent_basis());
@@ -161,6 +165,7 @@ class OrientationGuard {
   const bool shares_factorisations_;
   std::vector<std::vector<int>> neighbours_;
   std::deque<std::pair<int, Linearization>> kept_;
+  std::size_t kept_bytes_ = 0;
   std::unordered_map<int, Eigen::MatrixXd> tangents_;
 };
 
