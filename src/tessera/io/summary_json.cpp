@@ -226,7 +226,10 @@ std::string to_text(const MeshReport& report) {
           << r.factorisations / V << " per vertex)";
     }
     out << "\n";
-    if (r.vertex_count > 0 && r.factorisations > 0 && r.factorisation_seconds > 0) {
+    // In factorisations' worth where factorisations are the cost (large n); at small n one
+    // takes a microsecond and the ratio says nothing.
+    if (r.vertex_count > 0 && r.factorisations > 0 && r.factorisation_seconds > 0 &&
+        report.ambient_dimension > kLargeAmbientDimension) {
       const double one = r.factorisation_seconds / r.factorisations;
       out << "  per vertex   " << 1000.0 * r.wall_seconds / r.vertex_count << " ms = "
           << r.wall_seconds / r.vertex_count / one << " factorisations' time (one: " << 1000.0 * one
