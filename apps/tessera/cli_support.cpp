@@ -87,7 +87,8 @@ constexpr int kSampledReportDimension = 500;
 constexpr int kReportSamples = 300;
 
 MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
-                       const std::string& problem_argument, const MeshValidation* known) {
+                       const std::string& problem_argument, const MeshValidation* known,
+                       int samples) {
   MeshReport report;
   report.problem = problem_argument;  // as the user spelled it, e.g. "torus:R=2"
   report.ambient_dimension = setup.problem->ambient_dimension();
@@ -99,7 +100,9 @@ MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
   // Distances are Gauss–Newton projections, a few factorisations each: at large n they are
   // measured on a uniform sample (the report says how many) instead of at every point.
   QualityOptions quality;
-  quality.max_samples = report.ambient_dimension >= kSampledReportDimension ? kReportSamples : 0;
+  quality.max_samples = samples >= 0                                         ? samples
+                        : report.ambient_dimension >= kSampledReportDimension ? kReportSamples
+                                                                              : 0;
   report.quality = measure_quality(mesh, *setup.problem, quality);
   report.expected_euler_characteristic = setup.expected_euler_characteristic;
   report.exact_area = setup.exact_area;

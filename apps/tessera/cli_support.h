@@ -29,8 +29,10 @@ void apply_start_and_box(ProblemSetup& setup, const std::string& start, const st
 /// Validation (combinatorial and geometric: orientation along M, overlaps on M, vertices in the
 /// setup's domain) and quality of `mesh` against the problem, for printing or JSON.
 /// `known`: a validation of exactly this mesh already made (a covering's final check), reused.
+/// `samples`: distances measured at this many points of each kind (0: all; −1: all below
+/// n = 500, else 300).
 MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
                        const std::string& problem_argument,
-                       const MeshValidation* known = nullptr);
+                       const MeshValidation* known = nullptr, int samples = -1);
 
 }  // namespace tessera::app

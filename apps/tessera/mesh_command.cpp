@@ -74,6 +74,12 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_option("--obj-coordinates", mesh.obj_coordinates,
                        "deprecated, use --view: the view of three coordinate indices, e.g. 0,2,3 "
                        "(every format)");
+  mesh_app
+      ->add_option("--report-samples", mesh.report_samples,
+                   "the report measures distances to M at this many vertices, centroids and edge "
+                   "midpoints each, drawn uniformly (0: all; default all for n < 500, else 300); "
+                   "each is a Gauss-Newton projection, the report's cost at large n")
+      ->check(CLI::Range(0, 100'000'000));
   mesh_app->add_flag("--quiet,-q", mesh.quiet, "print nothing but errors");
   mesh_app
       ->add_option("--max-vertices", mesh.settings.max_vertices, "stop after this many vertices")
@@ -275,7 +281,8 @@ int run_mesh(const MeshCommand& command) {
     written.push_back(command.output);
   }
   MeshReport report = make_report(result.mesh, setup, command.problem,
-                                  result.validation ? &*result.validation : nullptr);
+                                  result.validation ? &*result.validation : nullptr,
+                                  command.report_samples);
   report.run = result.summary;
   report.view = ViewReport{view.specification(),
                            view.is_all_coordinates() ? std::vector<std::string>() : view.names(),

@@ -20,6 +20,7 @@ struct MeshCommand {
   std::string obj_coordinates;  ///< deprecated: the view of three coordinate indices
   std::string view;             ///< --view: a view specification (problems/view.h)
   std::string states;           ///< --states: the vertices as .npy (and the triangles beside)
+  int report_samples = -1;  ///< --report-samples: -1 the default (make_report), 0 all
   bool ascii = false;
   bool quiet = false;
   bool improve = false;

@@ -257,6 +257,25 @@ TEST(CliView, AllIsTheDefaultForSmallNByteForByte) {
                          std::istreambuf_iterator<char>(plain), std::istreambuf_iterator<char>()));
 }
 
+// --report-samples sets how many points of each kind the report projects onto M, and says so.
+TEST(CliView, ReportSamplesBoundTheDistanceMeasurement) {
+  const std::string folder = testing::temporary_directory("report_samples");
+  const auto result = run_cli("mesh " + kLargeProblem + " --step 3 --tolerance 0.3 -o " +
+                              quoted(folder + "/bvp.ply") + " --report-samples 7 --summary " +
+                              quoted(folder + "/bvp.json"));
+  ASSERT_TRUE(result.exit_code == 0 || result.exit_code == 1) << result.output;
+  EXPECT_TRUE(contains(result.output, "(largest of 7 uniform samples of each)")) << result.output;
+  std::ifstream in(folder + "/bvp.json");
+  const auto summary = nlohmann::json::parse(in);
+  const auto& centroids = summary["distance_to_manifold"]["centroids"];
+  EXPECT_EQ(centroids["count"], 7);
+  EXPECT_GT(centroids["population"].get<int>(), 7);
+  const auto refused = run_cli("mesh " + kLargeProblem + " --report-samples -1 -o " +
+                               quoted(folder + "/x.ply"));
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "--report-samples")) << refused.output;
+}
+
 TEST(CliView, ObjCoordinatesIsTheViewOfThoseCoordinates) {
   const std::string folder = testing::temporary_directory("view_obj");
   ASSERT_EQ(
