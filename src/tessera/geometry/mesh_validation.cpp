@@ -249,8 +249,9 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
   // neighbours (two rings) come from its factorisation (tangent_basis_near: one evaluation of DF
   // and a few solves each), so that only about one vertex in ten is factored; the orientation
   // test needs the planes to a few digits only, and the chord from two edges away still
-  // contracts fast (where it does not, the vertex is factored itself later). Dense problems factor at every vertex, which costs little there and keeps
-  // planes that differ by 90° between neighbours (thin tubes) exact.
+  // contracts fast (where it does not, the vertex is factored itself later). Dense problems
+  // factor at every vertex, which costs little there and keeps planes that differ by 90°
+  // between neighbours (thin tubes) exact.
   const bool is_sparse = geometry.problem.has_sparse_jacobian();
   constexpr double kNearTangentTolerance = 1e-6;
   std::vector<std::uint8_t> is_done(vertex_count, 0);

@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <random>
 #include <sstream>
 
 #include "tessera/core/corrector.h"
@@ -46,18 +45,8 @@ AtlasBuilder::AtlasBuilder(const ImplicitProblem& problem, const Domain& domain,
       index_(problem.ambient_dimension()),
       watch_crossings_(!problem.has_sparse_jacobian() &&
                        problem.ambient_dimension() <= kMaxCrossingTestDimension),
-      first_step_probes_(problem.has_sparse_jacobian()) {
-  std::mt19937_64 generator(0x7a11a5);  // fixed: deterministic frames
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd random(n_, 3);
-  for (int j = 0; j < 3; ++j) {
-    for (int i = 0; i < n_; ++i) {
-      random(i, j) = normal(generator);
-    }
-  }
-  frame_directions_ = Eigen::HouseholderQR<Eigen::MatrixXd>(random).householderQ() *
-                      Eigen::MatrixXd::Identity(n_, std::min(3, n_));
-}
+      first_step_probes_(problem.has_sparse_jacobian()),
+      frame_view_(problem.ambient_dimension()) {}
 
 // Henderson's section 2.4: with a(s,t) the offset of M from the tangent plane,
 // R = sqrt(2ε/|a_ss|). Instead of second derivatives of F, the offset is measured where it
@@ -342,9 +331,7 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   centers_.insert(centers_.end(), x.data(), x.data() + n_);
   const Eigen::MatrixXd& T = linearization.tangent_basis();
   tangents_.push_back(T);
-  Eigen::Matrix<double, 2, 3> frame = Eigen::Matrix<double, 2, 3>::Zero();
-  frame.leftCols(frame_directions_.cols()) = T.transpose() * frame_directions_;
-  frames_.push_back(frame);
+  frames_.push_back(frame_signature(T));
   connect_neighbours(k);
   index_.insert(k, x, radius);
   if (index_.refit_due()) {
@@ -562,22 +549,28 @@ Eigen::Vector2d AtlasBuilder::child_position(int c, int vertex) const {
   return p;
 }
 
+// (P T)ᵀ for the fixed view P (orthonormal rows, unfitted: the same for every chart).
+Eigen::Matrix<double, 2, 3> AtlasBuilder::frame_signature(const Eigen::MatrixXd& T) const {
+  Eigen::Matrix<double, 2, 3> signature;
+  signature.row(0) = frame_view_(T.col(0)).transpose();
+  signature.row(1) = frame_view_(T.col(1)).transpose();
+  return signature;
+}
+
 // A retired chart's basis again: factored at its centre (one factorisation), then turned onto the
-// old frame. With B = T'ᵀP for the new basis T' and S = TᵀP stored, T = T'Q where Qᵀ B = S, so
-// Qᵀ = S Bᵀ(B Bᵀ)⁻¹, made exactly orthogonal by its polar factor.
+// old frame. With B = T'ᵀPᵀ for the new basis T' and S = TᵀPᵀ stored, T = T'Q where Qᵀ B = S,
+// so Qᵀ = S Bᵀ(B Bᵀ)⁻¹, made exactly orthogonal by its polar factor.
 void AtlasBuilder::restore_tangent(int c) const {
   Linearization linearization;
   TESSERA_CHECK(linearization.factor(problem_, center(c)),
                 "atlas: the tangent plane of the chart at " << describe_point(center(c))
                                                            << " cannot be computed again");
   const Eigen::MatrixXd& restored = linearization.tangent_basis();
-  Eigen::Matrix<double, 2, 3> B = Eigen::Matrix<double, 2, 3>::Zero();
-  B.leftCols(frame_directions_.cols()) = restored.transpose() * frame_directions_;
+  const Eigen::Matrix<double, 2, 3> B = frame_signature(restored);
   const Eigen::Matrix2d Qt = frames_[c] * B.transpose() * (B * B.transpose()).inverse();
   const Eigen::JacobiSVD<Eigen::Matrix2d> svd(Qt, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::Matrix2d Q = (svd.matrixU() * svd.matrixV().transpose()).transpose();
   tangents_[c] = restored * Q;
-  ++restored_tangents_;
 }
 
 // Chart m is finished when it is closed (its polygon cut down to its disk by neighbours on every

@@ -14,6 +14,7 @@
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/linearization.h"
+#include "tessera/geometry/principal_view.h"
 #include "tessera/methods/atlas/atlas.h"
 #include "tessera/methods/atlas/chart_index.h"
 #include "tessera/methods/atlas/chart_polygon.h"
@@ -109,11 +110,11 @@ class AtlasBuilder {
   // n×2 per chart while it may still be cut; empty once retired (memory that grows like n per
   // vertex, not 3n). Mutable: a retired chart's basis is restored on demand (a cache).
   mutable std::vector<Eigen::MatrixXd> tangents_;
-  // Tᵀ·P for a fixed pseudo-random orthonormal P (n×3): fixes the frame of a restored basis
-  // (any basis of the plane, rotated onto the old one), so the chart's polygon stays valid.
+  // (P·T)ᵀ for a fixed orthonormal P: R^n → R³ (frame_view_): fixes the frame of a restored
+  // basis (any basis of the plane, turned onto the old one), so the chart's polygon stays valid.
   std::vector<Eigen::Matrix<double, 2, 3>> frames_;
-  Eigen::MatrixXd frame_directions_;  // P
-  mutable int restored_tangents_ = 0;
+  const PrincipalView frame_view_;
+  Eigen::Matrix<double, 2, 3> frame_signature(const Eigen::MatrixXd& T) const;
   void restore_tangent(int c) const;
   void retire_finished_charts(int c);
   std::vector<Chart> charts_;

@@ -1,9 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/methods/atlas/chart_index.h"
 
-#include <algorithm>
 #include <cmath>
-
 
 namespace tessera {
 

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <array>
-#include <deque>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -14,6 +13,7 @@
 
 #include "tessera/core/describe.h"
 #include "tessera/core/face_projection.h"
+#include "tessera/core/factorisation_cache.h"
 #include "tessera/core/linearization.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
@@ -76,7 +76,8 @@ class OrientationGuard {
   OrientationGuard(const ImplicitProblem& problem, std::vector<std::vector<int>> neighbours)
       : problem_(problem),
         shares_factorisations_(problem.has_sparse_jacobian()),
-        neighbours_(std::move(neighbours)) {}
+        neighbours_(std::move(neighbours)),
+        kept_(kMaxKept, kMaxKeptBytes) {}
 
   /// A factorisation of DF at vertex v (at x, its point) or, for sparse problems, at one of its
   /// neighbours (the chord from there converges as well, and one factorisation serves the
@@ -137,35 +138,22 @@ class OrientationGuard {
   static constexpr std::size_t kMaxKept = 64;
   static constexpr std::size_t kMaxKeptBytes = std::size_t{256} << 20;
 
-  const Linearization* cached(int v) {
-    for (auto& entry : kept_) {
-      if (entry.first == v) {
-        return entry.second.is_factored() ? &entry.second : nullptr;
-      }
-    }
-    return nullptr;
+  const Linearization* cached(int v) const {
+    const Linearization* found = kept_.find(v);
+    return found != nullptr && found->is_factored() ? found : nullptr;
   }
   const Linearization* factor_at(int v, const Eigen::VectorXd& x) {
-    while (kept_.size() >= kMaxKept || (kept_.size() >= 2 && kept_bytes_ > kMaxKeptBytes)) {
-      kept_bytes_ -= kept_.front().second.memory_bytes();
-      kept_.pop_front();
+    const Linearization* linearization = kept_.factor(v, problem_, x);
+    if (linearization != nullptr) {
+      tangents_.emplace(v, linearization->tangent_basis());
     }
-    kept_.emplace_back(v, Linearization());
-    Linearization& linearization = kept_.back().second;
-    const bool is_factored = linearization.factor(problem_, x);
-    kept_bytes_ += linearization.memory_bytes();
-    if (!is_factored) {
-      return nullptr;
-    }
-    tangents_.emplace(v, linearization.tangent_basis());
-    return &linearization;
+    return linearization;
   }
 
   const ImplicitProblem& problem_;
   const bool shares_factorisations_;
   std::vector<std::vector<int>> neighbours_;
-  std::deque<std::pair<int, Linearization>> kept_;
-  std::size_t kept_bytes_ = 0;
+  FactorisationCache kept_;
   std::unordered_map<int, Eigen::MatrixXd> tangents_;
 };
 
@@ -208,8 +196,6 @@ std::string describe_face(const Domain& domain, int k) {
   return "'" + domain.half_spaces()[k].label + "'";
 }
 
-// Clips to face k. Returns false (with `message` set, mesh unchanged) if a cut point cannot be
-// found or a triangle would fold.
 // Keeps the triangles with keep[t] and the vertices they use, in place (no second copy of the
 // mesh, which at large n is most of the memory), with the vertices' face sets.
 void compact(TriangleMesh& mesh, FaceSets& on_faces, const std::vector<bool>& keep) {
@@ -223,6 +209,8 @@ void compact(TriangleMesh& mesh, FaceSets& on_faces, const std::vector<bool>& ke
   on_faces = std::move(kept_faces);
 }
 
+// Clips to face k. Returns false (with `message` set) if a cut point cannot be found or a
+// triangle would fold; `mesh` is then left moved from (the caller passes its own attempt).
 bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, double snap_distance,
                   const CorrectorOptions& corrector, TriangleMesh& mesh, FaceSets& on_faces,
                   ClipSummary& summary) {

@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <deque>
 #include <unordered_map>
 
+#include "tessera/core/factorisation_cache.h"
 #include "tessera/core/linearization.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/methods/common/clip_to_domain.h"
@@ -142,22 +142,14 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   // does not contract at a point, a corner of the triangle is tried: one already factored if
   // any (the last few are kept), else its first.
   const int rings = is_sparse ? 2 : 1;
-  constexpr std::size_t kKeptCorners = 6;
-  std::deque<std::pair<int, Linearization>> corners;  // (vertex, factorisation), newest last
+  FactorisationCache corners(6, std::size_t{256} << 20);
   const auto corner_of = [&](const Triangle& tri) -> const Linearization* {
     for (int v : tri) {
-      for (const auto& [at, factored] : corners) {
-        if (at == v) {
-          return factored.is_factored() ? &factored : nullptr;
-        }
+      if (const Linearization* factored = corners.find(v)) {
+        return factored->is_factored() ? factored : nullptr;
       }
     }
-    if (corners.size() >= kKeptCorners) {
-      corners.pop_front();
-    }
-    corners.emplace_back(tri[0], Linearization());
-    Linearization& factored = corners.back().second;
-    return factored.factor(problem, mesh.point(tri[0])) ? &factored : nullptr;
+    return corners.factor(tri[0], problem, mesh.point(tri[0]));
   };
   auto distance_to_m = [&](const Eigen::VectorXd& point, const Triangle& tri) {
     if (frozen_ok) {

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// The last few factorisations of DF, by key (a mesh vertex): where one point's factorisation
+// serves the points around it (chord iterations, tangent_basis_near), a short cache saves
+// factoring again, and a bound on its bytes keeps it small at large n.
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <utility>
+
+#include "tessera/core/linearization.h"
+
+namespace tessera {
+
+class FactorisationCache {
+ public:
+  /// At most `max_count` entries and, beyond the newest two, `max_bytes` of them.
+  FactorisationCache(std::size_t max_count, std::size_t max_bytes)
+      : max_count_(max_count), max_bytes_(max_bytes) {}
+
+  /// The entry for `key`, factored or not (DF rank deficient there); null if there is none.
+  const Linearization* find(int key) const {
+    for (const auto& [at, linearization] : entries_) {
+      if (at == key) {
+        return &linearization;
+      }
+    }
+    return nullptr;
+  }
+
+  /// Factors DF at x as the entry for `key`, dropping the oldest entries over the bounds.
+  /// \return the entry, or null where DF is rank deficient. Valid until the next factor().
+  const Linearization* factor(int key, const ImplicitProblem& problem,
+                              const Eigen::Ref<const Eigen::VectorXd>& x) {
+    while (!entries_.empty() && (entries_.size() >= max_count_ ||
+                                 (entries_.size() >= 2 && bytes_ > max_bytes_))) {
+      bytes_ -= entries_.front().second.memory_bytes();
+      entries_.pop_front();
+    }
+    entries_.emplace_back(key, Linearization());
+    Linearization& linearization = entries_.back().second;
+    const bool is_factored = linearization.factor(problem, x);
+    bytes_ += linearization.memory_bytes();
+    return is_factored ? &linearization : nullptr;
+  }
+
+ private:
+  std::size_t max_count_;
+  std::size_t max_bytes_;
+  std::size_t bytes_ = 0;
+  std::deque<std::pair<int, Linearization>> entries_;  // oldest first
+};
+
+}  // namespace tessera
