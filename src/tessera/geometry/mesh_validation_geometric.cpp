@@ -1,0 +1,390 @@
+// SPDX-License-Identifier: MIT
+// The geometric checks of validate(): orientation along M, overlaps on M, vertices in S. The
+// mathematics is in docs/validation.md; the comments here say why each step is sound.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <initializer_list>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <utility>
+
+#include <Eigen/LU>
+
+#include "tessera/core/describe.h"
+#include "tessera/core/error.h"
+#include "tessera/core/linearization.h"
+#include "tessera/geometry/detail/mesh_validation_checks.h"
+#include "tessera/geometry/mesh_quality.h"
+#include "tessera/geometry/spatial_hash.h"
+#include "tessera/geometry/triangle_intersection.h"
+
+namespace tessera::detail {
+namespace {
+
+Eigen::VectorXd centroid(const Eigen::Map<const Eigen::MatrixXd>& points, const Triangle& tri) {
+  return (points.col(tri[0]) + points.col(tri[1]) + points.col(tri[2])) / 3.0;
+}
+
+// "triangle 17 (vertices 3, 8, 9)"
+std::string triangle_name(int t, const Triangle& tri) {
+  std::ostringstream out;
+  out << "triangle " << t << " (vertices " << tri[0] << ", " << tri[1] << ", " << tri[2] << ")";
+  return out.str();
+}
+
+double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+
+// Oriented cosine s = det(Tᵀe₁, Tᵀe₂) / |e₁ ∧ e₂| of the triangle against the oriented plane
+// spanned by the orthonormal columns of T (n×2). Tᵀ is the orthogonal projection onto that
+// plane in T's coordinates, so det(Tᵀe₁, Tᵀe₂)/2 is the signed area of the projected triangle
+// and s is the ratio of the projected to the true area: the cosine of the angle between the
+// two planes in R³, the product of the cosines of the two principal angles in R^n, with the
+// sign of the orientation. |s| ≤ 1.
+double oriented_cosine(const Eigen::Map<const Eigen::MatrixXd>& points, const Triangle& tri,
+                       double area, const Eigen::MatrixXd& T) {
+  const Eigen::Vector2d a = T.transpose() * (points.col(tri[1]) - points.col(tri[0]));
+  const Eigen::Vector2d b = T.transpose() * (points.col(tri[2]) - points.col(tri[0]));
+  return std::clamp((a.x() * b.y() - a.y() * b.x()) / (2.0 * area), -1.0, 1.0);
+}
+
+// Lifts the planar point x (coordinates in the orthonormal basis U at origin o) to R^n.
+Eigen::VectorXd lift(const Eigen::VectorXd& o, const Eigen::MatrixXd& U, const Eigen::Vector2d& x) {
+  return o + U * x;
+}
+
+}  // namespace
+
+// 1. Orientation, judged locally. Two triangles that share an edge and traverse it in
+// opposite directions (a consistently oriented pair) must lie on opposite sides of it along M:
+// projected onto the tangent plane of M at a shared vertex, their signed areas have the same
+// sign. If they do not, the pair is folded: one of them is flipped. The test needs one tangent
+// basis per vertex, in any orientation (both triangles are projected onto the same one), so it
+// needs no orientation transported along M or derived from DF: transport fails where
+// neighbouring tangent planes differ by more than 90° (thin tubes at a coarse step), and the
+// orientation DF gives reverses across a singular curve of F (the `crossing` problem), while a
+// fold is a fold wherever it is. A pair traversing its edge in the same direction (a
+// non-orientable mesh) is folded when its signed areas have opposite signs.
+//
+// Which of a folded pair is the flipped one: the triangle folded against most of its
+// neighbours (a flipped triangle is folded against all of them, each neighbour against one of
+// its own); where that does not decide (a pair each folded once), both are reported.
+// A triangle whose plane stands across M (mean |s| over its corners below min_tangent_cosine,
+// s the projected over the true area) is reported too.
+//
+// Why the vertices and not the triangles' centroids: the vertices lie on M (to the corrector's
+// tolerance), where ker DF is M's tangent plane. A centroid lies off M by the chord error e,
+// where ker DF approximates the tangent plane only to O(‖D²F‖·e / σ_min(DF)); near a singular
+// curve of F (the `crossing` problem's circle, where DF → 0 on M) that is no approximation at
+// all. A vertex is shared by about six triangles, so this is also half as many factorisations.
+void check_orientation(const MeshView& view, const GeometricInput& geometry,
+                       const ValidationOptions& options, DefectRecorder& recorder,
+                       MeshValidation& result) {
+  const MeshTopology& topology = view.topology;
+  const std::vector<Triangle>& triangles = topology.triangles();
+  TriangleShapes& shapes = view.shapes;
+  const auto points = view.mesh.points();
+  const int count = topology.triangle_count();
+  const int vertex_count = view.mesh.vertex_count();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // s of triangle t against the tangent basis at its k-th corner (NaN: not judged there).
+  std::vector<std::array<double, 3>> corner_cosine(count, {nan, nan, nan});
+  auto is_judged = [&](int t) { return shapes.is_finite[t] && !shapes.is_degenerate[t]; };
+  const auto judge_corners = [&](int v, const Eigen::MatrixXd& T) {
+    for (int t : topology.vertex_triangles(v)) {
+      if (is_judged(t)) {
+        const int k = triangles[t][0] == v ? 0 : (triangles[t][1] == v ? 1 : 2);
+        corner_cosine[t][k] = oriented_cosine(points, triangles[t], shapes.area[t], T);
+      }
+    }
+  };
+  // For sparse (large n) problems the tangent planes of a vertex's neighbours and their
+  // neighbours (two rings) come from its factorisation (tangent_basis_near: one evaluation of DF
+  // and a few solves each), so that only about one vertex in ten is factored; the orientation
+  // test needs the planes to a few digits only, and the chord from two edges away still
+  // contracts fast (where it does not, the vertex is factored itself later). Dense problems
+  // factor at every vertex, which costs little there and keeps planes that differ by 90°
+  // between neighbours (thin tubes) exact.
+  const bool is_sparse = geometry.problem.has_sparse_jacobian();
+  constexpr double kNearTangentTolerance = 1e-6;
+  std::vector<std::uint8_t> is_done(vertex_count, 0);
+  Linearization linearization;
+  Eigen::MatrixXd near_tangent;
+  std::vector<int> ring;
+  std::vector<int> next_ring;
+  for (int v = 0; v < vertex_count; ++v) {
+    if (is_done[v] || topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v]) {
+      continue;
+    }
+    is_done[v] = 1;
+    if (!linearization.factor(geometry.problem, points.col(v))) {
+      continue;  // DF rank deficient at the vertex: not judged there
+    }
+    judge_corners(v, linearization.tangent_basis());
+    if (!is_sparse) {
+      continue;
+    }
+    ring.assign(1, v);
+    for (int rings = 0; rings < 2; ++rings) {
+      next_ring.clear();
+      for (int u : ring) {
+        for (int t : topology.vertex_triangles(u)) {
+          for (int w : triangles[t]) {
+            if (is_done[w] || !view.is_finite_vertex[w]) {
+              continue;
+            }
+            if (tangent_basis_near(geometry.problem, linearization, points.col(w), near_tangent,
+                                   kNearTangentTolerance)) {
+              is_done[w] = 1;
+              judge_corners(w, near_tangent);
+              next_ring.push_back(w);
+            }
+          }
+        }
+      }
+      ring.swap(next_ring);
+    }
+  }
+  auto corner_of = [&](int t, int v) {
+    return triangles[t][0] == v ? 0 : (triangles[t][1] == v ? 1 : 2);
+  };
+  // Folds across interior manifold edges.
+  std::vector<int> folds(count, 0);
+  std::vector<int> interior_edges(count, 0);
+  std::vector<std::pair<int, int>> folded_pairs;
+  for (int e = 0; e < topology.edge_count(); ++e) {
+    const auto pair = topology.edge_triangles(e);
+    if (pair.size() != 2 || !is_judged(pair[0]) || !is_judged(pair[1])) {
+      continue;
+    }
+    const int a = pair[0], b = pair[1];
+    ++interior_edges[a];
+    ++interior_edges[b];
+    const bool opposite = topology.is_orientation_consistent(e);
+    int votes = 0;
+    int judged = 0;
+    for (int v : topology.edge(e)) {
+      const double sa = corner_cosine[a][corner_of(a, v)];
+      const double sb = corner_cosine[b][corner_of(b, v)];
+      if (std::isnan(sa) || std::isnan(sb)) {
+        continue;
+      }
+      ++judged;
+      votes += (opposite ? sa * sb < 0 : sa * sb > 0) ? 1 : 0;
+    }
+    if (judged > 0 && votes == judged) {
+      ++folds[a];
+      ++folds[b];
+      folded_pairs.emplace_back(a, b);
+    }
+  }
+  std::vector<std::uint8_t> flipped(count, 0);
+  for (int t = 0; t < count; ++t) {
+    flipped[t] = folds[t] > 0 && 2 * folds[t] > interior_edges[t];
+  }
+  for (const auto& [a, b] : folded_pairs) {
+    if (!flipped[a] && !flipped[b]) {
+      flipped[a] = flipped[b] = 1;
+    }
+  }
+  for (int t = 0; t < count; ++t) {
+    if (!is_judged(t)) {
+      continue;  // degenerate or not finite: reported as such
+    }
+    double magnitude = 0.0;
+    int judged = 0;
+    for (double c : corner_cosine[t]) {
+      if (!std::isnan(c)) {
+        magnitude += std::abs(c);
+        ++judged;
+      }
+    }
+    if (judged == 0) {
+      ++result.unoriented_triangle_count;
+      continue;
+    }
+    magnitude /= judged;
+    const bool stands = magnitude < options.min_tangent_cosine;
+    shapes.oriented_cosine[t] = flipped[t] ? -magnitude : magnitude;
+    if (!flipped[t] && !stands) {
+      continue;
+    }
+    result.flipped_triangles.push_back(view.original[t]);
+    recorder.record(MeshDefectKind::FlippedTriangle, [&] {
+      std::ostringstream out;
+      out.precision(3);
+      const int n = view.mesh.ambient_dimension();
+      out << triangle_name(view.original[t], triangles[t]) << " near "
+          << describe_point(centroid(points, triangles[t])) << ": ";
+      if (flipped[t]) {
+        out << "folded over its neighbour(s) across " << folds[t] << " of its " << interior_edges[t]
+            << " inner edges";
+      } else {
+        out << "stands across M, " << (n == 3 ? "normal" : "plane") << " at "
+            << degrees(std::acos(magnitude)) << "° to M's" << (n == 3 ? "" : " tangent plane");
+      }
+      return out.str();
+    });
+  }
+}
+
+// 2. Overlap. Two triangles that share no edge must not cover the same part of M. Candidates:
+// every pair within 0.25·(longest edge) of each other in R^n (nearby_triangle_pairs, expected
+// linear time); 0.25·h exceeds the chord errors of both triangles (≤ κh²/8), so two triangles
+// on opposite sides of M are found too. A candidate pair is projected onto the plane of the
+// better aligned of the two (larger |s_t|): within O(κh) of the tangent plane of M there and
+// needing no factorisation; the planar intersection is clipped exactly. If it exceeds
+// overlap_area_ratio of the smaller area, its centroid (inside both projections) is lifted to
+// q₁ on the reference triangle and projected onto M: p = P(q₁). The second triangle covers
+// p if M's normal space at p meets it, at q₂; it covers the same part of M, and not a close
+// sheet, if P(q₂) returns to p: |P(q₂) − p| ≤ overlap_same_point_ratio · |q₂ − p|.
+void check_overlaps(const MeshView& view, const GeometricInput& geometry,
+                    const ValidationOptions& options, DefectRecorder& recorder,
+                    MeshValidation& result) {
+  const MeshTopology& topology = view.topology;
+  const std::vector<Triangle>& triangles = topology.triangles();
+  const TriangleShapes& shapes = view.shapes;
+  const auto points = view.mesh.points();
+  const int count = topology.triangle_count();
+  const int n = view.mesh.ambient_dimension();
+  std::vector<double> margins(count, -1.0);
+  for (int t = 0; t < count; ++t) {
+    if (shapes.is_finite[t] && !shapes.is_degenerate[t]) {
+      margins[t] = 0.25 * shapes.longest_edge[t];
+    }
+  }
+  std::vector<std::pair<int, int>> pairs = nearby_triangle_pairs(points, triangles, margins);
+  std::sort(pairs.begin(), pairs.end());
+  // The barycentric slack for "q₂ lies in the second triangle": the overlap's centroid lies
+  // inside both projections, and lifting along M's normal at p instead of the reference
+  // plane's normal moves it by O(κ·e·h), a small fraction of the triangle; 1% allows for it.
+  constexpr double barycentric_slack = 0.01;
+  Linearization workspace;
+  // Scratch for the planar test, which runs for every candidate pair: no allocation in it.
+  Eigen::MatrixXd U(n, 2);
+  Eigen::VectorXd o(n);
+  Eigen::VectorXd d(n);
+  Eigen::Matrix<double, 2, 3> a;
+  Eigen::Matrix<double, 2, 3> b;
+  for (const auto& [s, t] : pairs) {
+    int shared = 0;
+    for (int v : triangles[s]) {
+      shared += (v == triangles[t][0] || v == triangles[t][1] || v == triangles[t][2]) ? 1 : 0;
+    }
+    if (shared >= 2) {
+      continue;  // neighbours across an edge (or a duplicate, reported as such)
+    }
+    const auto alignment = [&](int r) {
+      const double c = shapes.oriented_cosine[r];
+      return std::isnan(c) ? -1.0 : std::abs(c);
+    };
+    const int reference = alignment(s) >= alignment(t) ? s : t;
+    const int other = reference == s ? t : s;
+    // Orthonormal basis of the reference plane from its longest edge and the apex's offset
+    // from that edge (accurate for thin triangles; see area_and_longest_squared).
+    const Triangle& r = triangles[reference];
+    int k = 0;
+    for (int j = 1; j < 3; ++j) {
+      if ((points.col(r[(j + 1) % 3]) - points.col(r[j])).squaredNorm() >
+          (points.col(r[(k + 1) % 3]) - points.col(r[k])).squaredNorm()) {
+        k = j;
+      }
+    }
+    o = points.col(r[k]);
+    d = points.col(r[(k + 1) % 3]) - o;
+    U.col(0) = d / d.norm();
+    d = points.col(r[(k + 2) % 3]) - o;  // the apex
+    d -= d.dot(U.col(0)) * U.col(0);
+    U.col(1) = d / d.norm();
+    for (int j = 0; j < 3; ++j) {
+      d = points.col(r[j]) - o;
+      a.col(j).noalias() = U.transpose() * d;
+      d = points.col(triangles[other][j]) - o;
+      b.col(j).noalias() = U.transpose() * d;
+    }
+    const PlanarOverlap overlap = triangle_intersection(a, b);
+    const double smaller_area = std::min(shapes.area[s], shapes.area[t]);
+    if (!(overlap.area > options.overlap_area_ratio * smaller_area)) {
+      continue;
+    }
+    Eigen::VectorXd p = lift(o, U, overlap.centroid);
+    if (!project_onto_manifold(geometry.problem, p, workspace) || !workspace.is_factored()) {
+      continue;  // no point of M to compare at: left unjudged
+    }
+    const Eigen::MatrixXd& T = workspace.tangent_basis();
+    // q₂ = b₀ + E·w on the other triangle's plane with Tᵀ(q₂ − p) = 0.
+    const Triangle& o_tri = triangles[other];
+    const Eigen::VectorXd b0 = points.col(o_tri[0]);
+    Eigen::MatrixXd E(n, 2);
+    E.col(0) = points.col(o_tri[1]) - b0;
+    E.col(1) = points.col(o_tri[2]) - b0;
+    const Eigen::Matrix2d TE = T.transpose() * E;
+    if (std::abs(TE.determinant()) <= 1e-3 * 2.0 * shapes.area[other]) {
+      continue;  // the other triangle stands across M at p (a flipped triangle if anything)
+    }
+    const Eigen::Vector2d w = TE.inverse() * (T.transpose() * (p - b0));
+    if (std::min({1.0 - w.x() - w.y(), w.x(), w.y()}) < -barycentric_slack) {
+      continue;  // M's normal at p misses the other triangle: it does not cover p
+    }
+    const Eigen::VectorXd q2 = b0 + E * w;
+    Eigen::VectorXd p2 = q2;
+    if (!project_onto_manifold(geometry.problem, p2, workspace)) {
+      continue;
+    }
+    // The floor is the projection's accuracy (1e-13·(1 + ‖x‖)) with a margin.
+    const double floor = 1e-10 * (1.0 + p.lpNorm<Eigen::Infinity>());
+    if ((p2 - p).norm() > options.overlap_same_point_ratio * (q2 - p).norm() + floor) {
+      continue;  // another sheet of M (close sheets, the far side of a thin tube)
+    }
+    result.overlapping_triangle_pairs.emplace_back(view.original[s], view.original[t]);
+    recorder.record(MeshDefectKind::OverlappingTriangles, [&] {
+      std::ostringstream out;
+      out.precision(3);
+      out << triangle_name(view.original[s], triangles[s]) << " and "
+          << triangle_name(view.original[t], triangles[t]) << " both cover M near "
+          << describe_point(p) << ": overlap " << 100.0 * overlap.area / smaller_area
+          << "% of the smaller" << (shared == 1 ? " (they share one vertex: a folded fan)" : "");
+      return out.str();
+    });
+  }
+}
+
+// 3. Domain. Vertices on ∂S are placed there by a projection onto the faces, which rounds to
+// a few ulp of the coordinates; a vertex farther outside than domain_tolerance_ratio·(1 +
+// ‖x‖∞) was not put on ∂S at all.
+void check_domain(const MeshView& view, const GeometricInput& geometry,
+                  const ValidationOptions& options, DefectRecorder& recorder,
+                  MeshValidation& result) {
+  const Domain& domain = geometry.domain;
+  if (domain.is_unbounded()) {
+    return;
+  }
+  const auto points = view.mesh.points();
+  for (int v = 0; v < view.mesh.vertex_count(); ++v) {
+    if (!view.is_finite_vertex[v]) {
+      continue;  // reported as a non-finite coordinate
+    }
+    const auto x = points.col(v);
+    const double tolerance = options.domain_tolerance_ratio * (1.0 + x.lpNorm<Eigen::Infinity>());
+    if (domain.contains(x, tolerance)) {
+      continue;
+    }
+    result.vertices_outside_domain.push_back(v);
+    recorder.record(MeshDefectKind::VertexOutsideDomain, [&] {
+      const BoundaryDistance nearest = domain.boundary_distance(x);
+      const HalfSpace& face = domain.half_spaces()[nearest.nearest_half_space];
+      std::ostringstream out;
+      out.precision(3);
+      out << "vertex " << v << " at " << describe_point(x) << " is " << -nearest.signed_distance
+          << " outside the domain ("
+          << (face.label.empty() ? "half-space " + std::to_string(nearest.nearest_half_space)
+                                 : face.label)
+          << ")";
+      return out.str();
+    });
+  }
+}
+
+}  // namespace tessera::detail

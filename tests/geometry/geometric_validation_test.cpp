@@ -1,0 +1,438 @@
+// SPDX-License-Identifier: MIT
+// validate() with a problem and a domain: orientation along M, overlaps on M, vertices in S
+// (docs/validation.md), on planted defects and on meshes the methods make.
+#include "tessera/geometry/mesh_validation.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "geometry/mesh_examples.h"
+#include "geometry/validation_expectations.h"
+#include "support/front_run.h"
+#include "tessera/core/describe.h"
+#include "tessera/core/error.h"
+#include "tessera/geometry/mesh_topology.h"
+#include "tessera/methods/atlas/atlas.h"
+#include "tessera/problems/examples.h"
+
+namespace tessera {
+namespace {
+
+// --- Geometric validity: orientation along M, overlaps on M, vertices in S ------------------
+
+// Options that keep every example, so that a test can look for the one it planted.
+ValidationOptions all_examples() {
+  ValidationOptions options;
+  options.max_examples = 100000;
+  return options;
+}
+
+bool contains(const std::vector<int>& list, int value) {
+  return std::find(list.begin(), list.end(), value) != list.end();
+}
+
+Eigen::VectorXd centroid_of(const TriangleMesh& mesh, int t) {
+  const Triangle& tri = mesh.triangle(t);
+  return (mesh.point(tri[0]) + mesh.point(tri[1]) + mesh.point(tri[2])) / 3.0;
+}
+
+// No geometric defect (the combinatorial ones are the method tests' business, but a good mesh
+// has none either).
+void expect_geometrically_valid(const MeshValidation& validation) {
+  EXPECT_TRUE(validation.is_geometry_checked);
+  EXPECT_EQ(validation.flipped_triangle_count, 0) << validation.report();
+  EXPECT_EQ(validation.overlapping_pair_count, 0) << validation.report();
+  EXPECT_EQ(validation.vertex_outside_domain_count, 0) << validation.report();
+  EXPECT_TRUE(validation.flipped_triangles.empty());
+  EXPECT_TRUE(validation.overlapping_triangle_pairs.empty());
+  EXPECT_TRUE(validation.vertices_outside_domain.empty());
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+}
+
+TEST(GeometricValidation, OnlyTheOverloadWithAProblemChecksGeometry) {
+  const TriangleMesh mesh = examples::icosphere(2);
+  EXPECT_FALSE(validate(mesh).is_geometry_checked);
+  EXPECT_NE(validate(mesh).report().find("geometry: not checked"), std::string::npos);
+  const MeshValidation validation = validate(mesh, Sphere(1.0), Domain());
+  expect_geometrically_valid(validation);
+  EXPECT_EQ(validation.unoriented_triangle_count, 0);
+}
+
+// The octahedron is as coarse as a mesh of the sphere gets (triangles at 55° to the sphere at
+// their corners); projected onto one face's plane, the faces that share a vertex with it
+// overlap it, but they cover other parts of M: no overlap. (No flip either, though the
+// orientation transport is at its limit here: see docs/validation.md.)
+TEST(GeometricValidation, OctahedronAndIcospheresAreValidMeshesOfTheSphere) {
+  expect_geometrically_valid(validate(examples::octahedron(), Sphere(1.0), Domain()));
+  for (int subdivisions : {0, 1, 3}) {
+    expect_geometrically_valid(validate(examples::icosphere(subdivisions), Sphere(1.0), Domain()));
+  }
+}
+
+// (a) One vertex moved across the opposite edge of one of its triangles, then back onto M: the
+// combinatorics are unchanged, the triangle is reversed along M.
+TEST(GeometricValidation, FindsATriangleFlippedByMovingAVertexAcrossItsOppositeEdge) {
+  TriangleMesh mesh = examples::icosphere(3);
+  const int t = 100;
+  const Triangle tri = mesh.triangle(t);
+  const Eigen::VectorXd moved =
+      (mesh.point(tri[1]) + mesh.point(tri[2]) - mesh.point(tri[0])).normalized();
+  mesh.mutable_point(tri[0]) = moved;
+  ASSERT_TRUE(validate(mesh).is_valid()) << "the combinatorics must stay valid";
+
+  const MeshValidation validation = validate(mesh, Sphere(1.0), Domain(), all_examples());
+  EXPECT_FALSE(validation.is_valid());
+  EXPECT_TRUE(contains(validation.flipped_triangles, t)) << validation.report();
+  EXPECT_EQ(validation.count(MeshDefectKind::FlippedTriangle),
+            static_cast<int>(validation.flipped_triangles.size()));
+  // Only triangles of the moved vertex's fan, and the triangle across t's far edge (which t
+  // now folds over: of a pair folded against each other once, either may be the flipped one,
+  // so both are reported), can be affected.
+  const MeshTopology topology(mesh);
+  std::vector<int> near(topology.vertex_triangles(tri[0]).begin(),
+                        topology.vertex_triangles(tri[0]).end());
+  for (int s : topology.edge_triangles(topology.find_edge(tri[1], tri[2]))) {
+    near.push_back(s);
+  }
+  for (int flipped : validation.flipped_triangles) {
+    EXPECT_TRUE(contains(near, flipped)) << "triangle " << flipped << " is not at the moved vertex";
+  }
+  std::ostringstream name;
+  name << "triangle " << t << " (vertices " << tri[0] << ", " << tri[1] << ", " << tri[2]
+       << ") near " << describe_point(centroid_of(mesh, t)) << ": folded over its neighbour";
+  expect_defect_named(validation, MeshDefectKind::FlippedTriangle, name.str());
+}
+
+// The same in R^4: the flat torus, whose tangent bases are propagated over the whole mesh.
+TEST(GeometricValidation, FindsAFlippedTriangleInR4) {
+  auto run = testing::run_front("flat_torus");
+  ASSERT_TRUE(run.result.summary.is_complete()) << run.result.summary.message;
+  TriangleMesh& mesh = run.result.mesh;
+  expect_geometrically_valid(validate(mesh, *run.setup.problem, run.setup.domain));
+  const int t = mesh.triangle_count() / 2;
+  const Triangle tri = mesh.triangle(t);
+  Eigen::VectorXd moved = mesh.point(tri[1]) + mesh.point(tri[2]) - mesh.point(tri[0]);
+  moved.head(2).normalize();  // back onto x1² + x2² = 1, x3² + x4² = 1
+  moved.tail(2).normalize();
+  mesh.mutable_point(tri[0]) = moved;
+  const MeshValidation validation =
+      validate(mesh, *run.setup.problem, run.setup.domain, all_examples());
+  EXPECT_TRUE(contains(validation.flipped_triangles, t)) << validation.report();
+  expect_defect_named(validation, MeshDefectKind::FlippedTriangle,
+                      "near " + describe_point(centroid_of(mesh, t)) + ": folded over its neighbour");
+}
+
+// The same through the sparse linearisation (bordered LU, oriented by the BFS parent's basis).
+TEST(GeometricValidation, FindsAFlippedTriangleWithASparseJacobian) {
+  class SparseSphere final : public ImplicitProblem {
+   public:
+    int ambient_dimension() const override { return 3; }
+    void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                  Eigen::Ref<Eigen::VectorXd> F) const override {
+      sphere_.evaluate(x, F);
+    }
+    void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                  Eigen::Ref<Eigen::MatrixXd> J) const override {
+      sphere_.jacobian(x, J);
+    }
+    bool has_sparse_jacobian() const override { return true; }
+    void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                         Eigen::SparseMatrix<double>& J) const override {
+      Eigen::MatrixXd dense(1, 3);
+      sphere_.jacobian(x, dense);
+      J = dense.sparseView();
+    }
+
+   private:
+    Sphere sphere_{1.0};
+  };
+  TriangleMesh mesh = examples::icosphere(3);
+  expect_geometrically_valid(validate(mesh, SparseSphere(), Domain()));
+  const int t = 300;
+  const Triangle tri = mesh.triangle(t);
+  mesh.mutable_point(tri[0]) =
+      (mesh.point(tri[1]) + mesh.point(tri[2]) - mesh.point(tri[0])).normalized();
+  const MeshValidation validation = validate(mesh, SparseSphere(), Domain(), all_examples());
+  EXPECT_TRUE(contains(validation.flipped_triangles, t)) << validation.report();
+  EXPECT_EQ(validation.flipped_triangles, validate(mesh, Sphere(1.0), Domain()).flipped_triangles)
+      << "dense and sparse linearisations agree";
+}
+
+// A triangle folded up to stand across M: neither orientation, flagged as standing across.
+TEST(GeometricValidation, FindsATriangleStandingAcrossM) {
+  TriangleMesh mesh = examples::icosphere(3);
+  const int t = 200;
+  const Triangle tri = mesh.triangle(t);
+  // Move tri[0] radially outward so far that the triangle's plane contains the normal nearly.
+  const Eigen::VectorXd midpoint = 0.5 * (mesh.point(tri[1]) + mesh.point(tri[2]));
+  mesh.mutable_point(tri[0]) = midpoint + 0.5 * midpoint.normalized();
+  const MeshValidation validation = validate(mesh, Sphere(1.0), Domain(), all_examples());
+  EXPECT_TRUE(contains(validation.flipped_triangles, t)) << validation.report();
+  expect_defect_named(validation, MeshDefectKind::FlippedTriangle, "stands across M");
+}
+
+// A copy of a patch of triangles rotated slightly about an axis (so it stays on the sphere),
+// added with new vertices: combinatorially disjoint from the original, geometrically on top.
+TEST(GeometricValidation, FindsADoubledPatch) {
+  const TriangleMesh sphere = examples::icosphere(3);
+  const MeshTopology topology(sphere);
+  const int center = 7;
+  std::vector<int> patch(topology.vertex_triangles(center).begin(),
+                         topology.vertex_triangles(center).end());
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(0.01, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  TriangleMesh mesh = sphere;
+  std::map<int, int> copy_of;
+  for (int t : patch) {
+    for (int v : sphere.triangle(t)) {
+      if (copy_of.count(v) == 0) {
+        copy_of[v] = mesh.add_vertex(rotation * Eigen::Vector3d(sphere.point(v)));
+      }
+    }
+  }
+  for (int t : patch) {
+    const Triangle& tri = sphere.triangle(t);
+    mesh.add_triangle(copy_of[tri[0]], copy_of[tri[1]], copy_of[tri[2]]);
+  }
+  ASSERT_TRUE(validate(mesh).is_valid()) << "the copy is a disjoint, valid component";
+
+  const MeshValidation validation = validate(mesh, Sphere(1.0), Domain(), all_examples());
+  EXPECT_EQ(validation.flipped_triangle_count, 0) << validation.report();
+  EXPECT_GE(validation.overlapping_pair_count, static_cast<int>(patch.size()))
+      << validation.report();
+  EXPECT_EQ(validation.count(MeshDefectKind::OverlappingTriangles),
+            static_cast<int>(validation.overlapping_triangle_pairs.size()));
+  for (const auto& [s, t] : validation.overlapping_triangle_pairs) {
+    EXPECT_LT(s, sphere.triangle_count()) << "an original triangle";
+    EXPECT_GE(t, sphere.triangle_count()) << "and a copied one";
+  }
+  expect_defect_named(validation, MeshDefectKind::OverlappingTriangles, "both cover M near (");
+}
+
+// A fan that winds twice around its vertex: every triangle is oriented along M, yet the fan
+// covers M twice. Triangles sharing only that vertex overlap.
+TEST(GeometricValidation, FindsAFanWindingTwiceAroundItsVertex) {
+  const int k = 9;  // triangles; each spans 80°, so the fan turns 720° (no vertex repeats)
+  Eigen::MatrixXd points(3, k + 1);
+  points.col(0) << 0, 0, 1;
+  for (int i = 0; i < k; ++i) {
+    const double angle = 4 * std::numbers::pi * i / k;
+    points.col(i + 1) =
+        Eigen::Vector3d(0.2 * std::cos(angle), 0.2 * std::sin(angle), 1.0).normalized();
+  }
+  std::vector<Triangle> triangles;
+  for (int i = 0; i < k; ++i) {
+    triangles.push_back({0, 1 + i, 1 + (i + 1) % k});
+  }
+  const TriangleMesh mesh(points, triangles);
+  const MeshValidation validation = validate(mesh, Sphere(1.0), Domain(), all_examples());
+  EXPECT_EQ(validation.flipped_triangle_count, 0) << validation.report();
+  EXPECT_GT(validation.overlapping_pair_count, 0) << validation.report();
+  expect_defect_named(validation, MeshDefectKind::OverlappingTriangles, "folded fan");
+}
+
+// (c) The octahedron's vertices lie on the faces of the box [-1, 1]³; one moved 1e-6 outside.
+TEST(GeometricValidation, FindsAVertexOneMillionthOutsideABox) {
+  const Domain box = Domain::box(Eigen::Vector3d::Constant(-1), Eigen::Vector3d::Constant(1));
+  TriangleMesh mesh = examples::octahedron();
+  expect_geometrically_valid(validate(mesh, Sphere(1.0), box));
+  mesh.mutable_point(4)(2) = 1.0 + 1e-6;  // vertex 4 is +e_z
+  const MeshValidation validation = validate(mesh, Sphere(1.0), box);
+  EXPECT_EQ(validation.vertex_outside_domain_count, 1);
+  EXPECT_EQ(validation.vertices_outside_domain, std::vector<int>{4});
+  expect_defect_named(validation, MeshDefectKind::VertexOutsideDomain,
+                      "vertex 4 at (0, 0, 1) is 1e-06 outside the domain (");
+}
+
+// The case: an atlas corner vertex 3.9e-7 outside its box must be reported; a vertex
+// within rounding of a face must not.
+TEST(GeometricValidation, FindsABoundaryVertexOfAClippedSphereMovedOutside) {
+  auto setup = make_catalogue_problem("sphere");
+  setup.domain = Domain::box(Eigen::Vector3d::Constant(-0.7), Eigen::Vector3d::Constant(0.7));
+  setup.start = Eigen::Vector3d(0.5, 0.5, 0.5);
+  FrontOptions options;
+  options.step = 0.1;
+  auto result = triangulate_by_front(*setup.problem, setup.start, setup.domain, options);
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  TriangleMesh& mesh = result.mesh;
+  expect_geometrically_valid(validate(mesh, *setup.problem, setup.domain));
+  int on_face = -1;
+  for (int v = 0; v < mesh.vertex_count() && on_face < 0; ++v) {
+    if (std::abs(mesh.point(v)(0) - 0.7) < 1e-12) {
+      on_face = v;
+    }
+  }
+  ASSERT_GE(on_face, 0) << "the sphere of radius 1 crosses the face x = 0.7";
+  mesh.mutable_point(on_face)(0) = 0.7 * (1 + 4 * std::numeric_limits<double>::epsilon());
+  EXPECT_EQ(validate(mesh, *setup.problem, setup.domain).vertex_outside_domain_count, 0)
+      << "a few ulp outside is rounding";
+  mesh.mutable_point(on_face)(0) = 0.7 + 3.9e-7;
+  const MeshValidation validation = validate(mesh, *setup.problem, setup.domain);
+  EXPECT_EQ(validation.vertices_outside_domain, std::vector<int>{on_face}) << validation.report();
+  expect_defect_named(validation, MeshDefectKind::VertexOutsideDomain, "3.9e-07 outside");
+}
+
+// (d) Good meshes of several surfaces: no geometric defect (no false positives).
+TEST(GeometricValidation, FrontMeshesOfSphereTorusAndFlatTorusAreGeometricallyValid) {
+  for (const std::string problem : {"sphere", "torus", "flat_torus", "sphere_cut"}) {
+    SCOPED_TRACE(problem);
+    auto run = testing::run_front(problem);
+    ASSERT_TRUE(run.result.summary.is_complete()) << run.result.summary.message;
+    const MeshValidation validation =
+        validate(run.result.mesh, *run.setup.problem, run.setup.domain);
+    expect_geometrically_valid(validation);
+    EXPECT_EQ(validation.unoriented_triangle_count, 0);
+  }
+}
+
+TEST(GeometricValidation, AtlasMeshOfTheTroughIsGeometricallyValid) {
+  // The trough's narrow gaps (width O(ε), ε = 5e-5) need charts far smaller than elsewhere.
+  auto setup = make_catalogue_problem("trough");
+  AtlasOptions options;
+  options.tolerance = 1e-4;
+  const CoveringResult result = cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  expect_geometrically_valid(validate(result.mesh, *setup.problem, setup.domain));
+}
+
+// The catalogue's torus about the x axis (Hohmann's form), meshed on an m×k grid in its angles:
+// vertices exactly on M, outward orientation.
+TriangleMesh torus_about_x_axis(double R, double r, int m, int k) {
+  Eigen::MatrixXd points(3, m * k);
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < k; ++j) {
+      const double u = 2 * std::numbers::pi * i / m;
+      const double v = 2 * std::numbers::pi * j / k;
+      const Eigen::Vector3d radial(0, std::cos(u), std::sin(u));
+      points.col(examples::grid_index(i, j, k)) =
+          (R + r * std::cos(v)) * radial + r * std::sin(v) * Eigen::Vector3d::UnitX();
+    }
+  }
+  std::vector<Triangle> triangles;
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < k; ++j) {
+      const int a = examples::grid_index(i, j, k);
+      const int b = examples::grid_index((i + 1) % m, j, k);
+      const int c = examples::grid_index((i + 1) % m, (j + 1) % k, k);
+      const int d = examples::grid_index(i, (j + 1) % k, k);
+      triangles.push_back({a, b, c});
+      triangles.push_back({a, c, d});
+    }
+  }
+  return TriangleMesh(points, triangles);
+}
+
+// A thin tube: opposite sides 0.04 apart, edges along the tube 0.05 long. Each triangle lies
+// over one on the far side, which projects onto it almost entirely; they are different sheets.
+TEST(GeometricValidation, OppositeSidesOfAThinTubeDoNotOverlap) {
+  const Torus tube(1.0, 0.02);
+  const TriangleMesh mesh = torus_about_x_axis(1.0, 0.02, 126, 12);
+  const MeshValidation validation = validate(mesh, tube, Domain());
+  expect_geometrically_valid(validation);
+  EXPECT_EQ(validation.genus, 1);
+  // The test on M is what keeps the sides apart: without it (a ratio no sheet can exceed) the
+  // far side's triangles would count as overlaps.
+  ValidationOptions blind;
+  blind.overlap_same_point_ratio = 10.0;
+  EXPECT_GT(validate(mesh, tube, Domain(), blind).overlapping_pair_count,
+            mesh.triangle_count() / 4);
+}
+
+// Two concentric spheres 1e-3 apart, far less than an edge (0.035) but more than the chord
+// error (1.5e-4): the mesh covers two sheets of M, not one twice.
+TEST(GeometricValidation, ConcentricSpheresCloserThanAnEdgeDoNotOverlap) {
+  class Shell final : public ImplicitProblem {  // (|x|² − 1)(|x|² − r²) = 0
+   public:
+    int ambient_dimension() const override { return 3; }
+    void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                  Eigen::Ref<Eigen::VectorXd> F) const override {
+      F(0) = (x.squaredNorm() - 1.0) * (x.squaredNorm() - r * r);
+    }
+    void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                  Eigen::Ref<Eigen::MatrixXd> J) const override {
+      J.row(0) = 2.0 * x.transpose() * ((x.squaredNorm() - r * r) + (x.squaredNorm() - 1.0));
+    }
+    double r = 1.001;
+  };
+  const TriangleMesh inner = examples::icosphere(5);
+  TriangleMesh outer = inner;
+  for (int v = 0; v < outer.vertex_count(); ++v) {
+    outer.mutable_point(v) *= 1.001;
+  }
+  const TriangleMesh shell = examples::disjoint_union(inner, outer);
+  const MeshValidation validation = validate(shell, Shell(), Domain());
+  expect_geometrically_valid(validation);
+  EXPECT_EQ(validation.component_count, 2);
+  ValidationOptions blind;  // as for the thin tube: the sheets are told apart on M
+  blind.overlap_same_point_ratio = 10.0;
+  EXPECT_GE(validate(shell, Shell(), Domain(), blind).overlapping_pair_count,
+            inner.triangle_count());
+}
+
+// (e) Orientation is judged per component: a reversed component is M's other orientation.
+TEST(GeometricValidation, AComponentWithReversedOrientationIsValid) {
+  TriangleMesh sphere = examples::icosphere(3);
+  std::vector<Triangle> reversed;
+  for (Triangle tri : sphere.triangles()) {
+    reversed.push_back({tri[0], tri[2], tri[1]});
+  }
+  TriangleMesh inside_out(sphere.points(), reversed);
+  expect_geometrically_valid(validate(inside_out, Sphere(1.0), Domain()));
+
+  // Two caps (z > 0.3 and z < -0.3) as two components, one reversed: each is oriented alike.
+  std::vector<Triangle> caps;
+  for (int t = 0; t < sphere.triangle_count(); ++t) {
+    const double z = centroid_of(sphere, t)(2);
+    if (z > 0.3) {
+      caps.push_back(sphere.triangle(t));
+    } else if (z < -0.3) {
+      caps.push_back(reversed[t]);
+    }
+  }
+  const MeshValidation validation =
+      validate(TriangleMesh(sphere.points(), caps), Sphere(1.0), Domain());
+  EXPECT_EQ(validation.component_count, 2);
+  EXPECT_EQ(validation.flipped_triangle_count, 0) << validation.report();
+  EXPECT_EQ(validation.overlapping_pair_count, 0) << validation.report();
+}
+
+TEST(GeometricValidation, ACombinatoriallyReversedTriangleIsNotAFoldAlongM) {
+  // A triangle whose vertex order alone is reversed still covers its own part of M: it is
+  // reported as an orientation inconsistency of the combinatorics, not as a geometric fold
+  // (the fold test compares neighbours with the traversal directions they have).
+  TriangleMesh mesh = examples::icosphere(2);
+  std::vector<Triangle> triangles = mesh.triangles();
+  std::swap(triangles[5][1], triangles[5][2]);
+  mesh.set_triangles(triangles);
+  const MeshValidation validation = validate(mesh, Sphere(1.0), Domain());
+  EXPECT_TRUE(validation.flipped_triangles.empty()) << validation.report();
+  EXPECT_EQ(validation.overlapping_pair_count, 0) << validation.report();
+  EXPECT_GT(validation.inconsistent_orientation_count, 0);
+}
+
+TEST(GeometricValidation, RejectsBadOptionsAndDimensions) {
+  const TriangleMesh mesh = examples::icosphere(1);
+  ValidationOptions options;
+  options.overlap_area_ratio = -1;
+  EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
+  options = {};
+  options.min_tangent_cosine = 2;
+  EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
+  auto flat_torus = make_catalogue_problem("flat_torus");
+  EXPECT_THROW(validate(mesh, *flat_torus.problem, Domain()), InvalidArgument);
+  const Domain box4 = Domain::box(Eigen::Vector4d::Constant(-1), Eigen::Vector4d::Constant(1));
+  EXPECT_THROW(validate(mesh, Sphere(1.0), box4), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace tessera
