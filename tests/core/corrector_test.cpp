@@ -10,6 +10,7 @@
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
+#include "tessera/problems/catalogue.h"
 
 namespace {
 
@@ -147,6 +148,34 @@ TEST(ChordCorrector, ProjectsOrthogonallyToTheFrozenTangentPlane) {
   EXPECT_LT(F.norm(), 1e-9);
   EXPECT_LT((U.transpose() * (x - predicted)).norm(), 1e-14);  // eq. (2.5)
   EXPECT_GT(summary.contraction, 0.0);  // chord: linear convergence, θ measured
+}
+
+// The bound must not lie below the distance to the point where the chord lands. On the CSTR
+// surface, from one end of a long edge (a stress case), the chord's first ratio is 0.08 and its
+// second 2.4: a bound trusted after one ratio claimed 0.0199 for a midpoint the chord takes to
+// 0.0266 (and Gauss–Newton to 0.0273), so refinement kept an edge 1.4× over the tolerance.
+TEST(ChordDistanceBound, IsNeverBelowWhereTheChordLands) {
+  const tessera::ProblemSetup cstr = tessera::make_catalogue_problem("cstr");
+  const tessera::ImplicitProblem& problem = *cstr.problem;
+  Eigen::VectorXd a(4), b(4);
+  a << 0.987633, 7.82101, 0.0320418, 11.8784;
+  b << 0.998287, 7.89831, 0.216434, 11.8678;
+  tessera::Linearization workspace;
+  tessera::CorrectorOptions exact;
+  exact.tolerance = 1e-13;
+  exact.max_iterations = 80;
+  exact.max_contraction = 3.0;  // follow the chord past its overshoot to where it lands
+  ASSERT_TRUE(tessera::project_gauss_newton(problem, a, exact, workspace).is_success());
+  ASSERT_TRUE(tessera::project_gauss_newton(problem, b, exact, workspace).is_success());
+  const Eigen::VectorXd midpoint = 0.5 * (a + b);
+  for (const Eigen::VectorXd& end : {a, b}) {
+    tessera::Linearization frozen;
+    ASSERT_TRUE(frozen.factor(problem, end));
+    Eigen::VectorXd landed = midpoint;
+    ASSERT_TRUE(tessera::project_chord(problem, frozen, landed, exact).is_success());
+    const double bound = tessera::chord_distance_bound(problem, frozen, midpoint, 4e-4, {});
+    EXPECT_GE(bound, (landed - midpoint).norm() - 4e-4);
+  }
 }
 
 TEST(Corrector, NanResidualIsReportedNotThrown) {

@@ -44,7 +44,8 @@ PerVertex per_vertex(const tessera::CoveringSummary& summary) {
 // The target is 2 factorisations and 4 Jacobians per vertex of the final mesh. The atlas
 // meets it on bvp (1.95 and 2.9 measured), the front nearly (2.13 and 3.04); the bounds hold
 // that, so that a change that spends more fails here. Evaluations of F (the chord's steps)
-// are bounded too: 34 per vertex for the atlas, 6 for the front.
+// are bounded too: 40 per vertex for the atlas (each distance bound takes at least three chord
+// steps: θ is trusted from two ratios), 6 for the front.
 TEST(LargeN, AtlasWorkPerVertexIsBounded) {
   const auto setup = tessera::make_catalogue_problem("bvp:points=60");
   const auto result = cover(setup, "atlas");
@@ -52,7 +53,7 @@ TEST(LargeN, AtlasWorkPerVertexIsBounded) {
   const PerVertex work = per_vertex(result.summary);
   EXPECT_LE(work.factorisations, 2.0);
   EXPECT_LE(work.jacobians, 3.0);
-  EXPECT_LE(result.summary.function_evaluations, 36.0 * result.summary.vertex_count);
+  EXPECT_LE(result.summary.function_evaluations, 42.0 * result.summary.vertex_count);
   // The summary splits the work by step, and the steps add up to the whole.
   tessera::WorkCounts total;
   for (const auto& phase : result.summary.work_by_phase) {

@@ -156,7 +156,11 @@ double chord_distance_bound(const ImplicitProblem& problem, const Linearization&
         return kInfinity;
       }
       const double remainder = theta / (1.0 - theta) * correction;
-      if (remainder <= accuracy) {
+      // θ is trusted from two ratios (three steps), not one: a first step that overshoots
+      // along a curved M can make the first ratio small and the second exceed 1 (cstr, a
+      // chord from an edge's end: 0.018, 0.0016, 0.0037, ... landing 0.027 away, where one
+      // ratio promised 0.0199).
+      if (k >= 2 && remainder <= accuracy) {
         return displacement + remainder;
       }
     } else if (correction == 0.0) {

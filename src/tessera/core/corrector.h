@@ -67,9 +67,9 @@ CorrectorSummary project_chord(const ImplicitProblem& problem, const Linearizati
 /// An upper bound on the distance from x to M, good to `accuracy`, by as few chord steps as
 /// that needs. The chord from `frozen` converges linearly with rate θ, so after step k the
 /// point it lands on lies within θ/(1 − θ)·‖dx_k‖ of x_k (θ the largest ratio of successive
-/// corrections seen): ‖x_k − x‖ plus that remainder bounds ‖x* − x‖ ≥ dist(x, M). At least two
-/// steps are taken (θ needs two). A refinement that only asks "nearer than the tolerance?"
-/// stops after two or three steps instead of the six or seven that solver tolerance needs.
+/// corrections seen): ‖x_k − x‖ plus that remainder bounds ‖x* − x‖ ≥ dist(x, M). At least three
+/// steps are taken (θ is trusted from two ratios). A refinement that only asks "nearer than the
+/// tolerance?" stops after three or four steps instead of the six or seven that solver tolerance needs.
 /// Returns +∞ where the chord does not contract (θ above 0.8 and above options.max_contraction)
 /// or does not settle within options.max_iterations: the caller measures another way.
 double chord_distance_bound(const ImplicitProblem& problem, const Linearization& frozen,

@@ -150,7 +150,9 @@ MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& optio
 /// of `problem` and S = `domain` (docs/validation.md):
 ///  - FlippedTriangle: its orientation, measured in M's tangent planes at its corners and made
 ///    consistent over each connected piece of the mesh, disagrees with the piece's majority
-///    (weighted by area), or its plane stands across M (options.min_tangent_cosine). A whole
+///    (weighted by area), it is folded over a neighbour at one corner definitely (both planes
+///    within 72° of M's tangent plane there, facing opposite ways), or its plane stands across
+///    M (options.min_tangent_cosine). A whole
 ///    component with reversed orientation is valid. Degenerate triangles are not judged.
 ///  - OverlappingTriangles: two triangles that share no edge (they may share a vertex) cover
 ///    the same part of M; close sheets of M (the trough, thin tubes) are not overlaps.

@@ -150,7 +150,12 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
   auto corner_of = [&](int t, int v) {
     return triangles[t][0] == v ? 0 : (triangles[t][1] == v ? 1 : 2);
   };
-  // Folds across interior manifold edges.
+  // Folds across interior manifold edges: folded at both ends of the edge, or at one end
+  // definitely, both planes within 72° of the tangent plane there and facing opposite ways. The
+  // second case is a triangle across which M's normal turns by more than 90° (a coarse
+  // tolerance where two sheets of the trough nearly touch): at its far corner it faces away
+  // from M while its near corners still agree with its neighbours.
+  constexpr double kDefiniteCosine = 0.3;
   std::vector<int> folds(count, 0);
   std::vector<int> interior_edges(count, 0);
   std::vector<std::pair<int, int>> folded_pairs;
@@ -165,6 +170,7 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
     const bool opposite = topology.is_orientation_consistent(e);
     int votes = 0;
     int judged = 0;
+    bool definite = false;
     for (int v : topology.edge(e)) {
       const double sa = corner_cosine[a][corner_of(a, v)];
       const double sb = corner_cosine[b][corner_of(b, v)];
@@ -172,9 +178,11 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
         continue;
       }
       ++judged;
-      votes += (opposite ? sa * sb < 0 : sa * sb > 0) ? 1 : 0;
+      const bool vote = opposite ? sa * sb < 0 : sa * sb > 0;
+      votes += vote ? 1 : 0;
+      definite = definite || (vote && std::min(std::abs(sa), std::abs(sb)) >= kDefiniteCosine);
     }
-    if (judged > 0 && votes == judged) {
+    if (judged > 0 && (votes == judged || definite)) {
       ++folds[a];
       ++folds[b];
       folded_pairs.emplace_back(a, b);

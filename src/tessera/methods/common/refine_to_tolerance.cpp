@@ -126,6 +126,21 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     }
   }
   Linearization workspace;
+  // Gauss–Newton, and where it contracts too slowly for the method's corrector (θ above its
+  // max_contraction, typically 1/2), once more with θ up to 0.9, as the report measures: a
+  // midpoint far from a strongly curved M (cstr, an edge 0.2 long) is often first overshot,
+  // and a midpoint that can be neither measured nor projected leaves its triangle unrefined.
+  CorrectorOptions patient = options.corrector;
+  patient.max_contraction = std::max(patient.max_contraction, 0.9);
+  patient.max_iterations = std::max(patient.max_iterations, 50);
+  const auto project_patiently = [&](Eigen::VectorXd& x) {
+    const Eigen::VectorXd start = x;
+    if (project_gauss_newton(problem, x, options.corrector, workspace).is_success()) {
+      return true;
+    }
+    x = start;
+    return project_gauss_newton(problem, x, patient, workspace).is_success();
+  };
   const double threshold = options.tolerance * options.sample_safety;
   // The samples of a triangle are projected with the chord iteration frozen at one of its
   // vertices, its anchor, which serves all triangles around it (a factorisation for every
@@ -170,7 +185,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       }
     }
     Eigen::VectorXd x = point;
-    if (!project_gauss_newton(problem, x, options.corrector, workspace).is_success()) {
+    if (!project_patiently(x)) {
       return std::numeric_limits<double>::infinity();
     }
     return (x - point).norm();
@@ -231,6 +246,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     // 1. Which edges to split: the longest edge of every candidate that is too far from M.
     std::unordered_map<std::uint64_t, int> midpoint_of;  // edge → new vertex
     std::vector<std::pair<int, int>> to_split;
+    std::vector<std::uint8_t> is_far(mesh.triangle_count(), 0);
     for (const auto& [anchor, t] : anchored(mesh, candidates, rings)) {
       const Triangle tri = mesh.triangle(t);
       const double worst = sample(anchor, t);
@@ -238,6 +254,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
         summary.max_distance = std::max(summary.max_distance, worst);
         continue;
       }
+      is_far[t] = 1;
       int longest = 0;
       double length = -1.0;
       for (int e = 0; e < 3; ++e) {
@@ -284,9 +301,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
                     (x - start).norm() <= length;
         if (!projected) {
           x = start;
-          projected =
-              project_gauss_newton(problem, x, options.corrector, workspace).is_success() &&
-              (x - start).norm() <= length;
+          projected = project_patiently(x) && (x - start).norm() <= length;
         }
       } else {
         projected = faces.size() <= 2 &&
@@ -307,7 +322,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     std::vector<Triangle> result;
     result.reserve(triangles.size() + 3 * to_split.size());
     candidates.clear();
-    for (const Triangle& tri : triangles) {
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      const Triangle& tri = triangles[t];
       int mid[3];
       int count = 0;
       for (int e = 0; e < 3; ++e) {
@@ -317,6 +333,12 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       }
       if (count == 0) {
         result.push_back(tri);
+        if (is_far[t]) {
+          // Too far, but its edge could not be split this round (the midpoint's projection
+          // failed, or the edge was split for a neighbour whose subdivision did not reach
+          // it): it stays a candidate, so that it is split later or counted as remaining.
+          candidates.push_back(static_cast<int>(result.size()) - 1);
+        }
         continue;
       }
       const std::size_t first = result.size();
@@ -367,8 +389,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
           }
         }
       }
-      for (std::size_t t = first; t < result.size(); ++t) {
-        candidates.push_back(static_cast<int>(t));
+      for (std::size_t k = first; k < result.size(); ++k) {
+        candidates.push_back(static_cast<int>(k));
       }
     }
     mesh.set_triangles(std::move(result));
