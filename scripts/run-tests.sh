@@ -1,7 +1,14 @@
 #!/usr/bin/env bash
-# Builds tessera with its tests and runs the whole suite with ctest.
+# Builds tessera with its tests and runs the whole suite with ctest, then the Python tests
+# (python/tests, pytest) against the module in build/python.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh -DTESSERA_BUILD_TESTS=ON
-cd build
-ctest --output-on-failure --parallel "$(nproc)" --timeout 900
+(cd build && ctest --output-on-failure --parallel "$(nproc)" --timeout 900)
+# Debian's interpreter, for which the module is built: python3 on PATH may be another one.
+if [ -d build/python/tessera ]; then
+  PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest python/tests -q
+else
+  echo "tessera: the Python module was not built (no python3-dev or python3-pybind11)" >&2
+  exit 1
+fi

@@ -37,6 +37,7 @@ struct CoveringOptions {
   /// projections where it uses the shared corrector).
   CorrectorOptions corrector;
   ProgressCallback progress;  ///< called every ~1000 vertices when set
+  StopRequest stop_requested;  ///< polled about once per vertex when set (see StopRequest)
 
   /// \throw InvalidArgument naming the first shared option that is out of range; `owner` names
   ///        the method's options struct in the message, e.g. "AtlasOptions".

@@ -24,6 +24,7 @@ void apply_shared_settings(const MethodSettings& settings, CoveringOptions& opti
     options.max_start_distance = settings.max_start_distance;
   }
   options.progress = settings.progress;
+  options.stop_requested = settings.stop_requested;
 }
 
 // Defaults tied to the problem's suggested step h, the one length scale every catalogue entry

@@ -23,6 +23,7 @@ struct MethodSettings {
   int max_vertices = 2'000'000;
   double max_start_distance = 0.0;  ///< in ambient units; 0: the method's default
   ProgressCallback progress;
+  StopRequest stop_requested;  ///< see StopRequest; empty: the run is never interrupted
   // atlas
   std::string atlas_placement = "disk";
   // front

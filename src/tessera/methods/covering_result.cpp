@@ -17,6 +17,8 @@ const char* to_string(CoveringTermination termination) {
       return "start point failed";
     case CoveringTermination::TriangulationFailed:
       return "triangulation failed";
+    case CoveringTermination::Interrupted:
+      return "interrupted";
   }
   return "unknown";
 }

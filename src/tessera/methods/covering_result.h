@@ -21,6 +21,7 @@ enum class CoveringTermination {
   ProjectionFailed,     ///< the corrector failed even at the smallest step
   StartFailed,          ///< the start point could not be projected onto M inside the domain
   TriangulationFailed,  ///< the charts were computed but no valid mesh could be made of them
+  Interrupted,          ///< stopped because options.stop_requested said so; valid but partial
 };
 
 const char* to_string(CoveringTermination termination);
@@ -94,5 +95,9 @@ struct CoveringProgress {
   int front_size = 0;
 };
 using ProgressCallback = std::function<void(const CoveringProgress&)>;
+/// Polled about once per vertex (or chart) by every method; returning true stops the run as
+/// CoveringTermination::Interrupted with the valid partial mesh (the bindings' Ctrl-C). It must
+/// be cheap: the bindings' version reads an atomic flag that a signal handler sets.
+using StopRequest = std::function<bool()>;
 
 }  // namespace tessera

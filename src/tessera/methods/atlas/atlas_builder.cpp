@@ -495,6 +495,11 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
              "stopped at " + std::to_string(chart_count()) + " charts (max_vertices)");
         break;
       }
+      if (options_.stop_requested && options_.stop_requested()) {
+        fail(summary, CoveringTermination::Interrupted,
+             "interrupted at " + std::to_string(chart_count()) + " charts");
+        break;
+      }
       // A chart next to much smaller ones needs about (R/r)² of them around it.
       if (++children >
           kMaxChildrenPerChart * std::max(1.0, std::pow(charts_[c].radius / smallest_child, 2))) {

@@ -55,6 +55,10 @@ int BezierBuilder::add_vertex(VertexData vertex) {
     message << "stopped at max_vertices = " << options_.max_vertices;
     throw StopRun{CoveringTermination::VertexLimit, message.str()};
   }
+  if (options_.stop_requested && options_.stop_requested()) {
+    throw StopRun{CoveringTermination::Interrupted,
+                  "interrupted at " + std::to_string(vertices_.size()) + " vertices"};
+  }
   vertices_.push_back(std::move(vertex));
   vertex_triangles_.emplace_back();
   front_out_.emplace_back();

@@ -267,6 +267,10 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
         throw StopRun{CoveringTermination::VertexLimit,
                       "stopped at the vertex limit of " + std::to_string(options_.max_vertices)};
       }
+      if (options_.stop_requested && options_.stop_requested()) {
+        throw StopRun{CoveringTermination::Interrupted,
+                      "interrupted at " + std::to_string(state_.live_vertex_count()) + " vertices"};
+      }
     }
   } catch (const StopRun& stop) {
     summary.termination = stop.termination;

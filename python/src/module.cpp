@@ -1,0 +1,692 @@
+// SPDX-License-Identifier: MIT
+// The compiled half of the Python package: problems, meshes whose arrays are views of the C++
+// storage, and the commands of the CLI (mesh, check, improve, ddt) with the GIL released while
+// C++ works. Keyword arguments, defaults, docstrings and the exceptions a user sees are in
+// python/tessera/__init__.py; this module is its private implementation (tessera._tessera).
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_support.h"
+#include "ddt.h"
+#include "output_checks.h"
+#include "python_problem.h"
+#include "tessera/core/error.h"
+#include "tessera/geometry/bezier_surface.h"
+#include "tessera/geometry/mesh_quality.h"
+#include "tessera/geometry/mesh_validation.h"
+#include "tessera/io/bezier_patches.h"
+#include "tessera/io/mesh_io.h"
+#include "tessera/io/npy.h"
+#include "tessera/io/summary_json.h"
+#include "tessera/io/view_mesh.h"
+#include "tessera/methods/covering_methods.h"
+#include "tessera/methods/improvement/improve_mesh.h"
+#include "tessera/problems/catalogue.h"
+#include "tessera/problems/problem_file.h"
+#include "tessera/problems/view.h"
+
+namespace tessera::python {
+namespace {
+
+static_assert(sizeof(Triangle) == 3 * sizeof(int), "triangles are viewed as a (T, 3) int array");
+
+// A problem ready to be meshed any number of times: what a ProblemSetup holds, with the problem
+// shared so that each run builds its own setup (start and box may differ per run).
+struct ProblemHandle {
+  std::shared_ptr<const ImplicitProblem> problem;
+  Eigen::VectorXd start;
+  Domain domain;
+  double suggested_step = 0.1;
+  std::string description;
+  std::optional<int> expected_euler_characteristic;
+  std::optional<double> exact_area;
+  std::optional<View> view;
+  std::string argument;  ///< as the user spelled it ("torus:R=2", a path): reports name it so
+
+  static std::shared_ptr<ProblemHandle> from_setup(ProblemSetup setup, std::string argument) {
+    auto handle = std::make_shared<ProblemHandle>();
+    handle->problem = std::shared_ptr<const ImplicitProblem>(std::move(setup.problem));
+    handle->start = std::move(setup.start);
+    handle->domain = std::move(setup.domain);
+    handle->suggested_step = setup.suggested_step;
+    handle->description = std::move(setup.description);
+    handle->expected_euler_characteristic = setup.expected_euler_characteristic;
+    handle->exact_area = setup.exact_area;
+    handle->view = std::move(setup.view);
+    handle->argument = std::move(argument);
+    return handle;
+  }
+
+  ProblemSetup setup() const {
+    ProblemSetup setup;
+    setup.problem = std::make_unique<SharedProblem>(problem);
+    setup.start = start;
+    setup.domain = domain;
+    setup.suggested_step = suggested_step;
+    setup.description = description;
+    setup.expected_euler_characteristic = expected_euler_characteristic;
+    setup.exact_area = exact_area;
+    setup.view = view;
+    return setup;
+  }
+};
+
+// A mesh and what was learnt making it. Never changed after it is made, so that the NumPy views
+// of its arrays stay valid for as long as they (and with them this object) live.
+struct MeshHandle {
+  TriangleMesh mesh;
+  std::shared_ptr<ProblemHandle> problem;  ///< null for a mesh made from arrays
+  std::vector<CubicBezierPatch> patches;
+  std::string summary_json;  ///< the report (docs/summary-json.md), or improve's / ddt's summary
+  std::string termination = "completed";
+  std::string failure;       ///< empty, or the CLI's message for a run that did not succeed
+  bool interrupted = false;  ///< Ctrl-C arrived during the run
+  std::string comment;       ///< first comment line of the files written
+  std::vector<VertexScalars> vertex_scalars;  ///< ddt: the data values
+};
+
+// Ctrl-C during a run: while C++ works no Python code runs that could raise KeyboardInterrupt,
+// so a C handler sets a flag that the methods poll (MethodSettings::stop_requested) and the run
+// returns its valid partial mesh. Installed only where Python's own handler would raise
+// KeyboardInterrupt (the main thread, default handler), and restored afterwards.
+std::atomic<bool> interrupt_requested{false};
+
+extern "C" void request_interrupt(int) { interrupt_requested.store(true); }
+
+class InterruptHandler {
+ public:
+  explicit InterruptHandler(bool wanted) {
+    interrupt_requested.store(false);
+    if (!wanted) {
+      return;
+    }
+    const py::module_ threading = py::module_::import("threading");
+    const py::module_ signal = py::module_::import("signal");
+    const bool is_main_thread =
+        threading.attr("current_thread")().is(threading.attr("main_thread")());
+    if (!is_main_thread ||
+        !signal.attr("getsignal")(signal.attr("SIGINT")).is(signal.attr("default_int_handler"))) {
+      return;
+    }
+    struct sigaction action {};
+    action.sa_handler = request_interrupt;
+    sigemptyset(&action.sa_mask);
+    installed_ = sigaction(SIGINT, &action, &previous_) == 0;
+  }
+  ~InterruptHandler() {
+    if (installed_) {
+      sigaction(SIGINT, &previous_, nullptr);
+    }
+  }
+  InterruptHandler(const InterruptHandler&) = delete;
+  InterruptHandler& operator=(const InterruptHandler&) = delete;
+
+  bool is_requested() const { return interrupt_requested.load(); }
+
+ private:
+  bool installed_ = false;
+  struct sigaction previous_ {};
+};
+
+// The (N, n) view of the n×N column-major points: C-contiguous, strides (8n, 8), no copy.
+py::array vertices_view(const py::object& owner) {
+  const MeshHandle& handle = owner.cast<const MeshHandle&>();
+  const auto& mesh = handle.mesh;
+  const py::ssize_t n = mesh.ambient_dimension();
+  const py::ssize_t N = mesh.vertex_count();
+  const double* data = N == 0 ? nullptr : mesh.points().data();
+  py::array view(py::dtype::of<double>(), {N, n},
+                 {static_cast<py::ssize_t>(sizeof(double)) * n,
+                  static_cast<py::ssize_t>(sizeof(double))},
+                 data, owner);
+  view.attr("flags").attr("writeable") = false;
+  return view;
+}
+
+py::array triangles_view(const py::object& owner) {
+  const MeshHandle& handle = owner.cast<const MeshHandle&>();
+  const auto& triangles = handle.mesh.triangles();
+  const py::ssize_t T = static_cast<py::ssize_t>(triangles.size());
+  const int* data = T == 0 ? nullptr : triangles.front().data();
+  py::array view(py::dtype::of<int>(), {T, py::ssize_t{3}},
+                 {static_cast<py::ssize_t>(sizeof(Triangle)),
+                  static_cast<py::ssize_t>(sizeof(int))},
+                 data, owner);
+  view.attr("flags").attr("writeable") = false;
+  return view;
+}
+
+// Comma-separated with full precision, so that --start/--box parsing (and its messages) are the
+// CLI's own.
+std::string join_numbers(const std::vector<double>& values) {
+  std::string text;
+  char buffer[32];
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    std::snprintf(buffer, sizeof buffer, "%.17g", values[i]);
+    text += (i ? "," : "") + std::string(buffer);
+  }
+  return text;
+}
+
+// The view of the files written: as `tessera mesh` chooses it (--view, the problem file's, the
+// default for large n).
+View choose_view(const std::string& specification, const ProblemHandle& problem) {
+  if (!specification.empty()) {
+    try {
+      return parse_view(specification, *problem.problem);
+    } catch (const ViewSpecificationError& error) {
+      throw InvalidArgument("view " + specification + ": " + error.reason());
+    }
+  }
+  return problem.view ? *problem.view : default_view(*problem.problem);
+}
+
+struct MeshRequest {
+  std::string method;  ///< empty: the default
+  MethodSettings settings;
+  std::vector<double> start;
+  std::vector<double> box;
+  bool improve = false;
+  int refine = 0;
+  int report_samples = -1;
+  std::string view;
+  bool wants_patches = false;
+};
+
+std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& problem,
+                                         MeshRequest request, const py::object& progress,
+                                         bool handle_interrupt) {
+  ProblemSetup setup = problem->setup();
+  app::apply_start_and_box(setup, request.start.empty() ? "" : join_numbers(request.start),
+                           request.box.empty() ? "" : join_numbers(request.box));
+  const CoveringMethod& method = request.method.empty() ? covering_methods().front()
+                                                        : find_covering_method(request.method);
+  // As `tessera mesh`: a method's own options given to another method would be ignored.
+  const MethodSettings& given = request.settings;
+  const auto refuse_unless = [&](bool applies, const char* option, const char* owner) {
+    TESSERA_CHECK(applies, option << ": only for method '" << owner << "', not for method '"
+                                  << method.name << "'");
+  };
+  refuse_unless(given.atlas_placement == "disk" || method.name == "atlas", "placement", "atlas");
+  refuse_unless((given.front_order == "gap" && given.front_min_gap_degrees == 0 &&
+                 given.front_max_valence == 0) ||
+                    method.name == "front",
+                "order, min_gap_angle, max_valence", "front");
+  refuse_unless((given.bezier_max_step == 0 && given.bezier_edge_length_factor == 0 &&
+                 given.bezier_min_tangent_cosine == 0) ||
+                    method.name == "bezier",
+                "max_step, edge_length_factor, min_tangent_cosine", "bezier");
+  const bool wants_patches = request.refine > 0 || request.wants_patches;
+  TESSERA_CHECK(!wants_patches || method.name == "bezier",
+                "refine and patches need the cubic surface of method 'bezier', not '"
+                    << method.name << "'");
+  TESSERA_CHECK(!(wants_patches && request.improve),
+                "improve changes the triangles, so it cannot be combined with refine (the "
+                "patches belong to the unimproved triangles)");
+  const View view = choose_view(request.view, *problem);
+
+  MethodSettings settings = request.settings;
+  // A progress callback that raises stops the run; its exception is raised afterwards.
+  std::optional<py::error_already_set> progress_error;
+  if (!progress.is_none()) {
+    settings.progress = [&progress, &progress_error](const CoveringProgress& p) {
+      py::gil_scoped_acquire gil;
+      if (progress_error) {
+        return;
+      }
+      try {
+        progress(py::dict(py::arg("vertex_count") = p.vertex_count,
+                          py::arg("triangle_count") = p.triangle_count,
+                          py::arg("front_size") = p.front_size));
+      } catch (py::error_already_set& error) {
+        progress_error.emplace(std::move(error));
+      }
+    };
+  }
+  const InterruptHandler interrupt(handle_interrupt);
+  // The methods call progress and stop_requested from the run's thread, so progress_error is
+  // only ever touched by that thread (with the GIL in progress, without it here).
+  settings.stop_requested = [&interrupt, &progress_error] {
+    return interrupt.is_requested() || progress_error.has_value();
+  };
+
+  auto handle = std::make_shared<MeshHandle>();
+  handle->problem = problem;
+  handle->comment = "tessera mesh " + problem->argument + ", method " + method.name;
+  {
+    py::gil_scoped_release release;
+    CoveringResult result = cover(setup, method, settings);
+    if (request.improve && result.summary.is_complete()) {
+      // As `tessera mesh --improve`: swaps, 3 passes of tangential smoothing, swaps again.
+      improve_mesh(result.mesh, *setup.problem, ImprovementOptions{}, 3);
+      result.validation.reset();
+    }
+    if (request.refine > 0 && result.mesh.triangle_count() > 0) {
+      result.mesh = refine_bezier_surface(result.mesh, result.patches, request.refine);
+      result.validation.reset();
+    }
+    MeshReport report = app::make_report(result.mesh, setup, problem->argument,
+                                         result.validation ? &*result.validation : nullptr,
+                                         request.report_samples);
+    report.run = result.summary;
+    report.view = ViewReport{view.specification(),
+                             view.is_all_coordinates() ? std::vector<std::string>() : view.names(),
+                             request.view.empty() ? (problem->view ? "problem file" : "default")
+                                                  : "--view"};
+    handle->summary_json = to_json(report);
+    handle->termination = to_string(result.summary.termination);
+    if (!result.summary.is_complete()) {
+      handle->failure = "the " + method.name + " method stopped early (" + handle->termination +
+                        "): " + result.summary.message;
+    } else if (!report.validation.is_valid()) {
+      handle->failure = "the mesh is not valid:\n" + report.validation.report();
+    }
+    handle->mesh = std::move(result.mesh);
+    handle->patches = std::move(result.patches);
+  }
+  handle->interrupted = interrupt.is_requested();
+  if (progress_error) {
+    throw std::move(*progress_error);
+  }
+  return handle;
+}
+
+void write_mesh_file(const MeshHandle& handle, const std::string& path, bool ascii,
+                     const std::string& view_specification) {
+  TESSERA_CHECK(handle.mesh.triangle_count() > 0,
+                "write " << path << ": the mesh is empty (the run made no triangle)");
+  if (std::filesystem::path(path).extension() == ".npy") {
+    // `tessera mesh --states`: every coordinate, and the triangles beside.
+    app::check_output_folder(path);
+    write_states_npy(path, handle.mesh);
+    return;
+  }
+  app::check_mesh_output(path);
+  MeshFileOptions options;
+  options.binary = !ascii;
+  options.vertex_scalars = handle.vertex_scalars;
+  if (!handle.comment.empty()) {
+    options.comments = {handle.comment};
+  }
+  if (handle.problem == nullptr) {
+    TESSERA_CHECK(view_specification.empty(),
+                  "write " << path << ": a view needs the problem; this mesh has none");
+    write_mesh(path, handle.mesh, options);
+    return;
+  }
+  const ImplicitProblem& problem = *handle.problem->problem;
+  const View view = choose_view(view_specification, *handle.problem);
+  if (view.is_all_coordinates()) {
+    // As `tessera mesh`: PLY keeps the standard names (x, y, z, x3, …), the problem's own go
+    // into a comment, and into the arrays of VTK files.
+    std::string names;
+    for (const auto& name : problem.coordinate_names()) {
+      names += " " + name;
+    }
+    if (std::filesystem::path(path).extension() != ".ply") {
+      options.coordinate_names = problem.coordinate_names();
+    }
+    options.comments.push_back("coordinates:" + names);
+    write_mesh(path, handle.mesh, options);
+  } else {
+    options.comments.push_back("a view of the states in R^" +
+                               std::to_string(problem.ambient_dimension()) + ": " +
+                               describe_coordinates(problem));
+    write_mesh_in_view(path, handle.mesh, view, options);
+  }
+}
+
+void check_dimensions(const MeshHandle& mesh, const ProblemHandle& problem) {
+  const int n = problem.problem->ambient_dimension();
+  TESSERA_CHECK(mesh.mesh.ambient_dimension() == n,
+                "the mesh is in R^" << mesh.mesh.ambient_dimension() << " but problem '"
+                                    << problem.argument << "' is in R^" << n);
+}
+
+// `tessera check`: the report, and whether the mesh passes (with the CLI's reasons).
+py::tuple check_mesh(const MeshHandle& mesh, const std::shared_ptr<ProblemHandle>& problem,
+                     int samples) {
+  check_dimensions(mesh, *problem);
+  std::string json;
+  std::vector<std::string> failures;
+  {
+    py::gil_scoped_release release;
+    const ProblemSetup setup = problem->setup();
+    const MeshReport report = app::make_report(mesh.mesh, setup, problem->argument, nullptr,
+                                               samples);
+    json = to_json(report);
+    if (!report.validation.is_valid()) {
+      failures.push_back("the mesh is not valid:\n" + report.validation.report());
+    }
+    if (setup.expected_euler_characteristic &&
+        report.validation.euler_characteristic != *setup.expected_euler_characteristic) {
+      failures.push_back("Euler characteristic " +
+                         std::to_string(report.validation.euler_characteristic) +
+                         ", but the surface of '" + problem->argument + "' has " +
+                         std::to_string(*setup.expected_euler_characteristic));
+    }
+    if (report.quality.vertex_distance.max > 1e-6 || report.quality.failed_projections > 0) {
+      std::ostringstream message;
+      message << "vertices are not on M (max distance " << report.quality.vertex_distance.max
+              << ", " << report.quality.failed_projections << " points could not be projected)";
+      failures.push_back(message.str());
+    }
+  }
+  return py::make_tuple(json, failures);
+}
+
+nlohmann::json quality_json(const MeshQuality& quality, const MeshValidation& validation) {
+  return {{"min_angle_degrees", quality.min_angle_degrees},
+          {"max_angle_degrees", quality.max_angle_degrees},
+          {"fraction_angles_below_30", quality.fraction_angles_below_30},
+          {"max_centroid_distance", quality.centroid_distance.max},
+          {"max_midpoint_distance", quality.midpoint_distance.max},
+          {"failed_projections", quality.failed_projections},
+          {"area", quality.area},
+          {"is_valid", validation.is_valid()},
+          {"euler_characteristic", validation.euler_characteristic},
+          {"boundary_edge_count", validation.boundary_edge_count}};
+}
+
+// `tessera improve`: a new mesh (the given one is not changed; its arrays may be viewed), with
+// the CLI's --summary JSON as its summary.
+std::shared_ptr<MeshHandle> improve(const MeshHandle& given,
+                                    const std::shared_ptr<ProblemHandle>& problem,
+                                    const std::string& criterion, int max_sweeps, int smooth) {
+  check_dimensions(given, *problem);
+  auto handle = std::make_shared<MeshHandle>();
+  handle->problem = problem;
+  handle->mesh = given.mesh;
+  handle->comment = "tessera improve --problem " + problem->argument + " --criterion " + criterion;
+  {
+    py::gil_scoped_release release;
+    const ImplicitProblem& f = *problem->problem;
+    ImprovementOptions options;
+    options.max_sweeps = max_sweeps;
+    options.criterion = criterion == "normal"     ? SwapCriterion::NormalAngle
+                        : criterion == "distance" ? SwapCriterion::MidpointDistance
+                                                  : SwapCriterion::MaxMinAngle;
+    const MeshValidation validation_before = validate(handle->mesh);
+    const MeshQuality quality_before = measure_quality(handle->mesh, f);
+    const MeshImprovement improvement = improve_mesh(handle->mesh, f, options, smooth);
+    const MeshValidation validation_after = validate(handle->mesh);
+    const MeshQuality quality_after = measure_quality(handle->mesh, f);
+    const ImprovementSummary& swaps = improvement.swaps;
+    const nlohmann::json json = {
+        {"problem", problem->argument},
+        {"criterion", criterion},
+        {"swaps", swaps.swaps},
+        {"sweeps", swaps.sweeps},
+        {"converged", swaps.converged},
+        {"interior_edges", swaps.interior_edges},
+        {"smoothing_passes", improvement.smoothing.iterations},
+        {"smoothing_moves", improvement.smoothing.moves},
+        {"rejected_non_convex", swaps.rejected_non_convex},
+        {"rejected_existing_edge", swaps.rejected_existing_edge},
+        {"rejected_projection_failed", swaps.rejected_projection_failed},
+        {"before", quality_json(quality_before, validation_before)},
+        {"after", quality_json(quality_after, validation_after)}};
+    handle->summary_json = json.dump(2);
+    if (!validation_after.is_valid()) {
+      handle->failure = "the improved mesh is not valid:\n" + validation_after.report();
+    }
+  }
+  return handle;
+}
+
+// `tessera ddt` (ddt.cpp): the triangulation as a mesh in R^3 (x, y, value), as the CLI writes it,
+// with the value also as a vertex scalar.
+std::shared_ptr<MeshHandle> ddt(const Eigen::Matrix2Xd& points,
+                                std::optional<Eigen::VectorXd> values,
+                                const std::string& function_name, const std::string& criterion,
+                                const std::string& norm, const std::string& test, int grid,
+                                unsigned sweep_order_seed) {
+  auto handle = std::make_shared<MeshHandle>();
+  handle->comment = "tessera ddt, criterion " + criterion;
+  DataDependentTriangulation result;
+  {
+    py::gil_scoped_release release;
+    result = triangulate_data(points, values, {function_name, criterion, norm, test, grid,
+                                               sweep_order_seed});
+  }
+  handle->summary_json = std::move(result.summary_json);
+  handle->vertex_scalars.push_back({"value", std::move(result.values)});
+  handle->mesh = std::move(result.mesh);
+  return handle;
+}
+
+std::shared_ptr<MeshHandle> mesh_from_arrays(
+    const py::array_t<double, py::array::c_style | py::array::forcecast>& vertices,
+    const py::array_t<long long, py::array::c_style | py::array::forcecast>& triangles) {
+  TESSERA_CHECK(vertices.ndim() == 2 && vertices.shape(1) >= 2,
+                "Mesh: vertices must be an (N, n) array with n >= 2, got " << vertices.ndim()
+                                                                           << " dimensions");
+  TESSERA_CHECK(triangles.ndim() == 2 && triangles.shape(1) == 3,
+                "Mesh: triangles must be a (T, 3) array of vertex indices");
+  const auto N = vertices.shape(0);
+  const auto n = vertices.shape(1);
+  std::vector<Triangle> copied(static_cast<std::size_t>(triangles.shape(0)));
+  const long long* index = triangles.data();
+  for (std::size_t t = 0; t < copied.size(); ++t) {
+    for (int k = 0; k < 3; ++k, ++index) {
+      TESSERA_CHECK(*index >= 0 && *index < N, "Mesh: triangle " << t << " has vertex index "
+                                                                 << *index << ", not in [0, "
+                                                                 << N - 1 << "]");
+      copied[t][static_cast<std::size_t>(k)] = static_cast<int>(*index);
+    }
+  }
+  auto handle = std::make_shared<MeshHandle>();
+  // (N, n) row-major is the n×N column-major layout of TriangleMesh: one copy, no transpose.
+  handle->mesh = TriangleMesh(
+      Eigen::Map<const Eigen::MatrixXd>(vertices.data(), static_cast<Eigen::Index>(n),
+                                        static_cast<Eigen::Index>(N)),
+      std::move(copied));
+  handle->summary_json = "{}";
+  return handle;
+}
+
+std::vector<CoordinateBlock> to_blocks(const py::list& blocks) {
+  std::vector<CoordinateBlock> result;
+  for (const auto& item : blocks) {
+    const auto tuple = item.cast<py::tuple>();
+    CoordinateBlock block;
+    block.name = tuple[0].cast<std::string>();
+    block.first = tuple[1].cast<int>();
+    block.size = tuple[2].cast<int>();
+    block.weight = tuple.size() > 3 ? tuple[3].cast<double>() : 1.0;
+    result.push_back(block);
+  }
+  return result;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_tessera, module) {
+  module.doc() = "tessera's compiled core; use the package `tessera`, not this module.";
+  py::register_exception<ComputationFailed>(module, "ComputationFailedError",
+                                            PyExc_RuntimeError);
+
+  py::class_<ProblemHandle, std::shared_ptr<ProblemHandle>>(module, "Problem")
+      .def_static("resolve",
+                  [](const std::string& argument) {
+                    return ProblemHandle::from_setup(resolve_problem(argument), argument);
+                  })
+      .def_static("from_file",
+                  [](const std::string& path, const std::map<std::string, double>& parameters) {
+                    return ProblemHandle::from_setup(load_problem_file(path, parameters), path);
+                  })
+      .def_static("from_text",
+                  [](const std::string& text, const std::string& source_name,
+                     const std::map<std::string, double>& parameters) {
+                    return ProblemHandle::from_setup(
+                        parse_problem(text, source_name, parameters), source_name);
+                  })
+      .def_static(
+          "from_python",
+          [](int n, py::object F, py::object J, bool sparse, const std::string& name,
+             std::vector<std::string> coordinate_names, const py::list& blocks,
+             const Eigen::VectorXd& start, const std::vector<double>& box, double step,
+             std::optional<int> euler_characteristic, std::optional<double> area) {
+            auto problem = std::make_shared<PythonProblem>(
+                n, std::move(F), std::move(J), sparse, name, std::move(coordinate_names),
+                to_blocks(blocks));
+            metric_weights(*problem);  // checks the blocks
+            TESSERA_CHECK(start.size() == n,
+                          "Problem: start has " << start.size() << " values, n = " << n);
+            TESSERA_CHECK(std::isfinite(step) && step > 0,
+                          "Problem: step = " << step << " must be a finite number > 0");
+            auto handle = std::make_shared<ProblemHandle>();
+            handle->problem = problem;
+            handle->start = start;
+            handle->domain = Domain(n);
+            handle->suggested_step = step;
+            handle->description = name + ", defined in Python";
+            handle->expected_euler_characteristic = euler_characteristic;
+            handle->exact_area = area;
+            handle->argument = name;
+            if (!box.empty()) {
+              ProblemSetup setup = handle->setup();
+              app::apply_start_and_box(setup, "", join_numbers(box));
+              handle->domain = setup.domain;
+            }
+            return handle;
+          })
+      .def_property_readonly("n",
+                             [](const ProblemHandle& p) { return p.problem->ambient_dimension(); })
+      .def_property_readonly("name", [](const ProblemHandle& p) { return p.problem->name(); })
+      .def_property_readonly("argument", [](const ProblemHandle& p) { return p.argument; })
+      .def_property_readonly("coordinate_names",
+                             [](const ProblemHandle& p) { return p.problem->coordinate_names(); })
+      .def_property_readonly("start", [](const ProblemHandle& p) { return p.start; })
+      .def_property_readonly("suggested_step",
+                             [](const ProblemHandle& p) { return p.suggested_step; })
+      .def_property_readonly("description", [](const ProblemHandle& p) { return p.description; })
+      .def_property_readonly("expected_euler_characteristic",
+                             [](const ProblemHandle& p) { return p.expected_euler_characteristic; })
+      .def_property_readonly("exact_area", [](const ProblemHandle& p) { return p.exact_area; })
+      .def_property_readonly("has_sparse_jacobian",
+                             [](const ProblemHandle& p) { return p.problem->has_sparse_jacobian(); })
+      .def("F",
+           [](const ProblemHandle& p, const Eigen::VectorXd& x) {
+             const int n = p.problem->ambient_dimension();
+             TESSERA_CHECK(x.size() == n, "F: x has " << x.size() << " values, n = " << n);
+             Eigen::VectorXd F(n - 2);
+             p.problem->evaluate(x, F);
+             return F;
+           })
+      .def("J", [](const ProblemHandle& p, const Eigen::VectorXd& x) {
+        const int n = p.problem->ambient_dimension();
+        TESSERA_CHECK(x.size() == n, "J: x has " << x.size() << " values, n = " << n);
+        Eigen::MatrixXd J(n - 2, n);
+        p.problem->jacobian(x, J);
+        return J;
+      });
+
+  py::class_<MeshHandle, std::shared_ptr<MeshHandle>>(module, "Mesh")
+      .def_static("from_arrays", &mesh_from_arrays)
+      .def_property_readonly("vertices", &vertices_view)
+      .def_property_readonly("triangles", &triangles_view)
+      .def_property_readonly("summary_json", [](const MeshHandle& m) { return m.summary_json; })
+      .def_property_readonly("termination", [](const MeshHandle& m) { return m.termination; })
+      .def_property_readonly("failure", [](const MeshHandle& m) { return m.failure; })
+      .def_property_readonly("interrupted", [](const MeshHandle& m) { return m.interrupted; })
+      .def_property_readonly("problem", [](const MeshHandle& m) { return m.problem; })
+      .def_property_readonly("has_patches", [](const MeshHandle& m) { return !m.patches.empty(); })
+      .def("write", &write_mesh_file, py::arg("path"), py::arg("ascii"), py::arg("view"))
+      .def("write_patches",
+           [](const MeshHandle& m, const std::string& path) {
+             TESSERA_CHECK(!m.patches.empty(),
+                           "write_patches: only a mesh of method 'bezier' (not refined, not "
+                           "improved) has Bezier patches");
+             app::check_output_folder(path);
+             write_bezier_patches(path, {m.mesh, m.patches, m.problem->problem->coordinate_names()});
+           })
+      .def_static("read", [](const std::string& path) {
+        auto handle = std::make_shared<MeshHandle>();
+        handle->mesh = read_mesh(path);
+        handle->summary_json = "{}";
+        return handle;
+      });
+
+  py::class_<MeshRequest>(module, "MeshRequest")
+      .def(py::init<>())
+      .def_readwrite("method", &MeshRequest::method)
+      .def_readwrite("start", &MeshRequest::start)
+      .def_readwrite("box", &MeshRequest::box)
+      .def_readwrite("improve", &MeshRequest::improve)
+      .def_readwrite("refine", &MeshRequest::refine)
+      .def_readwrite("report_samples", &MeshRequest::report_samples)
+      .def_readwrite("view", &MeshRequest::view)
+      .def_readwrite("wants_patches", &MeshRequest::wants_patches)
+      .def_property(
+          "step", [](const MeshRequest& r) { return r.settings.step; },
+          [](MeshRequest& r, double v) { r.settings.step = v; })
+      .def_property(
+          "tolerance", [](const MeshRequest& r) { return r.settings.tolerance; },
+          [](MeshRequest& r, double v) { r.settings.tolerance = v; })
+      .def_property(
+          "max_vertices", [](const MeshRequest& r) { return r.settings.max_vertices; },
+          [](MeshRequest& r, int v) { r.settings.max_vertices = v; })
+      .def_property(
+          "max_start_distance", [](const MeshRequest& r) { return r.settings.max_start_distance; },
+          [](MeshRequest& r, double v) { r.settings.max_start_distance = v; })
+      .def_property(
+          "placement", [](const MeshRequest& r) { return r.settings.atlas_placement; },
+          [](MeshRequest& r, const std::string& v) { r.settings.atlas_placement = v; })
+      .def_property(
+          "min_gap_angle", [](const MeshRequest& r) { return r.settings.front_min_gap_degrees; },
+          [](MeshRequest& r, double v) { r.settings.front_min_gap_degrees = v; })
+      .def_property(
+          "max_valence", [](const MeshRequest& r) { return r.settings.front_max_valence; },
+          [](MeshRequest& r, int v) { r.settings.front_max_valence = v; })
+      .def_property(
+          "order", [](const MeshRequest& r) { return r.settings.front_order; },
+          [](MeshRequest& r, const std::string& v) { r.settings.front_order = v; })
+      .def_property(
+          "max_step", [](const MeshRequest& r) { return r.settings.bezier_max_step; },
+          [](MeshRequest& r, double v) { r.settings.bezier_max_step = v; })
+      .def_property(
+          "edge_length_factor",
+          [](const MeshRequest& r) { return r.settings.bezier_edge_length_factor; },
+          [](MeshRequest& r, double v) { r.settings.bezier_edge_length_factor = v; })
+      .def_property(
+          "min_tangent_cosine",
+          [](const MeshRequest& r) { return r.settings.bezier_min_tangent_cosine; },
+          [](MeshRequest& r, double v) { r.settings.bezier_min_tangent_cosine = v; });
+
+  module.def("mesh", &mesh_problem, py::arg("problem"), py::arg("request"), py::arg("progress"),
+             py::arg("handle_interrupt"));
+  module.def("check", &check_mesh);
+  module.def("improve", &improve);
+  module.def("ddt", &ddt);
+  module.def("method_names", &covering_method_names);
+  module.def("catalogue", [] {
+    py::list entries;
+    for (const auto& entry : catalogue()) {
+      py::dict parameters;
+      for (const auto& parameter : entry.parameters) {
+        parameters[py::str(parameter.name)] = parameter.default_value;
+      }
+      entries.append(py::dict(py::arg("name") = entry.name, py::arg("summary") = entry.summary,
+                              py::arg("parameters") = parameters));
+    }
+    return entries;
+  });
+}
+
+}  // namespace tessera::python

@@ -1,0 +1,569 @@
+# SPDX-License-Identifier: MIT
+"""tessera: triangulations of implicitly defined surfaces M = {x in R^n : F(x) = 0}.
+
+The Python face of the tessera library and CLI (docs/python.md). Every command of the CLI is a
+function here with the same options (``--max-vertices`` is ``max_vertices=``) and defaults:
+
+>>> import tessera
+>>> m = tessera.mesh("torus", tolerance=1e-3)          # catalogue name or .tsr problem file
+>>> m.vertices.shape[1], m.triangles.shape[1]          # (N, n) float64 and (T, 3) int32 views
+(3, 3)
+>>> m.summary["run"]["termination"]                    # the JSON summary of `tessera mesh`
+'completed'
+
+Problems may be written in Python, with dense NumPy or scipy.sparse Jacobians (`Problem`).
+Errors: ValueError for bad input (the CLI's message), `ComputationFailed` for a run that did not
+succeed, `Interrupted` (a KeyboardInterrupt) for Ctrl-C; both carry the valid partial mesh.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _tessera
+
+__all__ = [
+    "ComputationFailed",
+    "Interrupted",
+    "Mesh",
+    "Problem",
+    "check",
+    "ddt",
+    "improve",
+    "mesh",
+    "methods",
+    "problems",
+    "read",
+    "from_meshio",
+]
+__version__ = "0.1.0"
+
+ArrayLike = Union[np.ndarray, Sequence[float]]
+ProblemLike = Union["Problem", str, "os.PathLike[str]"]
+
+
+class ComputationFailed(RuntimeError):
+    """A computation could not do what was asked (exit status 1 of the CLI).
+
+    ``mesh`` is the valid partial mesh (possibly empty) that the CLI would have written, and
+    ``termination`` the method's reason ("vertex limit reached", "front collision", ...).
+    """
+
+    def __init__(self, message: str, mesh: Optional["Mesh"] = None):
+        super().__init__(message)
+        self.mesh = mesh
+        self.termination = mesh.termination if mesh is not None else None
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C (SIGINT) stopped a run. A KeyboardInterrupt, so that an unhandled one ends a
+    script as usual; ``mesh`` is the valid partial mesh made until then."""
+
+    def __init__(self, message: str, mesh: Optional["Mesh"] = None):
+        super().__init__(message)
+        self.mesh = mesh
+
+
+# ---------------------------------------------------------------------------------------------
+# Problems
+
+
+def _finite_difference_jacobian(F: Callable[[np.ndarray], Any], n: int) -> Callable:
+    # Central differences, h ~ eps^(1/3) relative: about 1e-10 accurate for smooth F.
+    def J(x: np.ndarray) -> np.ndarray:
+        columns = []
+        for i in range(n):
+            h = 6e-6 * (1.0 + abs(x[i]))
+            forward = x.copy()
+            backward = x.copy()
+            forward[i] += h
+            backward[i] -= h
+            columns.append((np.atleast_1d(F(forward)) - np.atleast_1d(F(backward))) / (2 * h))
+        return np.stack(columns, axis=1)
+
+    return J
+
+
+class Problem:
+    """An implicitly defined surface M = {x in R^n : F(x) = 0}, F: R^n -> R^(n-2).
+
+    Written in Python::
+
+        p = tessera.Problem(n=3, F=lambda x: [x @ x - 1], J=lambda x: [2 * x], start=[0, 0, 1])
+
+    F(x) returns n-2 numbers (a number is fine for n = 3). J(x) returns DF(x) as an (n-2, n)
+    array, or as a scipy.sparse matrix for large n: the solvers then use sparse LU and never
+    form a dense matrix (``sparse`` says which form the solvers ask for; by default the form
+    that J returns at ``start``). Without J, central finite differences (dense, n + 1 calls).
+    x is a fresh float64 array on every call. F and J run with the GIL held, one call at a time;
+    an exception they raise ends the run and is raised by `mesh`.
+
+    ``step`` is the suggested edge length (the CLI's problem-file ``step``), ``box`` a list of
+    lower, upper for each coordinate, ``blocks`` named coordinate ranges as (name, first, size[,
+    weight]) tuples (docs/problem-files.md), ``euler_characteristic`` and ``area`` what is known
+    of the component of M through ``start`` (used by `check`).
+
+    Catalogue entries and problem files: `Problem.from_catalogue`, `Problem.from_file`,
+    `Problem.from_text`, `Problem.from_equations`.
+    """
+
+    def __init__(
+        self,
+        n: int,
+        F: Callable[[np.ndarray], Any],
+        J: Optional[Callable[[np.ndarray], Any]] = None,
+        start: Optional[ArrayLike] = None,
+        *,
+        sparse: Optional[bool] = None,
+        name: str = "python",
+        coordinate_names: Optional[Sequence[str]] = None,
+        blocks: Optional[Sequence[tuple]] = None,
+        box: Optional[ArrayLike] = None,
+        step: float = 0.1,
+        euler_characteristic: Optional[int] = None,
+        area: Optional[float] = None,
+    ):
+        if start is None:
+            raise ValueError("Problem: start is required (a point near M, n values)")
+        start_array = np.asarray(start, dtype=float).ravel()
+        if J is None:
+            J = _finite_difference_jacobian(F, int(n))
+            sparse = False
+        if sparse is None:
+            sparse = _is_scipy_sparse(J(start_array.copy()))
+        self._core = _tessera.Problem.from_python(
+            int(n), F, J, bool(sparse), name, list(coordinate_names or []), list(blocks or []),
+            start_array, _numbers(box), float(step), euler_characteristic, area)
+
+    @classmethod
+    def _wrap(cls, core: Any) -> "Problem":
+        problem = cls.__new__(cls)
+        problem._core = core
+        return problem
+
+    @classmethod
+    def from_catalogue(cls, name: str, **parameters: float) -> "Problem":
+        """A catalogue entry (`problems()`), e.g. ``Problem.from_catalogue("torus", R=2)``;
+        ``"torus:R=2"`` is the same."""
+        specification = name
+        if parameters:
+            specification += ":" + ",".join(f"{key}={value!r}" for key, value in parameters.items())
+        return cls._wrap(_tessera.Problem.resolve(specification))
+
+    @classmethod
+    def from_file(cls, path: Union[str, "os.PathLike[str]"], **parameters: float) -> "Problem":
+        """A problem file (.tsr, docs/problem-files.md); keyword arguments replace the file's
+        parameters by name."""
+        return cls._wrap(_tessera.Problem.from_file(os.fspath(path), _parameters(parameters)))
+
+    @classmethod
+    def from_text(cls, text: str, source_name: str = "<text>", **parameters: float) -> "Problem":
+        """Problem-file text (docs/problem-files.md); messages name ``source_name``."""
+        return cls._wrap(_tessera.Problem.from_text(text, source_name, _parameters(parameters)))
+
+    @classmethod
+    def from_equations(
+        cls,
+        variables: Sequence[str],
+        equations: Sequence[str],
+        start: ArrayLike,
+        *,
+        parameters: Optional[Mapping[str, float]] = None,
+        box: Optional[ArrayLike] = None,
+        step: Optional[float] = None,
+        name: str = "equations",
+    ) -> "Problem":
+        """Expression strings, compiled and differentiated exactly by tessera (no Python runs
+        during the computation), e.g.
+        ``Problem.from_equations("x y z", ["x^2 + y^2 + z^2 - 1"], [0, 0, 1])``."""
+        if isinstance(variables, str):
+            variables = variables.split()
+        lines = [f"name {name}", "variables " + " ".join(variables)]
+        lines += [f"parameter {key} = {value!r}" for key, value in (parameters or {}).items()]
+        lines += [f"equation {equation}" for equation in equations]
+        lines.append("start " + " ".join(repr(float(v)) for v in np.asarray(start).ravel()))
+        if step is not None:
+            lines.append(f"step {float(step)!r}")
+        box_values = _numbers(box)
+        for i in range(len(box_values) // 2):
+            name_i = variables[i] if i < len(variables) else f"x{i}"
+            lines.append(f"box {name_i} {box_values[2 * i]!r} {box_values[2 * i + 1]!r}")
+        if len(box_values) % 2 or (box_values and len(box_values) != 2 * len(variables)):
+            raise ValueError(f"box has {len(box_values)} values, expected {2 * len(variables)} "
+                             f"(lower,upper for each of the {len(variables)} coordinates)")
+        return cls.from_text("\n".join(lines) + "\n", f"<{name}>")
+
+    @property
+    def n(self) -> int:
+        """The dimension of the ambient space."""
+        return self._core.n
+
+    @property
+    def name(self) -> str:
+        return self._core.name
+
+    @property
+    def coordinate_names(self) -> List[str]:
+        return self._core.coordinate_names
+
+    @property
+    def start(self) -> np.ndarray:
+        """The start point (n,) near M; `mesh` projects it onto M first."""
+        return self._core.start
+
+    @property
+    def suggested_step(self) -> float:
+        return self._core.suggested_step
+
+    @property
+    def description(self) -> str:
+        return self._core.description
+
+    @property
+    def expected_euler_characteristic(self) -> Optional[int]:
+        return self._core.expected_euler_characteristic
+
+    @property
+    def exact_area(self) -> Optional[float]:
+        return self._core.exact_area
+
+    @property
+    def has_sparse_jacobian(self) -> bool:
+        return self._core.has_sparse_jacobian
+
+    def F(self, x: ArrayLike) -> np.ndarray:
+        """F(x), (n-2,), evaluated by tessera (for any problem, catalogue ones too)."""
+        return self._core.F(np.asarray(x, dtype=float))
+
+    def J(self, x: ArrayLike) -> np.ndarray:
+        """DF(x) as a dense (n-2, n) array."""
+        return self._core.J(np.asarray(x, dtype=float))
+
+    def __repr__(self) -> str:
+        return f"tessera.Problem({self._core.argument!r}, n={self.n})"
+
+
+def _is_scipy_sparse(value: Any) -> bool:
+    return hasattr(value, "tocsc") and hasattr(value, "nnz")
+
+
+def _numbers(values: Optional[ArrayLike]) -> List[float]:
+    if values is None:
+        return []
+    if isinstance(values, str):
+        raise ValueError(f"expected numbers, got the string {values!r}")
+    return [float(v) for v in np.asarray(values, dtype=float).ravel()]
+
+
+def _parameters(parameters: Mapping[str, float]) -> Dict[str, float]:
+    return {str(key): float(value) for key, value in parameters.items()}
+
+
+def _problem(problem: ProblemLike) -> Problem:
+    if isinstance(problem, Problem):
+        return problem
+    if isinstance(problem, (str, os.PathLike)):
+        return Problem._wrap(_tessera.Problem.resolve(os.fspath(problem)))
+    raise TypeError(f"problem must be a tessera.Problem, a catalogue name or a problem file, "
+                    f"not {type(problem).__name__}")
+
+
+# ---------------------------------------------------------------------------------------------
+# Meshes
+
+
+class Mesh:
+    """A triangle mesh with vertices in R^n, and what was learnt making it.
+
+    ``vertices`` (N, n) float64 and ``triangles`` (T, 3) int32 are read-only NumPy views of the
+    C++ storage (no copy; they keep the mesh alive); ``np.array(m.vertices)`` copies. A Mesh
+    never changes: `improve` returns a new one.
+    """
+
+    def __init__(self, vertices: ArrayLike, triangles: ArrayLike):
+        """A mesh from arrays (copied once): vertices (N, n), triangles (T, 3) indices."""
+        self._core = _tessera.Mesh.from_arrays(np.asarray(vertices), np.asarray(triangles))
+        self._summary: Optional[Dict[str, Any]] = None
+
+    @classmethod
+    def _wrap(cls, core: Any) -> "Mesh":
+        mesh = cls.__new__(cls)
+        mesh._core = core
+        mesh._summary = None
+        return mesh
+
+    @property
+    def vertices(self) -> np.ndarray:
+        """(N, n) float64, row j is vertex j; a read-only view of the C++ storage."""
+        return self._core.vertices
+
+    @property
+    def triangles(self) -> np.ndarray:
+        """(T, 3) int32 vertex indices, oriented; a read-only view of the C++ storage."""
+        return self._core.triangles
+
+    @property
+    def summary(self) -> Dict[str, Any]:
+        """The summary as a dict: for `mesh`, the JSON of ``tessera mesh --summary``
+        (docs/summary-json.md); for `improve` and `ddt`, their CLI summaries; {} otherwise."""
+        if self._summary is None:
+            self._summary = json.loads(self._core.summary_json)
+        return self._summary
+
+    @property
+    def termination(self) -> str:
+        """"completed", or why the run stopped early ("interrupted", "vertex limit reached"...)."""
+        return self._core.termination
+
+    @property
+    def is_complete(self) -> bool:
+        return not self._core.failure and not self._core.interrupted
+
+    @property
+    def problem(self) -> Optional[Problem]:
+        core = self._core.problem
+        return None if core is None else Problem._wrap(core)
+
+    @property
+    def vertex_count(self) -> int:
+        return self.vertices.shape[0]
+
+    @property
+    def triangle_count(self) -> int:
+        return self.triangles.shape[0]
+
+    def write(self, path: Union[str, "os.PathLike[str]"], *, ascii: bool = False,
+              view: Optional[str] = None) -> None:
+        """Writes the mesh as ``tessera mesh -o`` does: .ply (binary unless ``ascii``), .obj,
+        .vtk, .vtu, or .npy (the states of ``--states``: every coordinate, with the triangles
+        in FILE.triangles.npy). ``view`` as ``--view`` (e.g. "lambda,epsilon,max:u"); default
+        the problem file's view, else every coordinate (a summary for n > 50)."""
+        self._core.write(os.fspath(path), ascii, view or "")
+
+    def write_patches(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """The Bézier control points of method "bezier" (``--patches``, docs/bezier-patches.md)."""
+        self._core.write_patches(os.fspath(path))
+
+    def to_meshio(self) -> Any:
+        """A meshio.Mesh with the vertices and a "triangle" cell block (copies)."""
+        import meshio
+
+        return meshio.Mesh(np.array(self.vertices), [("triangle", np.array(self.triangles))])
+
+    def __repr__(self) -> str:
+        n = self.vertices.shape[1]
+        return (f"<tessera.Mesh {self.vertex_count} vertices in R^{n}, {self.triangle_count} "
+                f"triangles, {self.termination}>")
+
+
+def from_meshio(mesh: Any) -> Mesh:
+    """A Mesh of the points and the triangle cells of a meshio.Mesh."""
+    blocks = [block.data for block in mesh.cells if block.type == "triangle"]
+    if not blocks:
+        raise ValueError("the meshio mesh has no triangle cells")
+    return Mesh(mesh.points, np.concatenate(blocks))
+
+
+def read(path: Union[str, "os.PathLike[str]"]) -> Mesh:
+    """Reads a mesh file tessera writes (.ply, .obj, .vtk, .vtu, or the .npy states)."""
+    return Mesh._wrap(_tessera.Mesh.read(os.fspath(path)))
+
+
+# ---------------------------------------------------------------------------------------------
+# Commands
+
+
+def _finite_positive(name: str, value: Optional[float]) -> float:
+    if value is None:
+        return 0.0
+    value = float(value)
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{name}: '{value}' is not a finite number > 0")
+    return value
+
+
+def _in_range(name: str, value: Optional[float], low: float, high: float, cast: type = float):
+    if value is None:
+        return cast(0)
+    if not (low <= value <= high):
+        raise ValueError(f"{name}: value {value} not in range {low} to {high}")
+    return cast(value)
+
+
+def _member(name: str, value: str, allowed: Sequence[str]) -> str:
+    if value not in allowed:
+        raise ValueError(f"{name}: {value!r} not in {{{', '.join(allowed)}}}")
+    return value
+
+
+def mesh(
+    problem: ProblemLike,
+    *,
+    method: Optional[str] = None,
+    step: Optional[float] = None,
+    tolerance: Optional[float] = None,
+    placement: str = "disk",
+    start: Optional[ArrayLike] = None,
+    box: Optional[ArrayLike] = None,
+    improve: bool = False,
+    view: Optional[str] = None,
+    report_samples: Optional[int] = None,
+    max_vertices: int = 2_000_000,
+    max_start_distance: Optional[float] = None,
+    min_gap_angle: Optional[float] = None,
+    max_valence: Optional[int] = None,
+    order: str = "gap",
+    max_step: Optional[float] = None,
+    edge_length_factor: Optional[float] = None,
+    min_tangent_cosine: Optional[float] = None,
+    refine: Optional[int] = None,
+    progress: Optional[Callable[[Dict[str, int]], None]] = None,
+    allow_partial: bool = False,
+    handle_interrupt: bool = True,
+) -> Mesh:
+    """Covers a problem's surface with a triangle mesh: ``tessera mesh``.
+
+    problem: a `Problem`, a catalogue name (``"torus"``, ``"torus:R=2"``) or a .tsr file.
+    method: "atlas" (default), "front" or "bezier" (`methods()`).
+    step: front: edge length h (default: the problem's suggestion); atlas: largest chart radius
+        (default 2h); bezier: initial step.
+    tolerance: bound on the distance of every point of every triangle to M, enforced by
+        bisection on M (atlas: also sizes the charts, default step/50; bezier: also limits
+        the steps; front and bezier: no bound by default).
+    placement: atlas: "disk" (default) or "hexagonal".
+    start: start point (n values); box: lower, upper for each coordinate.
+    improve: edge swaps and tangential smoothing on M afterwards (``--improve``).
+    view: the view written by `Mesh.write` and reported (``--view``).
+    report_samples: distances in the summary measured at this many points of each kind (0: all;
+        default all for n < 500, else 300).
+    max_vertices, max_start_distance: stop after this many vertices; how far the start may be
+        from M (default 10 steps).
+    min_gap_angle, max_valence, order: front method's α_min (default 45.8), most triangles per
+        vertex (default 7), "gap" or "fifo".
+    max_step, edge_length_factor, min_tangent_cosine, refine: bezier method's options (refine K:
+        the cubic surface on a K×K subdivision of every triangle; `Mesh.write_patches`).
+    progress: called about every 1000 vertices with {"vertex_count", "triangle_count",
+        "front_size"}; an exception it raises stops the run and is raised.
+    allow_partial: return the mesh of a run that stopped early instead of raising.
+    handle_interrupt: Ctrl-C stops the run (from the main thread, while Python's SIGINT handler
+        is the default one) and raises `Interrupted` carrying the valid partial mesh.
+
+    Returns a `Mesh` whose ``summary`` is the JSON summary of ``tessera mesh --summary``.
+    Raises ValueError for bad input (before any computation), `ComputationFailed` (with
+    ``.mesh``, the valid partial mesh) when the method stops early or the mesh is not valid,
+    `Interrupted` on Ctrl-C; an exception raised by a Python problem's F or J as it is.
+    The GIL is released while C++ works (Python problems take it for each evaluation).
+    """
+    chosen = _problem(problem)
+    request = _tessera.MeshRequest()
+    if method is not None:
+        request.method = _member("method", method, _tessera.method_names())
+    request.step = _finite_positive("step", step)
+    request.tolerance = _finite_positive("tolerance", tolerance)
+    request.placement = _member("placement", placement, ["disk", "hexagonal"])
+    request.start = _numbers(start)
+    request.box = _numbers(box)
+    request.improve = bool(improve)
+    request.view = view or ""
+    request.report_samples = (-1 if report_samples is None else
+                              _in_range("report_samples", report_samples, 0, 100_000_000, int))
+    request.max_vertices = _in_range("max_vertices", max_vertices, 7, 100_000_000, int)
+    request.max_start_distance = _finite_positive("max_start_distance", max_start_distance)
+    request.min_gap_angle = _in_range("min_gap_angle", min_gap_angle, 1.0, 89.0)
+    request.max_valence = _in_range("max_valence", max_valence, 6, 12, int)
+    request.order = _member("order", order, ["gap", "fifo"])
+    request.max_step = _finite_positive("max_step", max_step)
+    request.edge_length_factor = _in_range("edge_length_factor", edge_length_factor, 0.1, 3.0)
+    request.min_tangent_cosine = _in_range("min_tangent_cosine", min_tangent_cosine, 0.01, 0.999)
+    request.refine = _in_range("refine", refine, 1, 64, int)
+    core = _tessera.mesh(chosen._core, request, progress, bool(handle_interrupt))
+    result = Mesh._wrap(core)
+    if core.interrupted:
+        raise Interrupted(f"interrupted; the partial mesh has {result.vertex_count} vertices "
+                          f"and {result.triangle_count} triangles (.mesh)", result)
+    if core.failure and not allow_partial:
+        raise ComputationFailed(core.failure, result)
+    return result
+
+
+def check(mesh: Mesh, problem: Optional[ProblemLike] = None, *,
+          report_samples: Optional[int] = None) -> Dict[str, Any]:
+    """Validates a mesh against M and measures it: ``tessera check --json``.
+
+    Returns the report (docs/summary-json.md) with two more keys: "passes" (valid, the known
+    Euler characteristic if any, vertices within 1e-6 of M) and "failures" (the CLI's reasons).
+    The problem defaults to the one the mesh was made for.
+    """
+    if problem is None:
+        problem = mesh.problem
+        if problem is None:
+            raise ValueError("check: this mesh was not made by tessera.mesh; give the problem")
+    chosen = _problem(problem)
+    samples = -1 if report_samples is None else _in_range("report_samples", report_samples, 0,
+                                                          100_000_000, int)
+    report_json, failures = _tessera.check(mesh._core, chosen._core, samples)
+    report = json.loads(report_json)
+    report["passes"] = not failures
+    report["failures"] = failures
+    return report
+
+
+def improve(mesh: Mesh, problem: Optional[ProblemLike] = None, *, criterion: str = "angle",
+            max_sweeps: int = 50, smooth: int = 0) -> Mesh:
+    """Improves a mesh of M by edge swaps judged in M's tangent planes: ``tessera improve``.
+
+    criterion: "angle" (max-min angle, default), "normal" or "distance"; max_sweeps: most
+    sweeps over the edges; smooth: passes of tangential smoothing (0: vertices do not move).
+    Returns a new Mesh whose summary is the CLI's --summary JSON (swaps, before, after).
+    Raises `ComputationFailed` (with ``.mesh``) if the improved mesh is not valid.
+    """
+    if problem is None:
+        problem = mesh.problem
+        if problem is None:
+            raise ValueError("improve: this mesh was not made by tessera.mesh; give the problem")
+    chosen = _problem(problem)
+    _member("criterion", criterion, ["angle", "normal", "distance"])
+    max_sweeps = _in_range("max_sweeps", max_sweeps, 1, 100_000, int)
+    smooth = _in_range("smooth", smooth, 0, 1000, int)
+    core = _tessera.improve(mesh._core, chosen._core, criterion, max_sweeps, smooth)
+    result = Mesh._wrap(core)
+    if core.failure:
+        raise ComputationFailed(core.failure, result)
+    return result
+
+
+def ddt(points: ArrayLike, values: Optional[ArrayLike] = None, *, function: Optional[str] = None,
+        criterion: str = "abn", norm: str = "l2", test: str = "global", grid: int = 33,
+        sweep_order_seed: int = 0) -> Mesh:
+    """Data-dependent triangulation of scattered data in the plane (Malcolm): ``tessera ddt``.
+
+    points (N, 2); values (N,) or function "F1", "F2", "F7", "F8", "F9" (Franke's, sampled at
+    the points; the summary then has the interpolation error on a grid×grid grid of [0,1]²).
+    criterion: delaunay, mwt, maxmin3d, mwt3d, abn (default), jnd, pf, pd or equid; norm: l1,
+    l2 (default) or lex; test: local or global (default).
+    Returns a Mesh in R^3 (x, y, value), as the CLI writes it, with the summary.
+    """
+    xy = np.asarray(points, dtype=float)
+    if xy.ndim != 2 or xy.shape[1] != 2:
+        raise ValueError(f"ddt: points must be an (N, 2) array, got shape {xy.shape}")
+    _member("norm", norm, ["l1", "l2", "lex"])
+    _member("test", test, ["local", "global"])
+    grid = _in_range("grid", grid, 2, 10000, int)
+    data = None if values is None else np.asarray(values, dtype=float).ravel()
+    core = _tessera.ddt(xy.T, data, function or "", criterion, norm, test, grid,
+                        int(sweep_order_seed))
+    return Mesh._wrap(core)
+
+
+def problems() -> List[Dict[str, Any]]:
+    """The catalogue (``tessera problems``): name, summary and parameters with defaults."""
+    return _tessera.catalogue()
+
+
+def methods() -> List[str]:
+    """The covering methods, the default first."""
+    return _tessera.method_names()

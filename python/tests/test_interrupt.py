@@ -1,0 +1,77 @@
+# SPDX-License-Identifier: MIT
+# Ctrl-C (SIGINT) stops a run and raises Interrupted with the valid partial mesh; the GIL is
+# released while C++ works.
+import os
+import signal
+import threading
+import time
+
+import pytest
+
+import tessera
+
+
+def interrupt_after(seconds: float) -> threading.Timer:
+    timer = threading.Timer(seconds, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    return timer
+
+
+@pytest.mark.parametrize("method, options", [
+    ("front", {"step": 0.004}),
+    ("atlas", {"tolerance": 1e-7}),
+])
+def test_ctrl_c_stops_a_catalogue_run(method, options):
+    interrupt_after(0.3)
+    started = time.monotonic()
+    with pytest.raises(tessera.Interrupted) as error:
+        tessera.mesh("torus", method=method, **options)
+    assert time.monotonic() - started < 10  # the whole run would take minutes
+    assert isinstance(error.value, KeyboardInterrupt)
+    partial = error.value.mesh
+    assert partial.termination == "interrupted" and partial.vertex_count > 0
+    assert tessera.check(partial)["valid"]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_ctrl_c_stops_a_python_problem(sphere):
+    interrupt_after(0.3)
+    with pytest.raises(tessera.Interrupted) as error:
+        tessera.mesh(sphere, method="front", step=0.003, start=[0, 0, 1])
+    assert error.value.mesh.vertex_count > 0
+    assert tessera.check(error.value.mesh, sphere)["valid"]
+
+
+def test_without_handling_the_interrupt_is_python_s():
+    # handle_interrupt=False: Python's handler stays; the KeyboardInterrupt comes after the run.
+    interrupt_after(0.05)
+    with pytest.raises(KeyboardInterrupt) as error:
+        tessera.mesh("sphere", method="front", step=0.03, handle_interrupt=False)
+        time.sleep(1)  # the pending signal is raised at the next bytecode
+    assert not isinstance(error.value, tessera.Interrupted)
+
+
+def test_the_gil_is_released_while_cpp_works():
+    counter = 0
+    done = threading.Event()
+
+    def count():
+        nonlocal counter
+        while not done.is_set():
+            counter += 1
+
+    worker = threading.Thread(target=count)
+    worker.start()
+    try:
+        started = time.monotonic()
+        tessera.mesh("torus", method="front", step=0.04)
+        elapsed = time.monotonic() - started
+        before = counter
+        # The counter ran during the mesh at a good fraction of its free rate.
+        time.sleep(0.2)
+        rate_free = (counter - before) / 0.2
+    finally:
+        done.set()
+        worker.join()
+    assert elapsed > 0.1
+    assert before > 0.2 * rate_free * elapsed
