@@ -124,6 +124,31 @@ TEST_P(EverySparseLu, RefactorisesNewValuesOnTheSamePattern) {
   }
 }
 
+// Objects that analyse the same pattern (KLU shares one symbolic analysis among them): each
+// factors and solves its own values, and outlives the others.
+TEST_P(EverySparseLu, FactorisationsOfOnePatternAreIndependent) {
+  const Eigen::SparseMatrix<double> A = bordered_test_matrix(8, 0.0, 6);
+  const Eigen::SparseMatrix<double> C = bordered_test_matrix(8, 2.5, 7);
+  auto first = make_sparse_lu(GetParam());
+  auto second = make_sparse_lu(GetParam());
+  ASSERT_EQ(first->analyze(A), SparseLuStatus::Success);
+  ASSERT_EQ(first->factorize(A), SparseLuStatus::Success);
+  ASSERT_EQ(second->analyze(C), SparseLuStatus::Success);
+  ASSERT_EQ(second->factorize(C), SparseLuStatus::Success);
+  const Eigen::MatrixXd B = random_matrix(A.rows(), 2, 8);
+  Eigen::MatrixXd X(B.rows(), B.cols());
+  first->solve(B, X);
+  EXPECT_LT(relative_error(A, B, X), kAgreement);
+  first.reset();
+  auto third = make_sparse_lu(GetParam());  // a later analysis of the same pattern
+  ASSERT_EQ(third->analyze(A), SparseLuStatus::Success);
+  ASSERT_EQ(third->factorize(A), SparseLuStatus::Success);
+  second->solve(B, X);
+  EXPECT_LT(relative_error(C, B, X), kAgreement);
+  third->solve(B, X);
+  EXPECT_LT(relative_error(A, B, X), kAgreement);
+}
+
 TEST_P(EverySparseLu, ReportsASingularMatrixAsAValue) {
   // The border row e_{n−1}ᵀ repeated: rows n−2 and n−1 are equal, A is singular.
   Eigen::SparseMatrix<double> A = bordered_test_matrix(6, 0.0, 6);
