@@ -88,7 +88,7 @@ constexpr int kReportSamples = 300;
 
 MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
                        const std::string& problem_argument, const MeshValidation* known,
-                       int samples) {
+                       int samples, bool measure_distances) {
   MeshReport report;
   report.problem = problem_argument;  // as the user spelled it, e.g. "torus:R=2"
   report.ambient_dimension = setup.problem->ambient_dimension();
@@ -103,7 +103,15 @@ MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
   quality.max_samples = samples >= 0                                         ? samples
                         : report.ambient_dimension >= kSampledReportDimension ? kReportSamples
                                                                               : 0;
-  report.quality = measure_quality(mesh, *setup.problem, quality);
+  if (measure_distances) {
+    report.quality = measure_quality(mesh, *setup.problem, quality);
+  } else {
+    report.quality = measure_shape(mesh);
+    report.quality.vertex_residual.population = mesh.vertex_count();
+    report.quality.vertex_distance.population = mesh.vertex_count();
+    report.quality.centroid_distance.population = mesh.triangle_count();
+    report.quality.midpoint_distance.population = report.validation.edge_count;
+  }
   report.expected_euler_characteristic = setup.expected_euler_characteristic;
   report.exact_area = setup.exact_area;
   return report;

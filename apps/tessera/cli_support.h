@@ -31,8 +31,12 @@ void apply_start_and_box(ProblemSetup& setup, const std::string& start, const st
 /// `known`: a validation of exactly this mesh already made (a covering's final check), reused.
 /// `samples`: distances measured at this many points of each kind (0: all; −1: all below
 /// n = 500, else 300).
+/// `measure_distances`: false leaves the distances to M unmeasured (their counts 0 of their
+/// populations): the summary `tessera mesh` writes before the measurement, which at large n
+/// takes minutes, so that a run killed during it still leaves one.
 MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
                        const std::string& problem_argument,
-                       const MeshValidation* known = nullptr, int samples = -1);
+                       const MeshValidation* known = nullptr, int samples = -1,
+                       bool measure_distances = true);
 
 }  // namespace tessera::app

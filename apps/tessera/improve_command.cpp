@@ -81,9 +81,9 @@ int run_improve(const ImproveCommand& command) {
                              << setup.problem->ambient_dimension());
   ImprovementOptions options;
   options.max_sweeps = command.max_sweeps;
-  options.criterion = command.criterion == "normal"     ? SwapCriterion::NormalAngle
-                      : command.criterion == "distance" ? SwapCriterion::MidpointDistance
-                                                        : SwapCriterion::MaxMinAngle;
+  options.criterion = command.criterion == "normal"     ? ImprovementCriterion::NormalAngle
+                      : command.criterion == "distance" ? ImprovementCriterion::MidpointDistance
+                                                        : ImprovementCriterion::MaxMinAngle;
   const MeshValidation validation_before = validate(mesh);
   const MeshQuality quality_before = measure_quality(mesh, *setup.problem);
   const MeshImprovement improvement = improve_mesh(mesh, *setup.problem, options, command.smooth);

@@ -280,13 +280,23 @@ int run_mesh(const MeshCommand& command) {
     write_mesh_in_view(command.output, result.mesh, view, file_options);
     written.push_back(command.output);
   }
-  MeshReport report = make_report(result.mesh, setup, command.problem,
+  const ViewReport view_report{
+      view.specification(),
+      view.is_all_coordinates() ? std::vector<std::string>() : view.names(), chosen.origin};
+  // The run's summary before the distances are measured (minutes at large n): a run killed
+  // during the measurement still leaves it. Replaced below by the complete one.
+  MeshReport before = make_report(result.mesh, setup, command.problem,
                                   result.validation ? &*result.validation : nullptr,
+                                  command.report_samples, /*measure_distances=*/false);
+  if (!command.summary.empty()) {
+    before.run = result.summary;
+    before.view = view_report;
+    write_summary_json(command.summary, before);
+  }
+  MeshReport report = make_report(result.mesh, setup, command.problem, &before.validation,
                                   command.report_samples);
   report.run = result.summary;
-  report.view = ViewReport{view.specification(),
-                           view.is_all_coordinates() ? std::vector<std::string>() : view.names(),
-                           chosen.origin};
+  report.view = view_report;
   if (has_mesh && !command.states.empty()) {
     write_states_npy(command.states, result.mesh);
     report.states = StatesReport{command.states,
