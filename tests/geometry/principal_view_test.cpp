@@ -97,5 +97,42 @@ TEST(PrincipalView, IndexesFindEveryOverlapAcrossRefits) {
   }
 }
 
+// A disk far larger than the indexed ones (radii 0.02 … 3 in one atlas) spans more cells of
+// their level than are occupied; the index then visits the occupied cells instead of the box,
+// and must still find every overlapping disk, and only nearby ones.
+TEST(ChartIndex, LargeQueryAmongSmallDisksFindsEveryOverlap) {
+  const int n = 5;
+  ChartIndex index(n);
+  Eigen::MatrixXd centers(n, 400);
+  std::vector<double> radii(400);
+  for (int c = 0; c < 400; ++c) {
+    const double t = 0.05 * c;
+    centers.col(c) << std::cos(t) * (1 + 0.1 * t), std::sin(t) * (1 + 0.1 * t), 0.3 * t, 0.0, 0.01 * t;
+    radii[c] = c % 50 == 0 ? 0.5 : 0.02;
+    index.insert(c, centers.col(c), radii[c]);
+    if (index.refit_due()) {
+      index.refit(centers.leftCols(c + 1));
+    }
+  }
+  std::vector<int> candidates;
+  for (const double radius : {3.0, 0.02, 0.3}) {
+    const Eigen::VectorXd query = centers.col(123);
+    index.candidates(query, radius, candidates);
+    int overlapping = 0;
+    for (int m = 0; m < 400; ++m) {
+      if ((centers.col(m) - query).norm() < radii[m] + radius) {
+        ++overlapping;
+        EXPECT_NE(std::find(candidates.begin(), candidates.end(), m), candidates.end())
+            << "chart " << m << " missed by a query of radius " << radius;
+      }
+    }
+    EXPECT_GE(static_cast<int>(candidates.size()), overlapping);
+    std::vector<int> sorted = candidates;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end())
+        << "a chart listed twice by a query of radius " << radius;
+  }
+}
+
 }  // namespace
 }  // namespace tessera

@@ -57,20 +57,35 @@ void ChartIndex::candidates(const Eigen::Ref<const Eigen::VectorXd>& center, dou
       low[a] = static_cast<std::int64_t>(std::floor((p(a) - reach) / level.cell_size));
       high[a] = static_cast<std::int64_t>(std::floor((p(a) + reach) / level.cell_size));
     }
+    const auto consider = [&](const std::vector<Entry>& entries) {
+      for (const Entry& e : entries) {
+        const double dx = e.x - p(0);
+        const double dy = e.y - p(1);
+        const double dz = e.z - p(2);
+        if (dx * dx + dy * dy + dz * dz <= reach_squared) {
+          out.push_back(e.chart);
+        }
+      }
+    };
+    // A large disk queried on a level of small ones spans more cells than the level occupies
+    // (radii 0.024 … 3 on bvp at step 3: 10⁶ cells per query, 63% of the run): then the
+    // occupied cells are visited instead.
+    double box_cells = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      box_cells *= static_cast<double>(high[a] - low[a] + 1);
+    }
+    if (box_cells > static_cast<double>(level.cells.size())) {
+      for (const auto& [cell, entries] : level.cells) {
+        consider(entries);
+      }
+      continue;
+    }
     for (std::int64_t i = low[0]; i <= high[0]; ++i) {
       for (std::int64_t j = low[1]; j <= high[1]; ++j) {
         for (std::int64_t k = low[2]; k <= high[2]; ++k) {
           const auto it = level.cells.find(key(i, j, k));
-          if (it == level.cells.end()) {
-            continue;
-          }
-          for (const Entry& e : it->second) {
-            const double dx = e.x - p(0);
-            const double dy = e.y - p(1);
-            const double dz = e.z - p(2);
-            if (dx * dx + dy * dy + dz * dz <= reach_squared) {
-              out.push_back(e.chart);
-            }
+          if (it != level.cells.end()) {
+            consider(it->second);
           }
         }
       }
