@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "compare_command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -38,34 +39,64 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommand& command) {
   return compare;
 }
 
+bool CompareReport::passes() const {
+  for (const CompareRow& row : rows) {
+    if (!row.passes()) {
+      return false;
+    }
+  }
+  return true;
+}
+
+CompareReport compare_methods(const std::function<ProblemSetup()>& make_setup,
+                              const MethodSettings& settings,
+                              const std::function<void(const CompareRow&)>& on_row) {
+  CompareReport report;
+  for (const CoveringMethod& method : covering_methods()) {
+    const ProblemSetup setup = make_setup();
+    report.expected_euler_characteristic = setup.expected_euler_characteristic;
+    const CoveringResult result = cover(setup, method, settings);
+    const MeshValidation validation = validate(result.mesh, *setup.problem, setup.domain);
+    const MeshQuality quality = measure_quality(result.mesh, *setup.problem);
+    CompareRow row;
+    row.method = method.name;
+    row.run = result.summary;
+    row.vertex_count = validation.referenced_vertex_count;
+    row.triangle_count = validation.triangle_count;
+    row.max_distance = std::max(quality.centroid_distance.max, quality.midpoint_distance.max);
+    row.min_angle_degrees = quality.min_angle_degrees;
+    row.euler_characteristic = validation.euler_characteristic;
+    row.valid = validation.is_valid();
+    if (on_row) {
+      on_row(row);
+    }
+    report.rows.push_back(std::move(row));
+  }
+  return report;
+}
+
 int run_compare(const CompareCommand& command) {
   std::printf("%-8s %9s %10s %9s %12s %12s %9s %6s %-7s %s\n", "method", "vertices", "triangles",
               "time [s]", "max dist M", "tolerance", "min angle", "chi", "valid", "run");
-  bool all_good = true;
-  for (const CoveringMethod& method : covering_methods()) {
+  const auto make_setup = [&command] {
     ProblemSetup setup = resolve_problem(command.problem);
     apply_start_and_box(setup, command.start, command.box);
-    const CoveringResult result = cover(setup, method, command.settings);
-    const MeshValidation validation = validate(result.mesh, *setup.problem, setup.domain);
-    const MeshQuality quality = measure_quality(result.mesh, *setup.problem);
-    // The distance of the mesh to M: the larger of the centroid and edge-midpoint distances,
-    // measured by projecting those points (not produced by any method) onto M.
-    const double distance = std::max(quality.centroid_distance.max, quality.midpoint_distance.max);
+    return setup;
+  };
+  const auto print_row = [](const CompareRow& row) {
     const std::string tolerance =
-        result.summary.tolerance > 0 ? std::to_string(result.summary.tolerance).substr(0, 8) : "-";
-    std::printf("%-8s %9d %10d %9.3f %12.3g %12s %9.1f %6d %-7s %s\n", method.name.c_str(),
-                validation.referenced_vertex_count, validation.triangle_count,
-                result.summary.wall_seconds, distance, tolerance.c_str(), quality.min_angle_degrees,
-                validation.euler_characteristic, validation.is_valid() ? "yes" : "NO",
-                to_string(result.summary.termination));
-    all_good = all_good && validation.is_valid() && result.summary.is_complete();
+        row.run.tolerance > 0 ? std::to_string(row.run.tolerance).substr(0, 8) : "-";
+    std::printf("%-8s %9d %10d %9.3f %12.3g %12s %9.1f %6d %-7s %s\n", row.method.c_str(),
+                row.vertex_count, row.triangle_count, row.run.wall_seconds, row.max_distance,
+                tolerance.c_str(), row.min_angle_degrees, row.euler_characteristic,
+                row.valid ? "yes" : "NO", to_string(row.run.termination));
+    std::fflush(stdout);
+  };
+  const CompareReport report = compare_methods(make_setup, command.settings, print_row);
+  if (report.expected_euler_characteristic) {
+    std::printf("expected Euler characteristic: %d\n", *report.expected_euler_characteristic);
   }
-  ProblemSetup setup = resolve_problem(command.problem);
-  apply_start_and_box(setup, command.start, command.box);
-  if (setup.expected_euler_characteristic) {
-    std::printf("expected Euler characteristic: %d\n", *setup.expected_euler_characteristic);
-  }
-  return all_good ? 0 : kComputationFailed;
+  return report.passes() ? 0 : kComputationFailed;
 }
 
 }  // namespace tessera::app

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "ddt_command.h"
 
+#include "malcolm_tables.h"
 #include "output_checks.h"
 
 #include <algorithm>
@@ -77,40 +78,6 @@ Row optimise_and_measure(const PlanarTriangulation& start, const std::string& cr
     *result = std::move(triangulation);
   }
   return row;
-}
-
-// Malcolm's Tables 1 (33 points) and 2 (100 points): mean pointwise error, rows in the order
-// DELAUNAY, MWT-3D, ABN-1, ABN-2, JND-1, JND-2, PF-1, PF-2, PD-1, PD-2, EQUID; columns F1, F2,
-// F7, F8, F9.
-constexpr double kTable1[11][5] = {
-    {0.04886, 0.01604, 0.06866, 0.15210, 0.05042}, {0.05813, 0.01585, 0.06019, 0.09926, 0.04826},
-    {0.04033, 0.00619, 0.04210, 0.13123, 0.04633}, {0.03964, 0.00610, 0.04096, 0.07723, 0.04702},
-    {0.04033, 0.01176, 0.04562, 0.10457, 0.04639}, {0.04532, 0.01107, 0.04922, 0.10456, 0.04635},
-    {0.04285, 0.00618, 0.04342, 0.14730, 0.04650}, {0.04661, 0.01190, 0.05737, 0.15113, 0.04683},
-    {0.05255, 0.00618, 0.04267, 0.11505, 0.04737}, {0.05379, 0.01188, 0.04790, 0.11513, 0.04750},
-    {0.04541, 0.00614, 0.06601, 0.10472, 0.04697}};
-constexpr double kTable2[11][5] = {
-    {0.01637, 0.00419, 0.02707, 0.04033, 0.01492}, {0.02002, 0.00366, 0.02869, 0.01884, 0.01249},
-    {0.01546, 0.00145, 0.02027, 0.01390, 0.01101}, {0.01550, 0.00147, 0.01727, 0.02839, 0.01075},
-    {0.01571, 0.00145, 0.02207, 0.02961, 0.01097}, {0.01533, 0.00151, 0.02099, 0.03034, 0.01079},
-    {0.01563, 0.00145, 0.01881, 0.03011, 0.01137}, {0.01634, 0.00182, 0.02000, 0.03162, 0.01115},
-    {0.01600, 0.00145, 0.02374, 0.02557, 0.01113}, {0.01670, 0.00152, 0.02576, 0.02505, 0.01079},
-    {0.02070, 0.00358, 0.02675, 0.03805, 0.01639}};
-
-int function_column(FrankeFunction f) {
-  switch (f) {
-    case FrankeFunction::F1:
-      return 0;
-    case FrankeFunction::F2:
-      return 1;
-    case FrankeFunction::F7:
-      return 2;
-    case FrankeFunction::F8:
-      return 3;
-    case FrankeFunction::F9:
-      return 4;
-  }
-  return 0;
 }
 
 void print_row(const Row& row, bool has_function) {
@@ -193,23 +160,13 @@ int run_ddt(const DdtCommand& command) {
     std::printf("%d points, %s test; mean, RMS and max of |f_T − f| on a %d×%d grid of [0,1]²\n",
                 static_cast<int>(data.points.cols()), command.test.c_str(), command.grid,
                 command.grid);
-    const struct {
-      const char* criterion;
-      CostOrdering ordering;
-    } rows[] = {
-        {"delaunay", CostOrdering::L2}, {"mwt3d", CostOrdering::L2}, {"abn", CostOrdering::L1},
-        {"abn", CostOrdering::L2},      {"jnd", CostOrdering::L1},   {"jnd", CostOrdering::L2},
-        {"pf", CostOrdering::L1},       {"pf", CostOrdering::L2},    {"pd", CostOrdering::L1},
-        {"pd", CostOrdering::L2},       {"equid", CostOrdering::L2}};
-    const double(*report)[5] = command.compare_report == 33    ? kTable1
-                               : command.compare_report == 100 ? kTable2
-                                                               : nullptr;
+    const bool with_report = command.compare_report == 33 || command.compare_report == 100;
     if (command.orders > 1) {
       std::printf("spread over %d sweep orders (index order, then random permutations)\n",
                   command.orders);
     }
-    for (std::size_t r = 0; r < std::size(rows); ++r) {
-      const auto& row = rows[r];
+    for (std::size_t r = 0; r < kAllCriteriaRowCount; ++r) {
+      const AllCriteriaRow& row = kAllCriteriaRows[r];
       if (std::string(row.criterion) == "equid" && !function) {
         continue;
       }
@@ -231,13 +188,12 @@ int run_ddt(const DdtCommand& command) {
       if (command.orders > 1) {
         std::printf("  orders %.5f … %.5f", lowest, highest);
       }
-      if (report != nullptr) {
-        const double value = report[r][function_column(*function)];
+      if (with_report) {
+        const double value = malcolm_table_value(command.compare_report, r, *function);
         std::printf("  report %.5f", value);
         if (command.orders > 1) {
-          // The report prints 5 decimals: half a unit of the last one is within reach.
-          const bool is_in_spread = value >= lowest - 0.5e-5 && value <= highest + 0.5e-5;
-          std::printf(" (%s)", is_in_spread ? "in spread" : "outside spread");
+          std::printf(" (%s)",
+                      is_in_spread(value, lowest, highest) ? "in spread" : "outside spread");
         }
       }
       std::printf("  rms %.5f  max %.5f\n", measured.error.rms, measured.error.max);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// `tessera ddt` for the bindings, in its own file: the planar methods' SwapCriterion (a class)
-// and mesh improvement's SwapCriterion (an enum) cannot meet in one translation unit.
+// `tessera ddt` for the bindings, in its own file so that module.cpp includes no header of the
+// planar methods (whose Delaunay triangulation is CGAL's).
 #pragma once
 
 #include <Eigen/Core>
@@ -22,9 +22,15 @@ struct DataDependentOptions {
 };
 
 struct DataDependentTriangulation {
-  TriangleMesh mesh;         ///< in R^3: x, y, value
+  TriangleMesh mesh;           ///< in R^3: x, y, value
   std::vector<double> values;  ///< the data value of every vertex
-  std::string summary_json;  ///< criterion, swaps, and the interpolation error for a function
+  std::string summary_json;    ///< criterion, swaps, and the interpolation error for a function
+};
+
+/// `tessera ddt --all-criteria [--orders K] [--compare-report 33|100]`.
+struct AllCriteriaOptions {
+  int orders = 1;          ///< sweep orders tried per row (index order, then random ones)
+  int compare_report = 0;  ///< 33 or 100: Malcolm's Table 1 or 2 value beside each row
 };
 
 /// Delaunay triangulation of the points, then local optimisation by the criterion (Malcolm).
@@ -33,5 +39,14 @@ struct DataDependentTriangulation {
 DataDependentTriangulation triangulate_data(const Eigen::Matrix2Xd& points,
                                             const std::optional<Eigen::VectorXd>& values,
                                             const DataDependentOptions& options);
+
+/// One triangulation per row of the CLI's --all-criteria table (delaunay, mwt3d, abn, jnd, pf,
+/// pd with l1 and l2, equid when options.function is given), in the table's order. Each summary
+/// is triangulate_data's (its "criterion" is the table's label) with "norm", and with a function
+/// "orders" (the spread of the mean error over the sweep orders) and "report" (Malcolm's value) as
+/// asked. options.criterion and options.norm are not used.
+std::vector<DataDependentTriangulation> triangulate_all_criteria(
+    const Eigen::Matrix2Xd& points, const std::optional<Eigen::VectorXd>& values,
+    const DataDependentOptions& options, const AllCriteriaOptions& all);
 
 }  // namespace tessera::python

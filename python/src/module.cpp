@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "cli_support.h"
+#include "compare_command.h"
 #include "ddt.h"
 #include "output_checks.h"
 #include "python_problem.h"
@@ -96,6 +97,7 @@ struct MeshHandle {
   std::string termination = "completed";
   std::string failure;       ///< empty, or the CLI's message for a run that did not succeed
   bool interrupted = false;  ///< Ctrl-C arrived during the run
+  int interrupt_count = 0;   ///< how many times (the second and later are handed to Python)
   std::string comment;       ///< first comment line of the files written
   std::vector<VertexScalars> vertex_scalars;  ///< ddt: the data values
 };
@@ -103,15 +105,20 @@ struct MeshHandle {
 // Ctrl-C during a run: while C++ works no Python code runs that could raise KeyboardInterrupt,
 // so a C handler sets a flag that the methods poll (MethodSettings::stop_requested) and the run
 // returns its valid partial mesh. Installed only where Python's own handler would raise
-// KeyboardInterrupt (the main thread, default handler), and restored afterwards.
-std::atomic<bool> interrupt_requested{false};
+// KeyboardInterrupt (the main thread, default handler), and restored afterwards. The handler
+// counts: a second Ctrl-C cannot cut the run shorter (after the first the run only finishes what
+// keeps the partial mesh valid: clipping, refinement, validation, the report), so the package
+// raises Interrupted and hands the second to Python as a pending KeyboardInterrupt
+// (raise_with_pending_interrupt), which a handler of Interrupted then meets.
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler's counter");
+std::atomic<int> interrupt_signals{0};
 
-extern "C" void request_interrupt(int) { interrupt_requested.store(true); }
+extern "C" void request_interrupt(int) { interrupt_signals.fetch_add(1); }
 
 class InterruptHandler {
  public:
   explicit InterruptHandler(bool wanted) {
-    interrupt_requested.store(false);
+    interrupt_signals.store(0);
     if (!wanted) {
       return;
     }
@@ -136,7 +143,8 @@ class InterruptHandler {
   InterruptHandler(const InterruptHandler&) = delete;
   InterruptHandler& operator=(const InterruptHandler&) = delete;
 
-  bool is_requested() const { return interrupt_requested.load(); }
+  bool is_requested() const { return interrupt_signals.load() > 0; }
+  int count() const { return interrupt_signals.load(); }
 
  private:
   bool installed_ = false;
@@ -300,6 +308,7 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
     handle->patches = std::move(result.patches);
   }
   handle->interrupted = interrupt.is_requested();
+  handle->interrupt_count = interrupt.count();
   if (progress_error) {
     throw std::move(*progress_error);
   }
@@ -418,9 +427,9 @@ std::shared_ptr<MeshHandle> improve(const MeshHandle& given,
     const ImplicitProblem& f = *problem->problem;
     ImprovementOptions options;
     options.max_sweeps = max_sweeps;
-    options.criterion = criterion == "normal"     ? SwapCriterion::NormalAngle
-                        : criterion == "distance" ? SwapCriterion::MidpointDistance
-                                                  : SwapCriterion::MaxMinAngle;
+    options.criterion = criterion == "normal"     ? ImprovementCriterion::NormalAngle
+                        : criterion == "distance" ? ImprovementCriterion::MidpointDistance
+                                                  : ImprovementCriterion::MaxMinAngle;
     const MeshValidation validation_before = validate(handle->mesh);
     const MeshQuality quality_before = measure_quality(handle->mesh, f);
     const MeshImprovement improvement = improve_mesh(handle->mesh, f, options, smooth);
@@ -468,6 +477,82 @@ std::shared_ptr<MeshHandle> ddt(const Eigen::Matrix2Xd& points,
   handle->vertex_scalars.push_back({"value", std::move(result.values)});
   handle->mesh = std::move(result.mesh);
   return handle;
+}
+
+// `tessera ddt --all-criteria`: one mesh per row of the table, in the table's order.
+std::vector<std::shared_ptr<MeshHandle>> ddt_all_criteria(
+    const Eigen::Matrix2Xd& points, std::optional<Eigen::VectorXd> values,
+    const std::string& function_name, const std::string& test, int grid, int orders,
+    int compare_report) {
+  std::vector<DataDependentTriangulation> results;
+  {
+    py::gil_scoped_release release;
+    results = triangulate_all_criteria(points, values, {function_name, "", "", test, grid, 0},
+                                       {orders, compare_report});
+  }
+  std::vector<std::shared_ptr<MeshHandle>> handles;
+  for (auto& result : results) {
+    auto handle = std::make_shared<MeshHandle>();
+    handle->summary_json = std::move(result.summary_json);
+    handle->comment = "tessera ddt --all-criteria, criterion " +
+                      nlohmann::json::parse(handle->summary_json)["criterion"].get<std::string>();
+    handle->vertex_scalars.push_back({"value", std::move(result.values)});
+    handle->mesh = std::move(result.mesh);
+    handles.push_back(std::move(handle));
+  }
+  return handles;
+}
+
+// `tessera compare`: every method on the problem, the table as JSON (one object per method),
+// and how many times Ctrl-C came (the first stops the method running; the rest then stop at
+// their first poll, so their rows say "interrupted").
+py::tuple compare_methods(const std::shared_ptr<ProblemHandle>& problem,
+                          const MeshRequest& request, bool handle_interrupt) {
+  MethodSettings settings = request.settings;
+  const std::string start = request.start.empty() ? "" : join_numbers(request.start);
+  const std::string box = request.box.empty() ? "" : join_numbers(request.box);
+  {
+    // Checks --start and --box before any computation.
+    ProblemSetup setup = problem->setup();
+    app::apply_start_and_box(setup, start, box);
+  }
+  const InterruptHandler interrupt(handle_interrupt);
+  settings.stop_requested = [&interrupt] { return interrupt.is_requested(); };
+  nlohmann::json json;
+  {
+    py::gil_scoped_release release;
+    const app::CompareReport report = app::compare_methods(
+        [&] {
+          ProblemSetup setup = problem->setup();
+          app::apply_start_and_box(setup, start, box);
+          return setup;
+        },
+        settings);
+    nlohmann::json rows = nlohmann::json::array();
+    for (const app::CompareRow& row : report.rows) {
+      rows.push_back({{"method", row.method},
+                      {"vertex_count", row.vertex_count},
+                      {"triangle_count", row.triangle_count},
+                      {"wall_seconds", row.run.wall_seconds},
+                      {"max_distance", row.max_distance},
+                      {"tolerance", row.run.tolerance},
+                      {"min_angle_degrees", row.min_angle_degrees},
+                      {"euler_characteristic", row.euler_characteristic},
+                      {"valid", row.valid},
+                      {"termination", to_string(row.run.termination)},
+                      {"completed", row.run.is_complete()},
+                      {"message", row.run.message},
+                      {"passes", row.passes()}});
+    }
+    json = {{"problem", problem->argument},
+            {"methods", rows},
+            {"expected_euler_characteristic",
+             report.expected_euler_characteristic
+                 ? nlohmann::json(*report.expected_euler_characteristic)
+                 : nlohmann::json(nullptr)},
+            {"passes", report.passes()}};
+  }
+  return py::make_tuple(json.dump(2), interrupt.count());
 }
 
 std::shared_ptr<MeshHandle> mesh_from_arrays(
@@ -605,6 +690,8 @@ PYBIND11_MODULE(_tessera, module) {
       .def_property_readonly("termination", [](const MeshHandle& m) { return m.termination; })
       .def_property_readonly("failure", [](const MeshHandle& m) { return m.failure; })
       .def_property_readonly("interrupted", [](const MeshHandle& m) { return m.interrupted; })
+      .def_property_readonly("interrupt_count",
+                             [](const MeshHandle& m) { return m.interrupt_count; })
       .def_property_readonly("problem", [](const MeshHandle& m) { return m.problem; })
       .def_property_readonly("has_patches", [](const MeshHandle& m) { return !m.patches.empty(); })
       .def("write", &write_mesh_file, py::arg("path"), py::arg("ascii"), py::arg("view"))
@@ -674,7 +761,18 @@ PYBIND11_MODULE(_tessera, module) {
   module.def("check", &check_mesh);
   module.def("improve", &improve);
   module.def("ddt", &ddt);
+  module.def("ddt_all_criteria", &ddt_all_criteria);
+  module.def("compare", &compare_methods, py::arg("problem"), py::arg("request"),
+             py::arg("handle_interrupt"));
   module.def("method_names", &covering_method_names);
+  // Raises `error` with a KeyboardInterrupt pending (the second Ctrl-C of a run): Python raises
+  // it at its next check, in the code that handles `error`. Raised from C so that no check
+  // between setting the interrupt and raising `error` can overtake it.
+  module.def("raise_with_pending_interrupt", [](const py::object& error) {
+    PyErr_SetInterrupt();
+    PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(error.ptr())), error.ptr());
+    throw py::error_already_set();
+  });
   module.def("catalogue", [] {
     py::list entries;
     for (const auto& entry : catalogue()) {

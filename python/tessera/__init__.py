@@ -32,6 +32,7 @@ __all__ = [
     "Mesh",
     "Problem",
     "check",
+    "compare",
     "ddt",
     "improve",
     "mesh",
@@ -66,6 +67,15 @@ class Interrupted(KeyboardInterrupt):
     def __init__(self, message: str, mesh: Optional["Mesh"] = None):
         super().__init__(message)
         self.mesh = mesh
+
+
+def _raise_interrupted(error: Interrupted, count: int) -> None:
+    # A second Ctrl-C during the run (which after the first only finishes what keeps the partial
+    # mesh valid) is not dropped: it follows `error` as a KeyboardInterrupt, raised where Python
+    # next checks for signals, i.e. in the code handling `error`.
+    if count > 1:
+        _tessera.raise_with_pending_interrupt(error)
+    raise error
 
 
 # ---------------------------------------------------------------------------------------------
@@ -483,8 +493,10 @@ def mesh(
     core = _tessera.mesh(chosen._core, request, progress, bool(handle_interrupt))
     result = Mesh._wrap(core)
     if core.interrupted:
-        raise Interrupted(f"interrupted; the partial mesh has {result.vertex_count} vertices "
-                          f"and {result.triangle_count} triangles (.mesh)", result)
+        _raise_interrupted(
+            Interrupted(f"interrupted; the partial mesh has {result.vertex_count} vertices and "
+                        f"{result.triangle_count} triangles (.mesh)", result),
+            core.interrupt_count)
     if core.failure and not allow_partial:
         raise ComputationFailed(core.failure, result)
     return result
@@ -538,7 +550,8 @@ def improve(mesh: Mesh, problem: Optional[ProblemLike] = None, *, criterion: str
 
 def ddt(points: ArrayLike, values: Optional[ArrayLike] = None, *, function: Optional[str] = None,
         criterion: str = "abn", norm: str = "l2", test: str = "global", grid: int = 33,
-        sweep_order_seed: int = 0) -> Mesh:
+        sweep_order_seed: int = 0, all_criteria: bool = False, orders: int = 1,
+        compare_report: Optional[int] = None) -> Union[Mesh, Dict[str, Mesh]]:
     """Data-dependent triangulation of scattered data in the plane (Malcolm): ``tessera ddt``.
 
     points (N, 2); values (N,) or function "F1", "F2", "F7", "F8", "F9" (Franke's, sampled at
@@ -546,6 +559,16 @@ def ddt(points: ArrayLike, values: Optional[ArrayLike] = None, *, function: Opti
     criterion: delaunay, mwt, maxmin3d, mwt3d, abn (default), jnd, pf, pd or equid; norm: l1,
     l2 (default) or lex; test: local or global (default).
     Returns a Mesh in R^3 (x, y, value), as the CLI writes it, with the summary.
+
+    all_criteria (``--all-criteria``): instead one triangulation per row of the CLI's table
+    (delaunay, mwt3d, abn, jnd, pf and pd with l1 and l2, and equid when a function is given),
+    returned as a dict from the row's label (``summary["criterion"]``, e.g. "ABN-1 global") to
+    its Mesh, in the table's order; criterion, norm and sweep_order_seed do not apply then.
+    With a function: orders (``--orders K``, default 1) also triangulates each row in K sweep
+    orders (index order, then random permutations) and puts the spread of the mean error into
+    summary["orders"] ({"count", "lowest_mean", "highest_mean"}); compare_report
+    (``--compare-report 33|100``) puts Malcolm's Table 1 (33 points) or 2 (100 points) value
+    into summary["report"] ({"table", "mean"}, and "in_spread" when orders > 1).
     """
     xy = np.asarray(points, dtype=float)
     if xy.ndim != 2 or xy.shape[1] != 2:
@@ -553,10 +576,79 @@ def ddt(points: ArrayLike, values: Optional[ArrayLike] = None, *, function: Opti
     _member("norm", norm, ["l1", "l2", "lex"])
     _member("test", test, ["local", "global"])
     grid = _in_range("grid", grid, 2, 10000, int)
+    orders = _in_range("orders", orders, 1, 1000, int)
+    report = 0
+    if compare_report is not None:
+        if compare_report not in (33, 100):
+            raise ValueError(f"compare_report: {compare_report!r} not in {{33, 100}}")
+        report = int(compare_report)
+    # Options the CLI would ignore are refused, as `mesh` refuses another method's options.
+    if not all_criteria and (orders != 1 or report):
+        raise ValueError("orders and compare_report: only with all_criteria=True")
+    if all_criteria and (orders != 1 or report) and not function:
+        raise ValueError("orders and compare_report compare interpolation errors: they need "
+                         "function (F1, F2, F7, F8 or F9)")
+    if all_criteria and (criterion != "abn" or norm != "l2" or sweep_order_seed != 0):
+        raise ValueError("criterion, norm and sweep_order_seed: not with all_criteria=True "
+                         "(every criterion of the table is run)")
     data = None if values is None else np.asarray(values, dtype=float).ravel()
+    if all_criteria:
+        cores = _tessera.ddt_all_criteria(xy.T, data, function or "", test, grid, orders, report)
+        meshes = [Mesh._wrap(core) for core in cores]
+        return {mesh.summary["criterion"]: mesh for mesh in meshes}
     core = _tessera.ddt(xy.T, data, function or "", criterion, norm, test, grid,
                         int(sweep_order_seed))
     return Mesh._wrap(core)
+
+
+def compare(
+    problem: ProblemLike,
+    *,
+    step: Optional[float] = None,
+    tolerance: Optional[float] = None,
+    placement: str = "disk",
+    start: Optional[ArrayLike] = None,
+    box: Optional[ArrayLike] = None,
+    max_vertices: int = 2_000_000,
+    handle_interrupt: bool = True,
+) -> Dict[str, Any]:
+    """Every covering method on one problem, side by side: ``tessera compare``.
+
+    The options are compare's (and mean what they mean for `mesh`): step, tolerance (default:
+    each method's own, e.g. atlas step/50), placement (atlas: "disk" or "hexagonal"), start,
+    box, max_vertices. Returns the CLI's table as a dict::
+
+        {"problem": "torus", "expected_euler_characteristic": 0, "passes": True,
+         "methods": [{"method": "atlas", "vertex_count": ..., "triangle_count": ...,
+                      "wall_seconds": ..., "max_distance": ..., "tolerance": ...,
+                      "min_angle_degrees": ..., "euler_characteristic": ..., "valid": ...,
+                      "termination": "completed", "completed": True, "message": "",
+                      "passes": True}, ...]}
+
+    one entry per method in `methods()`'s order. "max_distance" is the larger of the centroid
+    and edge-midpoint distances to M, measured independently of the method; "tolerance" is 0
+    where no bound was asked; "passes" is False where the CLI's exit status would be 1 (a
+    method stopped early or its mesh is not valid): a failing method is a row, not an
+    exception. Raises ValueError for bad input and `Interrupted` (``.report`` holds the table,
+    the rows after Ctrl-C say "interrupted") on Ctrl-C.
+    """
+    chosen = _problem(problem)
+    request = _tessera.MeshRequest()
+    request.step = _finite_positive("step", step)
+    request.tolerance = _finite_positive("tolerance", tolerance)
+    request.placement = _member("placement", placement, ["disk", "hexagonal"])
+    request.start = _numbers(start)
+    request.box = _numbers(box)
+    request.max_vertices = _in_range("max_vertices", max_vertices, 7, 100_000_000, int)
+    report_json, interrupt_count = _tessera.compare(chosen._core, request,
+                                                    bool(handle_interrupt))
+    report = json.loads(report_json)
+    if interrupt_count:
+        error = Interrupted("interrupted; the comparison is in .report (the rows of the "
+                            "methods stopped say \"interrupted\")")
+        error.report = report
+        _raise_interrupted(error, interrupt_count)
+    return report
 
 
 def problems() -> List[Dict[str, Any]]:

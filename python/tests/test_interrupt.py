@@ -75,3 +75,58 @@ def test_the_gil_is_released_while_cpp_works():
         worker.join()
     assert elapsed > 0.1
     assert before > 0.2 * rate_free * elapsed
+
+
+def press_ctrl_c(times: int):
+    """A progress callback that presses Ctrl-C `times` times during the run, once."""
+    pressed = []
+
+    def progress(_):
+        if not pressed:
+            pressed.append(True)
+            for _ in range(times):
+                os.kill(os.getpid(), signal.SIGINT)
+
+    return progress
+
+
+def test_one_ctrl_c_is_one_interrupt():
+    with pytest.raises(tessera.Interrupted) as error:
+        tessera.mesh("torus", method="front", step=0.01, progress=press_ctrl_c(1))
+    assert error.value.mesh.termination == "interrupted"
+    time.sleep(0.05)  # no second KeyboardInterrupt is pending
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+@pytest.mark.parametrize("method", ["front", "atlas"])
+def test_a_second_ctrl_c_follows_the_first_as_a_keyboard_interrupt(method):
+    # The first Ctrl-C stops the build; the run then finishes what keeps the partial mesh valid
+    # and cannot be cut shorter. A second one is not lost: it is raised where Python next
+    # checks, i.e. in the handler of the first, as it would be in any Python code.
+    partial = []
+    with pytest.raises(KeyboardInterrupt) as second:
+        try:
+            tessera.mesh("torus", method=method, step=0.01, tolerance=1e-4,
+                         progress=press_ctrl_c(2))
+        except tessera.Interrupted as first:
+            partial.append(first.mesh)
+            time.sleep(0.01)
+            pytest.fail("the second Ctrl-C was lost")
+    assert not isinstance(second.value, tessera.Interrupted)
+    assert isinstance(second.value.__context__, tessera.Interrupted)
+    assert partial and partial[0].termination == "interrupted" and partial[0].vertex_count > 0
+    assert tessera.check(partial[0])["valid"]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_ctrl_c_stops_a_comparison():
+    interrupt_after(0.3)
+    started = time.monotonic()
+    with pytest.raises(tessera.Interrupted) as error:
+        tessera.compare("torus", tolerance=1e-7)
+    assert time.monotonic() - started < 10
+    rows = error.value.report["methods"]
+    assert [row["method"] for row in rows] == tessera.methods()
+    # The method running stops; the others stop at their first poll.
+    assert all(row["termination"] == "interrupted" and row["valid"] for row in rows), rows
+    assert rows[0]["vertex_count"] > 0 and not error.value.report["passes"]

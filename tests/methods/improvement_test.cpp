@@ -67,8 +67,8 @@ TEST(EdgeSwap, DelaunaySwapsOnCutSphereDoNotLowerMinAngleAndKeepTheMesh) {
   const MeshQuality quality_before = measure_quality(run.result.mesh, problem);
   const auto boundary_before = boundary_edges(run.result.mesh);
 
-  const ImprovementSummary summary =
-      improve_by_edge_swaps(run.result.mesh, problem, {.criterion = SwapCriterion::MaxMinAngle});
+  const ImprovementSummary summary = improve_by_edge_swaps(
+      run.result.mesh, problem, {.criterion = ImprovementCriterion::MaxMinAngle});
   std::printf("sphere_cut h = 0.3, angle: %s\n", summary.brief_report().c_str());
 
   const MeshValidation validation_after = validate(run.result.mesh);
@@ -109,8 +109,9 @@ TEST_P(EdgeSwapStress, RandomSwapsThenEveryCriterionKeepValidityTopologyAndOrien
   EXPECT_TRUE(is_consistently_oriented(scrambled));
   const double scrambled_min_angle = measure_shape(scrambled).min_angle_degrees;
 
-  for (const SwapCriterion criterion :
-       {SwapCriterion::MaxMinAngle, SwapCriterion::NormalAngle, SwapCriterion::MidpointDistance}) {
+  for (const ImprovementCriterion criterion :
+       {ImprovementCriterion::MaxMinAngle, ImprovementCriterion::NormalAngle,
+        ImprovementCriterion::MidpointDistance}) {
     SCOPED_TRACE(to_string(criterion));
     TriangleMesh mesh = scrambled;
     const ImprovementSummary summary =
@@ -128,7 +129,7 @@ TEST_P(EdgeSwapStress, RandomSwapsThenEveryCriterionKeepValidityTopologyAndOrien
     // Termination: the procedure stops by itself, well before the cap.
     EXPECT_TRUE(summary.converged);
     EXPECT_LT(summary.sweeps, ImprovementOptions{}.max_sweeps);
-    if (criterion == SwapCriterion::MaxMinAngle) {
+    if (criterion == ImprovementCriterion::MaxMinAngle) {
       EXPECT_GT(summary.min_angle_degrees_after, scrambled_min_angle);
     }
   }
@@ -182,8 +183,9 @@ TEST(EdgeSwap, NonConvexQuadrilateralIsNeverSwapped) {
   EXPECT_EQ(check_edge_swap(mesh, *plane.problem, 0, 1), SwapCheck::NonConvex);
   EXPECT_EQ(swap_edge(mesh, *plane.problem, 0, 1), SwapCheck::NonConvex);
   EXPECT_EQ(mesh.triangles(), triangles);
-  for (const SwapCriterion criterion :
-       {SwapCriterion::MaxMinAngle, SwapCriterion::NormalAngle, SwapCriterion::MidpointDistance}) {
+  for (const ImprovementCriterion criterion :
+       {ImprovementCriterion::MaxMinAngle, ImprovementCriterion::NormalAngle,
+        ImprovementCriterion::MidpointDistance}) {
     const ImprovementSummary summary = improve_by_edge_swaps(
         mesh, *plane.problem, {.criterion = criterion, .relative_tolerance = 0.0});
     EXPECT_EQ(summary.swaps, 0);
@@ -214,15 +216,15 @@ TEST(EdgeSwap, NonConvexQuadrilateralIsRefusedEvenWhenTheCriterionWantsTheSwap) 
   // Seen from above, c = (1, 1), d = (4, −0.5): the diagonal cd crosses y = 0 at x = 3, beside
   // the edge ab, so the corner at b is reflex.
   const struct {
-    SwapCriterion criterion;
+    ImprovementCriterion criterion;
     TriangleMesh mesh;
     const char* why_the_criterion_wants_it;
   } cases[] = {
-      {SwapCriterion::MaxMinAngle, quadrilateral(0, {1, 1, 0}, {4, -0.5, 0}),
+      {ImprovementCriterion::MaxMinAngle, quadrilateral(0, {1, 1, 0}, {4, -0.5, 0}),
        "smallest angle 7.1° (at a in bad) before, 12.5° after (unsigned angles)"},
-      {SwapCriterion::NormalAngle, quadrilateral(0, {1, 1, 3}, {4, -0.5, 8}),
+      {ImprovementCriterion::NormalAngle, quadrilateral(0, {1, 1, 3}, {4, -0.5, 8}),
        "angle between the normals 158° before, 143° after"},
-      {SwapCriterion::MidpointDistance, quadrilateral(0.1, {1, 1, 0}, {4, -0.5, 0}),
+      {ImprovementCriterion::MidpointDistance, quadrilateral(0.1, {1, 1, 0}, {4, -0.5, 0}),
        "midpoint of ab 0.1 above M, midpoint of cd on M"},
   };
   for (const auto& [criterion, start, why] : cases) {

@@ -43,8 +43,10 @@ struct MeshQuality {
 
 /// Measures `mesh` against M = {F = 0}. Distances are ‖x − P(x)‖, where P is the Gauss–Newton
 /// projection with minimum-norm steps: it converges to a point of M whose offset from x is
-/// normal to M up to O(‖x − P(x)‖²), so it measures the distance to that order. O(N) projections
-/// (or options.max_samples per kind). Lengths, angles, areas and distances are measured in the
+/// normal to M up to O(‖x − P(x)‖²), so it measures the distance to that order. For sparse
+/// problems centroids and midpoints are projected by the chord from the factorisation at a
+/// corner (offset normal to M there, the same order; P where it does not converge), which
+/// costs solves instead of factorisations. O(N) projections (or options.max_samples per kind). Lengths, angles, areas and distances are measured in the
 /// problem's metric (CoordinateBlock weights), the norm the covering methods use.
 /// \throw InvalidArgument if the mesh and the problem live in different dimensions.
 MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem,

@@ -829,6 +829,12 @@ CoveringResult triangulate_by_bezier_continuation(const ImplicitProblem& problem
                           result.summary.termination = CoveringTermination::StartFailed;
                           result.summary.message = failure.what();
                           return;
+                        } catch (const StopRun& stop) {
+                          // A stop request (or the vertex limit) before the first triangle
+                          // was made: an outcome with an empty mesh, not an escaping throw.
+                          result.summary.termination = stop.termination;
+                          result.summary.message = stop.message;
+                          return;
                         }
                         try {
                           builder.run();

@@ -219,7 +219,7 @@ Eigen::MatrixXd plane_basis(const TriangleMesh& mesh, int p, int q, int r) {
   return Q;
 }
 
-// Angle between the planes of triangles (p1, q1, r1) and (p2, q2, r2): see SwapCriterion.
+// Angle between the planes of triangles (p1, q1, r1) and (p2, q2, r2): see ImprovementCriterion.
 double plane_angle(const TriangleMesh& mesh, const Triangle& first, const Triangle& second) {
   const Eigen::MatrixXd Q1 = plane_basis(mesh, first[0], first[1], first[2]);
   const Eigen::MatrixXd Q2 = plane_basis(mesh, second[0], second[1], second[2]);
@@ -247,19 +247,19 @@ Verdict judge_swap(const TriangleMesh& mesh, const ImplicitProblem& problem, con
                    const ImprovementOptions& options, Linearization& workspace) {
   const double tolerance = options.relative_tolerance;
   switch (options.criterion) {
-    case SwapCriterion::MaxMinAngle: {
+    case ImprovementCriterion::MaxMinAngle: {
       const double before =
           std::min(min_angle(mesh, {q.a, q.b, q.c}), min_angle(mesh, {q.b, q.a, q.d}));
       const double after =
           std::min(min_angle(mesh, {q.c, q.a, q.d}), min_angle(mesh, {q.d, q.b, q.c}));
       return after > before * (1.0 + tolerance) ? Verdict::Improves : Verdict::DoesNotImprove;
     }
-    case SwapCriterion::NormalAngle: {
+    case ImprovementCriterion::NormalAngle: {
       const double before = plane_angle(mesh, {q.a, q.b, q.c}, {q.b, q.a, q.d});
       const double after = plane_angle(mesh, {q.c, q.a, q.d}, {q.d, q.b, q.c});
       return after < before * (1.0 - tolerance) ? Verdict::Improves : Verdict::DoesNotImprove;
     }
-    case SwapCriterion::MidpointDistance: {
+    case ImprovementCriterion::MidpointDistance: {
       Eigen::VectorXd old_projection;
       if (!project_edge_midpoint(mesh, problem, q.a, q.b, workspace, old_projection)) {
         return Verdict::ProjectionFailed;
@@ -319,13 +319,13 @@ void check_dimensions(const TriangleMesh& mesh, const ImplicitProblem& problem) 
 
 }  // namespace
 
-const char* to_string(SwapCriterion criterion) {
+const char* to_string(ImprovementCriterion criterion) {
   switch (criterion) {
-    case SwapCriterion::MaxMinAngle:
+    case ImprovementCriterion::MaxMinAngle:
       return "angle";
-    case SwapCriterion::NormalAngle:
+    case ImprovementCriterion::NormalAngle:
       return "normal";
-    case SwapCriterion::MidpointDistance:
+    case ImprovementCriterion::MidpointDistance:
       return "distance";
   }
   return "?";

@@ -13,7 +13,7 @@ namespace tessera {
 
 /// What an edge swap must improve. Each criterion compares the two triangles on the edge
 /// before the swap with the two after it; nothing else changes.
-enum class SwapCriterion {
+enum class ImprovementCriterion {
   /// Delaunay-type: maximise the smallest of the six angles of the two triangles. The angles
   /// are those of the triangles in R^n (what measure_quality reports), so a swap never lowers
   /// the mesh's minimum angle.
@@ -28,10 +28,10 @@ enum class SwapCriterion {
 };
 
 /// "angle", "normal", "distance".
-const char* to_string(SwapCriterion criterion);
+const char* to_string(ImprovementCriterion criterion);
 
 struct ImprovementOptions {
-  SwapCriterion criterion = SwapCriterion::MaxMinAngle;
+  ImprovementCriterion criterion = ImprovementCriterion::MaxMinAngle;
   /// Hard stop. A sweep visits every interior edge once; Lawson's procedure for the
   /// Delaunay-type criterion needs few sweeps, and the other criteria are local, so they may
   /// cycle without the tolerance below: the cap makes termination certain.

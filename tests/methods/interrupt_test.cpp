@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+// The stop hook (MethodSettings::stop_requested, CoveringOptions::stop_requested), which the
+// bindings' Ctrl-C sets: every method polls it while it builds, stops at the first `true` with
+// termination Interrupted, and the skeleton still clips, refines and validates the partial
+// mesh, so what comes back is a valid piece of M, smaller than the whole.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tessera/geometry/mesh_validation.h"
+#include "tessera/io/summary_json.h"
+#include "tessera/methods/covering_methods.h"
+#include "tessera/problems/catalogue.h"
+
+namespace tessera {
+namespace {
+
+struct InterruptCase {
+  std::string method;
+  std::string problem;
+  int polls_before_stop;  ///< stop_requested returns false this many times, then true
+};
+
+std::string name_of(const ::testing::TestParamInfo<InterruptCase>& info) {
+  return info.param.method + "_" + info.param.problem;
+}
+
+class StopHook : public ::testing::TestWithParam<InterruptCase> {};
+
+TEST_P(StopHook, StopsWithAValidPartialMesh) {
+  const InterruptCase& param = GetParam();
+  const ProblemSetup setup = make_catalogue_problem(param.problem);
+  const CoveringMethod& method = find_covering_method(param.method);
+
+  // The whole run, for comparison; a hook that never says stop changes nothing.
+  MethodSettings settings;
+  int polls_of_whole_run = 0;
+  settings.stop_requested = [&polls_of_whole_run] {
+    ++polls_of_whole_run;
+    return false;
+  };
+  const CoveringResult whole = cover(setup, method, settings);
+  ASSERT_TRUE(whole.summary.is_complete()) << whole.summary.message;
+  // The hook is polled about once per vertex (or chart), so stopping after k polls leaves a
+  // run well short of the whole.
+  ASSERT_GT(polls_of_whole_run, 2 * param.polls_before_stop)
+      << "the method polled stop_requested only " << polls_of_whole_run << " times";
+
+  int polls = 0;
+  settings.stop_requested = [&polls, &param] { return ++polls > param.polls_before_stop; };
+  const CoveringResult partial = cover(setup, method, settings);
+
+  EXPECT_EQ(partial.summary.termination, CoveringTermination::Interrupted)
+      << to_string(partial.summary.termination) << ": " << partial.summary.message;
+  EXPECT_FALSE(partial.summary.is_complete());
+  EXPECT_NE(partial.summary.message.find("interrupted"), std::string::npos)
+      << partial.summary.message;
+  // The first `true` stops the build: it is not asked again.
+  EXPECT_EQ(polls, param.polls_before_stop + 1);
+
+  std::printf("%s on %s: stopped after %d of %d polls with %d of %d vertices (%s)\n",
+              param.method.c_str(), param.problem.c_str(), param.polls_before_stop,
+              polls_of_whole_run, partial.summary.vertex_count, whole.summary.vertex_count,
+              partial.summary.message.c_str());
+
+  // Non-empty, smaller than the whole, and valid as a mesh of M (geometric validation).
+  EXPECT_GT(partial.mesh.triangle_count(), 0);
+  EXPECT_GT(partial.summary.vertex_count, 0);
+  EXPECT_LT(partial.summary.vertex_count, whole.summary.vertex_count);
+  EXPECT_LT(partial.mesh.vertex_count(), whole.mesh.vertex_count());
+  const MeshValidation validation = validate(partial.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+  EXPECT_TRUE(validation.is_geometry_checked);
+  EXPECT_EQ(partial.summary.removed_triangles, 0);
+  // A partial covering of a closed surface has a boundary.
+  EXPECT_FALSE(validation.is_closed());
+
+  // The run report names the termination (docs/summary-json.md).
+  EXPECT_STREQ(to_string(partial.summary.termination), "interrupted");
+  MeshReport report;
+  report.problem = param.problem;
+  report.ambient_dimension = setup.problem->ambient_dimension();
+  report.run = partial.summary;
+  report.validation = validation;
+  const nlohmann::json json = nlohmann::json::parse(to_json(report));
+  EXPECT_EQ(json["run"]["termination"], "interrupted");
+  EXPECT_EQ(json["run"]["completed"], false);
+  EXPECT_EQ(json["run"]["message"], partial.summary.message);
+  EXPECT_NE(to_text(report).find("interrupted"), std::string::npos) << to_text(report);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, StopHook,
+                         ::testing::Values(InterruptCase{"atlas", "torus", 40},
+                                           InterruptCase{"front", "torus", 40},
+                                           InterruptCase{"bezier", "torus", 40}),
+                         name_of);
+
+// A hook that says stop at once still leaves a summary and a valid (possibly tiny) mesh.
+TEST(StopRequest, StopAtTheFirstPollIsAnOutcomeForEveryMethod) {
+  const ProblemSetup setup = make_catalogue_problem("sphere");
+  for (const CoveringMethod& method : covering_methods()) {
+    SCOPED_TRACE(method.name);
+    MethodSettings settings;
+    settings.stop_requested = [] { return true; };
+    const CoveringResult result = cover(setup, method, settings);
+    EXPECT_EQ(result.summary.termination, CoveringTermination::Interrupted)
+        << result.summary.message;
+    EXPECT_NE(result.summary.message.find("interrupted"), std::string::npos)
+        << result.summary.message;
+    const MeshValidation validation = validate(result.mesh, *setup.problem, setup.domain);
+    EXPECT_TRUE(validation.is_valid()) << validation.report();
+  }
+}
+
+}  // namespace
+}  // namespace tessera
