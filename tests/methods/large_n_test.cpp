@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "tessera/core/scaled_problem.h"
+#include "tessera/geometry/mesh_quality.h"
 #include "tessera/methods/atlas/atlas.h"
 #include "tessera/methods/covering_methods.h"
 #include "tessera/problems/catalogue.h"
@@ -181,6 +182,50 @@ TEST(LargeN, SurfaceDoesNotDependOnTheGrid) {
                               largest_gap(fine, *fine_setup.problem, coarse, *coarse_setup.problem));
   RecordProperty("image_gap", std::to_string(gap));
   EXPECT_LE(gap, settings.tolerance) << "largest distance between the (lambda, epsilon, |u|) images";
+}
+
+// The same problem seen as dense: the report then measures by Gauss–Newton (P) everywhere.
+class DenseView final : public tessera::ImplicitProblem {
+ public:
+  explicit DenseView(const tessera::ImplicitProblem& inner) : inner_(inner) {}
+  int ambient_dimension() const override { return inner_.ambient_dimension(); }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override {
+    inner_.evaluate(x, F);
+  }
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override {
+    inner_.jacobian(x, J);
+  }
+  std::vector<tessera::CoordinateBlock> coordinate_blocks() const override {
+    return inner_.coordinate_blocks();
+  }
+
+ private:
+  const tessera::ImplicitProblem& inner_;
+};
+
+// The report measures a sparse problem's centroids and midpoints by the chord from a corner's
+// factorisation (solves, not Gauss–Newton's factorisations); both offsets are normal to M up to
+// second order, so the distances agree with Gauss–Newton's to a small fraction of themselves.
+TEST(LargeN, ReportDistancesByTheCornerChordAgreeWithGaussNewton) {
+  const auto setup = tessera::make_catalogue_problem("bvp:points=60");
+  tessera::MethodSettings settings;
+  settings.step = 0.3;  // 1500 vertices
+  const auto result = cover(setup, "front", settings);
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  const tessera::MeshQuality chord = tessera::measure_quality(result.mesh, *setup.problem);
+  const tessera::MeshQuality newton =
+      tessera::measure_quality(result.mesh, DenseView(*setup.problem));
+  EXPECT_EQ(chord.failed_projections, 0);
+  EXPECT_EQ(chord.centroid_distance.count, result.mesh.triangle_count());
+  EXPECT_GT(newton.centroid_distance.max, 0.0);
+  EXPECT_NEAR(chord.centroid_distance.max, newton.centroid_distance.max,
+              0.02 * newton.centroid_distance.max);
+  EXPECT_NEAR(chord.midpoint_distance.max, newton.midpoint_distance.max,
+              0.02 * newton.midpoint_distance.max);
+  EXPECT_NEAR(chord.centroid_distance.mean, newton.centroid_distance.mean,
+              0.02 * newton.centroid_distance.mean);
 }
 
 }  // namespace

@@ -144,6 +144,7 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& pro
   chord.residual_tolerance = 1e-11;
   chord.max_contraction = 0.9;
   chord.max_iterations = 60;
+  Eigen::MatrixXd tangent;
   const auto distance = [&](const Eigen::VectorXd& x, int corner, Statistic& statistic) {
     Eigen::VectorXd y = x;
     if (is_sparse && corner >= 0) {
@@ -153,6 +154,21 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& pro
       }
       if (at_corner != nullptr && at_corner->is_factored() &&
           project_chord(problem, *at_corner, y, chord).is_success()) {
+        // The chord's foot y is normal to M at the corner, not at y: on a coarse mesh
+        // (κh ≈ 1) that overstates the distance by 15 %. Two steps towards the foot normal
+        // at y: x's offset moved into the tangent plane at y (from the corner's
+        // factorisation, no new one) and projected back; kept while it comes nearer.
+        for (int step = 0; step < 2; ++step) {
+          if (!tangent_basis_near(problem, *at_corner, y, tangent, 1e-6, 8)) {
+            break;
+          }
+          Eigen::VectorXd z = y + tangent * (tangent.transpose() * (x - y));
+          if (!project_chord(problem, *at_corner, z, chord).is_success() ||
+              (z - x).norm() >= (y - x).norm()) {
+            break;
+          }
+          y = z;
+        }
         accumulate(statistic, (y - x).norm());
         return;
       }
