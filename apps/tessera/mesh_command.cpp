@@ -3,6 +3,9 @@
 
 #include <unistd.h>
 
+#include <atomic>
+#include <csignal>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -23,6 +26,41 @@
 #include "tessera/problems/view.h"
 
 namespace tessera::app {
+namespace {
+
+std::atomic<int> interrupt_signals{0};
+
+extern "C" void count_interrupt(int signal) {
+  if (interrupt_signals.fetch_add(1) >= 1) {
+    std::signal(signal, SIG_DFL);  // the second one: the default action, now
+    std::raise(signal);
+  }
+}
+
+// SIGINT and SIGTERM count as a stop request while a covering runs; the previous handlers
+// come back afterwards.
+class InterruptGuard {
+ public:
+  InterruptGuard()
+      : previous_int_(std::signal(SIGINT, count_interrupt)),
+        previous_term_(std::signal(SIGTERM, count_interrupt)) {
+    interrupt_signals = 0;
+  }
+  ~InterruptGuard() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+  static bool requested() { return interrupt_signals.load() > 0; }
+
+ private:
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
+};
+
+}  // namespace
+
 
 CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   auto* mesh_app = app.add_subcommand("mesh", "cover a problem's surface with a triangle mesh");
@@ -236,6 +274,11 @@ int run_mesh(const MeshCommand& command) {
                    p.triangle_count, p.front_size);
     };
   }
+  // Ctrl-C or a kill (SIGTERM, e.g. a batch system's time limit) stops the method at its next
+  // vertex; the valid partial mesh and the summary are still written and the exit is 1. A
+  // second signal while the run finishes (clip, refine, validate) ends the process at once.
+  const InterruptGuard interrupt;
+  settings.stop_requested = [] { return InterruptGuard::requested(); };
   CoveringResult result = cover(setup, method, settings);
   if (show_progress) {
     std::fprintf(stderr, "\r%60s\r", "");

@@ -354,3 +354,38 @@ TEST(CliCompare, PrintsOneRowPerMethodWithValidityAndTopology) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace {
+
+// A kill (SIGTERM, e.g. a batch system's time limit) or Ctrl-C during a long run stops the
+// method at its next vertex: the valid partial mesh and the summary are written, exit 1.
+TEST(CliInterrupt, TermSignalKeepsTheValidPartialMeshAndItsSummary) {
+  const std::string folder = tessera::testing::temporary_directory("interrupt");
+  const std::string mesh = folder + "/torus.ply";
+  const std::string summary = folder + "/torus.json";
+  // The torus at 1e-5 takes minutes; the signal comes after a second, once the run has begun.
+  const std::string command = "sh -c '" + std::string(TESSERA_CLI) + " mesh torus --tolerance 1e-5 -q -o " +
+                              mesh + " --summary " + summary +
+                              " & pid=$!; sleep 1.5; kill -TERM $pid; wait $pid; echo exit=$?' 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[4096];
+  std::size_t count = 0;
+  while ((count = fread(buffer, 1, sizeof buffer, pipe)) > 0) {
+    output.append(buffer, count);
+  }
+  pclose(pipe);
+  EXPECT_NE(output.find("exit=1"), std::string::npos) << output;
+  EXPECT_NE(output.find("interrupted"), std::string::npos) << output;
+  std::ifstream in(summary);
+  ASSERT_TRUE(in.good()) << output;
+  const auto json = nlohmann::json::parse(in);
+  EXPECT_EQ(json["run"]["termination"], "interrupted");
+  EXPECT_TRUE(json["valid"].get<bool>());
+  const tessera::TriangleMesh partial = tessera::read_mesh(mesh);
+  EXPECT_GT(partial.triangle_count(), 0);
+  EXPECT_EQ(partial.vertex_count(), json["counts"]["vertices"].get<int>());
+}
+
+}  // namespace
