@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -38,5 +39,10 @@ MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
                        const std::string& problem_argument,
                        const MeshValidation* known = nullptr, int samples = -1,
                        bool measure_distances = true);
+
+/// The quality and validity of a mesh before or after `improve` (the CLI's --json report and
+/// the bindings' tessera.improve): angles, distances to M, area, validity, χ, boundary.
+nlohmann::json improvement_quality_json(const MeshQuality& quality,
+                                        const MeshValidation& validation);
 
 }  // namespace tessera::app

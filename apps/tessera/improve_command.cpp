@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "improve_command.h"
 
+#include "cli_support.h"
 #include "output_checks.h"
 
 #include <cstdio>
@@ -18,19 +19,6 @@
 
 namespace tessera::app {
 namespace {
-
-nlohmann::json to_json(const MeshQuality& quality, const MeshValidation& validation) {
-  return {{"min_angle_degrees", quality.min_angle_degrees},
-          {"max_angle_degrees", quality.max_angle_degrees},
-          {"fraction_angles_below_30", quality.fraction_angles_below_30},
-          {"max_centroid_distance", quality.centroid_distance.max},
-          {"max_midpoint_distance", quality.midpoint_distance.max},
-          {"failed_projections", quality.failed_projections},
-          {"area", quality.area},
-          {"is_valid", validation.is_valid()},
-          {"euler_characteristic", validation.euler_characteristic},
-          {"boundary_edge_count", validation.boundary_edge_count}};
-}
 
 void print_line(const char* label, const MeshQuality& quality, const MeshValidation& validation) {
   std::printf(
@@ -121,8 +109,8 @@ int run_improve(const ImproveCommand& command) {
                                  {"rejected_non_convex", summary.rejected_non_convex},
                                  {"rejected_existing_edge", summary.rejected_existing_edge},
                                  {"rejected_projection_failed", summary.rejected_projection_failed},
-                                 {"before", to_json(quality_before, validation_before)},
-                                 {"after", to_json(quality_after, validation_after)}};
+                                 {"before", improvement_quality_json(quality_before, validation_before)},
+                                 {"after", improvement_quality_json(quality_after, validation_after)}};
     write_text_file(command.summary, json.dump(2) + "\n", "JSON summary");
   }
   std::cout << "wrote " << command.output

@@ -399,18 +399,6 @@ py::tuple check_mesh(const MeshHandle& mesh, const std::shared_ptr<ProblemHandle
   return py::make_tuple(json, failures);
 }
 
-nlohmann::json quality_json(const MeshQuality& quality, const MeshValidation& validation) {
-  return {{"min_angle_degrees", quality.min_angle_degrees},
-          {"max_angle_degrees", quality.max_angle_degrees},
-          {"fraction_angles_below_30", quality.fraction_angles_below_30},
-          {"max_centroid_distance", quality.centroid_distance.max},
-          {"max_midpoint_distance", quality.midpoint_distance.max},
-          {"failed_projections", quality.failed_projections},
-          {"area", quality.area},
-          {"is_valid", validation.is_valid()},
-          {"euler_characteristic", validation.euler_characteristic},
-          {"boundary_edge_count", validation.boundary_edge_count}};
-}
 
 // `tessera improve`: a new mesh (the given one is not changed; its arrays may be viewed), with
 // the CLI's --summary JSON as its summary.
@@ -448,8 +436,8 @@ std::shared_ptr<MeshHandle> improve(const MeshHandle& given,
         {"rejected_non_convex", swaps.rejected_non_convex},
         {"rejected_existing_edge", swaps.rejected_existing_edge},
         {"rejected_projection_failed", swaps.rejected_projection_failed},
-        {"before", quality_json(quality_before, validation_before)},
-        {"after", quality_json(quality_after, validation_after)}};
+        {"before", app::improvement_quality_json(quality_before, validation_before)},
+        {"after", app::improvement_quality_json(quality_after, validation_after)}};
     handle->summary_json = json.dump(2);
     if (!validation_after.is_valid()) {
       handle->failure = "the improved mesh is not valid:\n" + validation_after.report();
