@@ -9,6 +9,7 @@
 
 #include "tessera/geometry/triangle_mesh.h"
 #include "tessera/io/summary_json.h"
+#include "tessera/methods/covering_methods.h"
 #include "tessera/problems/problem_setup.h"
 
 namespace tessera::app {
@@ -39,6 +40,12 @@ MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
                        const std::string& problem_argument,
                        const MeshValidation* known = nullptr, int samples = -1,
                        bool measure_distances = true);
+
+/// A method's own options given to another method would be ignored silently: refuses them
+/// (InvalidArgument naming them), as the command line spells them (`--max-step`) or, with
+/// `keyword_names`, as the bindings do (`max_step`).
+void refuse_options_of_other_methods(const MethodSettings& given, const std::string& method,
+                                     bool keyword_names);
 
 /// The quality and validity of a mesh before or after `improve` (the CLI's --json report and
 /// the bindings' tessera.improve): angles, distances to M, area, validity, χ, boundary.

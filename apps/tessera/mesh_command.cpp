@@ -235,20 +235,7 @@ int run_mesh(const MeshCommand& command) {
   const CoveringMethod& method =
       command.method.empty() ? covering_methods().front() : find_covering_method(command.method);
   // A method's own options given to another method would be ignored silently: refuse them.
-  const MethodSettings& given = command.settings;
-  const auto refuse_unless = [&](bool applies, const char* option, const char* owner) {
-    TESSERA_CHECK(applies, option << ": only for method '" << owner << "', not for method '"
-                                  << method.name << "'");
-  };
-  refuse_unless(given.atlas_placement == "disk" || method.name == "atlas", "--placement", "atlas");
-  refuse_unless((given.front_order == "gap" && given.front_min_gap_degrees == 0 &&
-                 given.front_max_valence == 0) ||
-                    method.name == "front",
-                "--order, --min-gap-angle, --max-valence", "front");
-  refuse_unless((given.bezier_max_step == 0 && given.bezier_edge_length_factor == 0 &&
-                 given.bezier_min_tangent_cosine == 0) ||
-                    method.name == "bezier",
-                "--max-step, --edge-length-factor, --min-tangent-cosine", "bezier");
+  refuse_options_of_other_methods(command.settings, method.name, /*keyword_names=*/false);
   // Every option is checked before the computation starts.
   check_mesh_output(command.output);
   check_output_folder(command.summary);

@@ -225,20 +225,7 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
   const CoveringMethod& method = request.method.empty() ? covering_methods().front()
                                                         : find_covering_method(request.method);
   // As `tessera mesh`: a method's own options given to another method would be ignored.
-  const MethodSettings& given = request.settings;
-  const auto refuse_unless = [&](bool applies, const char* option, const char* owner) {
-    TESSERA_CHECK(applies, option << ": only for method '" << owner << "', not for method '"
-                                  << method.name << "'");
-  };
-  refuse_unless(given.atlas_placement == "disk" || method.name == "atlas", "placement", "atlas");
-  refuse_unless((given.front_order == "gap" && given.front_min_gap_degrees == 0 &&
-                 given.front_max_valence == 0) ||
-                    method.name == "front",
-                "order, min_gap_angle, max_valence", "front");
-  refuse_unless((given.bezier_max_step == 0 && given.bezier_edge_length_factor == 0 &&
-                 given.bezier_min_tangent_cosine == 0) ||
-                    method.name == "bezier",
-                "max_step, edge_length_factor, min_tangent_cosine", "bezier");
+  app::refuse_options_of_other_methods(request.settings, method.name, /*keyword_names=*/true);
   const bool wants_patches = request.refine > 0 || request.wants_patches;
   TESSERA_CHECK(!wants_patches || method.name == "bezier",
                 "refine and patches need the cubic surface of method 'bezier', not '"

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "tessera/core/factorisation_cache.h"
 #include "tessera/core/linearization.h"
@@ -240,6 +241,9 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     }
     return worst;
   };
+  // Edges whose midpoint could not be projected: not tried again in later rounds (their
+  // triangles stay candidates and end as remaining unless a neighbour's split reaches them).
+  std::unordered_set<std::uint64_t> unsplittable;
   bool exhausted = true;  // false once a round finds nothing to split
   for (summary.rounds = 0; summary.rounds < options.max_rounds && !candidates.empty();
        ++summary.rounds) {
@@ -266,13 +270,20 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       }
       const int u = tri[longest];
       const int v = tri[(longest + 1) % 3];
-      if (midpoint_of.emplace(edge_key(u, v), -1).second) {
+      if (!unsplittable.contains(edge_key(u, v)) && midpoint_of.emplace(edge_key(u, v), -1).second) {
         to_split.emplace_back(u, v);
       }
     }
     if (to_split.empty()) {
+      // Nothing left to split: done if no candidate is too far, otherwise the far ones (whose
+      // edges cannot be split) are measured once more below and counted as remaining.
       candidates.clear();
-      exhausted = false;
+      for (int t = 0; t < mesh.triangle_count(); ++t) {
+        if (is_far[t]) {
+          candidates.push_back(t);
+        }
+      }
+      exhausted = !candidates.empty();
       break;
     }
     // 2. The new vertices: midpoints projected onto M (∩ the faces the edge lies on).
@@ -310,6 +321,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       if (projected) {
         midpoint_of[edge_key(u, v)] = mesh.add_vertex(x);
         ++made;
+      } else {
+        unsplittable.insert(edge_key(u, v));
       }
     }
     summary.split_edges += made;
