@@ -10,8 +10,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "cli_support.h"
+#include "fold_output.h"
 #include "output_checks.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/bezier_surface.h"
@@ -109,6 +111,14 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_option("--states", mesh.states,
                        "also write the vertices, all n coordinates, as a NumPy array (V, n) to "
                        "this .npy file, and the triangles (T, 3) to FILE.triangles.npy");
+  mesh_app->add_option(
+      "--folds", mesh.folds,
+      "compute the fold curves of M over this parameter plane, two differentiable functionals "
+      "(coordinates, mean:B, norm:B, norm, NAME=EXPRESSION), e.g. lambda,epsilon: each point "
+      "refined onto the fold by Newton's method, cusps located (docs/algorithms/folds.md)");
+  mesh_app->add_option("--folds-output", mesh.folds_output,
+                       "file of the fold curves in the mesh's view: .vtk, .vtu, .ply, .json or "
+                       ".csv (default: beside the mesh, e.g. out.folds.ply)");
   mesh_app->add_option("--obj-coordinates", mesh.obj_coordinates,
                        "deprecated, use --view: the view of three coordinate indices, e.g. 0,2,3 "
                        "(every format)");
@@ -252,6 +262,20 @@ int run_mesh(const MeshCommand& command) {
   }
   const ChosenView chosen = choose_view(command, setup);
   const View& view = chosen.view;
+  TESSERA_CHECK(!command.folds.empty() || command.folds_output.empty(),
+                "--folds-output " << command.folds_output
+                                  << " needs --folds (the parameter plane, e.g. --folds lambda,mu)");
+  std::optional<ParameterPlane> fold_plane;
+  std::string fold_file;
+  if (!command.folds.empty()) {
+    fold_plane = parse_folds_option(command.folds, *setup.problem);
+    fold_file = command.folds_output.empty() ? default_fold_file(command.output)
+                                             : command.folds_output;
+    check_output_folder(fold_file);
+    TESSERA_CHECK(is_polyline_file(fold_file),
+                  "--folds-output " << fold_file
+                                    << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
+  }
   MeshFileOptions file_options;
   MethodSettings settings = command.settings;
   const bool show_progress = !command.quiet && isatty(STDERR_FILENO);
@@ -327,6 +351,18 @@ int run_mesh(const MeshCommand& command) {
                                   command.report_samples);
   report.run = result.summary;
   report.view = view_report;
+  if (has_mesh && fold_plane) {
+    // On the finished mesh, in its view; a partial mesh has the folds of what it covers.
+    const FoldOutput folds =
+        compute_folds(setup, result.mesh, *fold_plane, view, fold_file, file_options.comments);
+    report.folds = folds.report;
+    written.push_back(fold_file);
+    if (folds.report.unrefined_count > 0) {
+      std::cerr << "tessera: " << folds.report.unrefined_count
+                << " fold point(s) did not converge onto the fold curve and are kept at the "
+                   "mesh's linear estimate (summary: folds.unrefined_points)\n";
+    }
+  }
   if (has_mesh && !command.states.empty()) {
     write_states_npy(command.states, result.mesh);
     report.states = StatesReport{command.states,

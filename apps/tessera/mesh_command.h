@@ -20,6 +20,8 @@ struct MeshCommand {
   std::string obj_coordinates;  ///< deprecated: the view of three coordinate indices
   std::string view;             ///< --view: a view specification (problems/view.h)
   std::string states;           ///< --states: the vertices as .npy (and the triangles beside)
+  std::string folds;            ///< --folds: the parameter plane of the fold curves, e.g. lambda,mu
+  std::string folds_output;     ///< --folds-output: their file (default beside the mesh)
   int report_samples = -1;  ///< --report-samples: -1 the default (make_report), 0 all
   bool ascii = false;
   bool quiet = false;

@@ -43,6 +43,44 @@ nlohmann::json geometry(const MeshValidation& v) {
 }
 
 // A block is one entry with its range, a coordinate outside blocks one entry of size 1: the
+nlohmann::json folds_json(const FoldReport& folds) {
+  auto named = [&](const std::vector<double>& point) {
+    nlohmann::json values = nlohmann::json::object();
+    for (std::size_t i = 0; i < point.size() && i < folds.columns.size(); ++i) {
+      values[folds.columns[i]] = point[i];
+    }
+    return values;
+  };
+  nlohmann::json cusps = nlohmann::json::array();
+  for (const auto& cusp : folds.cusps) {
+    cusps.push_back({{"point", named(cusp.point)},
+                     {"plane", {{folds.plane_names.at(0), cusp.plane[0]},
+                                {folds.plane_names.at(1), cusp.plane[1]}}},
+                     {"refined", cusp.is_refined}});
+  }
+  nlohmann::json curves = nlohmann::json::array();
+  for (const auto& curve : folds.curves) {
+    curves.push_back({{"closed", curve.is_closed}, {"points", curve.points}});
+  }
+  return {{"plane", folds.plane},
+          {"file", folds.file},
+          {"columns", folds.columns},
+          {"curve_count", folds.curves.size()},
+          {"point_count", folds.point_count},
+          {"edge_crossings", folds.crossing_count},
+          {"unrefined_points", folds.unrefined_count},
+          {"cusps", std::move(cusps)},
+          {"max_residual", folds.max_residual},
+          {"newton_iterations", folds.newton_iterations},
+          {"tangent_evaluations", folds.tangent_evaluations},
+          {"work",
+           {{"function_evaluations", folds.work.function_evaluations},
+            {"jacobian_evaluations", folds.work.jacobian_evaluations},
+            {"factorisations", folds.work.factorisations}}},
+          {"seconds", folds.seconds},
+          {"curves", std::move(curves)}};
+}
+
 // column ranges of the states array without n names.
 nlohmann::json state_columns(const StatesReport& states) {
   nlohmann::json columns = nlohmann::json::array();
@@ -144,6 +182,9 @@ std::string to_json(const MeshReport& report) {
         {"shape", {states.vertex_count, static_cast<int>(states.coordinate_names.size())}},
         {"triangles_shape", {states.triangle_count, 3}},
         {"columns", state_columns(states)}};
+  }
+  if (report.folds) {
+    j["folds"] = folds_json(*report.folds);
   }
   j["counts"] = {
       {"vertices", v.referenced_vertex_count},   {"edges", v.edge_count},
@@ -264,6 +305,21 @@ std::string to_text(const MeshReport& report) {
     out << "states         " << states.states_file << " (" << states.vertex_count << " × "
         << states.coordinate_names.size() << ", <f8) and " << states.triangles_file << " ("
         << states.triangle_count << " × 3, <i8)\n";
+  }
+  if (report.folds) {
+    const FoldReport& folds = *report.folds;
+    out << "folds          " << folds.curves.size() << " curve(s) over (" << folds.plane << "), "
+        << folds.point_count << " points on the fold to solver tolerance";
+    if (folds.unrefined_count > 0) {
+      out << " (" << folds.unrefined_count << " NOT refined: at the mesh's estimate)";
+    }
+    out << ", " << folds.cusps.size() << " cusp(s)";
+    for (const auto& cusp : folds.cusps) {
+      out << "; cusp at " << folds.plane_names.at(0) << " = " << cusp.plane[0] << ", "
+          << folds.plane_names.at(1) << " = " << cusp.plane[1]
+          << (cusp.is_refined ? "" : " (bracketed, not refined)");
+    }
+    out << (folds.file.empty() ? "" : " → " + folds.file) << "\n";
   }
   out << "mesh           " << v.referenced_vertex_count << " vertices, " << v.edge_count
       << " edges, " << v.triangle_count << " triangles, " << v.boundary_loop_count

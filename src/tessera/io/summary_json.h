@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tessera/core/counted_problem.h"
 #include "tessera/core/implicit_problem.h"
 
 #include "tessera/geometry/mesh_quality.h"
@@ -35,12 +36,41 @@ struct StatesReport {
   std::vector<CoordinateBlock> blocks;
 };
 
+/// The fold curves of M over a parameter plane (`tessera mesh --folds`, methods/folds), with
+/// their points in the mesh file's view.
+struct FoldReport {
+  std::string plane;                 ///< ParameterPlane::specification(): "lambda, epsilon"
+  std::vector<std::string> plane_names;  ///< the plane's two column names
+  std::string file;                  ///< the polylines file (empty: not written)
+  std::vector<std::string> columns;  ///< names of the view coordinates of the points below
+  struct Curve {
+    bool is_closed = false;
+    std::vector<std::vector<double>> points;  ///< in the view, in order along the curve
+  };
+  std::vector<Curve> curves;
+  struct Cusp {
+    std::vector<double> point;  ///< in the view
+    double plane[2] = {0.0, 0.0};
+    bool is_refined = true;     ///< false: bracketed only (FoldCurves::unrefined_cusp_count)
+  };
+  std::vector<Cusp> cusps;
+  int point_count = 0;
+  int crossing_count = 0;
+  int unrefined_count = 0;
+  int newton_iterations = 0;
+  int tangent_evaluations = 0;
+  double max_residual = 0.0;
+  WorkCounts work;
+  double seconds = 0.0;
+};
+
 /// What one report is made of; `run` is absent for `tessera check` of an existing mesh.
 struct MeshReport {
   std::string problem;
   int ambient_dimension = 0;
   std::optional<ViewReport> view;      ///< absent for `tessera check`
   std::optional<StatesReport> states;  ///< present when the states were written
+  std::optional<FoldReport> folds;     ///< present when fold curves were asked for
   std::optional<CoveringSummary> run;
   MeshValidation validation;
   MeshQuality quality;
