@@ -24,6 +24,7 @@
 #include "cli_support.h"
 #include "compare_command.h"
 #include "ddt.h"
+#include "fold_output.h"
 #include "output_checks.h"
 #include "python_problem.h"
 #include "tessera/core/error.h"
@@ -213,6 +214,7 @@ struct MeshRequest {
   int refine = 0;
   int report_samples = -1;
   std::string view;
+  std::string folds;  ///< the parameter plane of the fold curves (`--folds`), empty: none
   bool wants_patches = false;
 };
 
@@ -234,6 +236,10 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
                 "improve changes the triangles, so it cannot be combined with refine (the "
                 "patches belong to the unimproved triangles)");
   const View view = choose_view(request.view, *problem);
+  std::optional<ParameterPlane> fold_plane;
+  if (!request.folds.empty()) {
+    fold_plane = app::parse_folds_option(request.folds, *setup.problem);
+  }
 
   MethodSettings settings = request.settings;
   // A progress callback that raises stops the run; its exception is raised afterwards.
@@ -283,6 +289,10 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
                              view.is_all_coordinates() ? std::vector<std::string>() : view.names(),
                              request.view.empty() ? (problem->view ? "problem file" : "default")
                                                   : "--view"};
+    if (fold_plane && result.mesh.triangle_count() > 0) {
+      // As `tessera mesh --folds`, in the view; the curves are in the summary, no file.
+      report.folds = app::compute_folds(setup, result.mesh, *fold_plane, view, "", {}).report;
+    }
     handle->summary_json = to_json(report);
     handle->termination = to_string(result.summary.termination);
     if (!result.summary.is_complete()) {
@@ -694,6 +704,7 @@ PYBIND11_MODULE(_tessera, module) {
       .def_readwrite("refine", &MeshRequest::refine)
       .def_readwrite("report_samples", &MeshRequest::report_samples)
       .def_readwrite("view", &MeshRequest::view)
+      .def_readwrite("folds", &MeshRequest::folds)
       .def_readwrite("wants_patches", &MeshRequest::wants_patches)
       .def_property(
           "step", [](const MeshRequest& r) { return r.settings.step; },

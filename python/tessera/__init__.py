@@ -325,6 +325,16 @@ class Mesh:
         return self._summary
 
     @property
+    def fold_curves(self) -> List[np.ndarray]:
+        """The fold curves of ``mesh(..., folds="P,Q")``: one (m, k) array per curve, its points
+        in order in the mesh's view (``summary["folds"]["columns"]``); cusps and counts are in
+        ``summary["folds"]``. Empty without ``folds``."""
+        folds = self.summary.get("folds")
+        if folds is None:
+            return []
+        return [np.asarray(curve["points"], dtype=float) for curve in folds["curves"]]
+
+    @property
     def termination(self) -> str:
         """"completed", or why the run stopped early ("interrupted", "vertex limit reached"...)."""
         return self._core.termination
@@ -421,6 +431,7 @@ def mesh(
     box: Optional[ArrayLike] = None,
     improve: bool = False,
     view: Optional[str] = None,
+    folds: Optional[str] = None,
     report_samples: Optional[int] = None,
     max_vertices: int = 2_000_000,
     max_start_distance: Optional[float] = None,
@@ -448,6 +459,8 @@ def mesh(
     start: start point (n values); box: lower, upper for each coordinate.
     improve: edge swaps and tangential smoothing on M afterwards (``--improve``).
     view: the view written by `Mesh.write` and reported (``--view``).
+    folds: the parameter plane of the fold curves, e.g. "lambda,epsilon" (``--folds``,
+        docs/algorithms/folds.md): `Mesh.fold_curves` holds them, ``summary["folds"]`` the rest.
     report_samples: distances in the summary measured at this many points of each kind (0: all;
         default all for n < 500, else 300).
     max_vertices, max_start_distance: stop after this many vertices; how far the start may be
@@ -479,6 +492,7 @@ def mesh(
     request.box = _numbers(box)
     request.improve = bool(improve)
     request.view = view or ""
+    request.folds = folds or ""
     request.report_samples = (-1 if report_samples is None else
                               _in_range("report_samples", report_samples, 0, 100_000_000, int))
     request.max_vertices = _in_range("max_vertices", max_vertices, 7, 100_000_000, int)
