@@ -47,6 +47,7 @@ FoldOutput compute_folds(const ProblemSetup& setup, const TriangleMesh& mesh,
   report.point_count = folds.point_count();
   report.crossing_count = folds.crossing_count;
   report.unrefined_count = folds.unrefined_count;
+  report.singular_triangle_count = folds.singular_triangle_count;
   report.newton_iterations = folds.newton_iterations;
   report.tangent_evaluations = folds.tangent_evaluations;
   report.max_residual = folds.max_residual;

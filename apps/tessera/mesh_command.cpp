@@ -362,6 +362,12 @@ int run_mesh(const MeshCommand& command) {
                 << " fold point(s) did not converge onto the fold curve and are kept at the "
                    "mesh's linear estimate (summary: folds.unrefined_points)\n";
     }
+    if (folds.report.singular_triangle_count > 0) {
+      std::cerr << "tessera: det(Dpi T) vanishes on " << folds.report.singular_triangle_count
+                << " triangle(s): there (" << folds.report.plane
+                << ") is singular on M's tangent planes over a region, not along a fold curve; "
+                   "those triangles are left out (summary: folds.singular_triangles)\n";
+    }
   }
   if (has_mesh && !command.states.empty()) {
     write_states_npy(command.states, result.mesh);

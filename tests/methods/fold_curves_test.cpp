@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "tessera/core/error.h"
@@ -150,6 +151,62 @@ TEST(FoldCurves, GelfandBratuFoldsAgreeWithOneParameterContinuationAndTheCuspIsN
       EXPECT_NEAR(point.x(N + 1), 0.2457, 2e-3);
     }
   }
+}
+
+// The torus (|x|² + R² − r²)² = 4R²(y² + z²) around the x axis, seen along it: M folds over the
+// (y, z) plane along its outer and inner equators, two closed circles of radius R ± r, no cusps.
+// Seen obliquely enough, the inner contour has four cusps, symmetric under (x, y, z) → (±x, ±y, ±z).
+TEST(FoldCurves, TorusSeenAlongItsAxisFoldsAlongTwoCirclesAndObliquelyHasFourCusps) {
+  const ProblemSetup setup = make_catalogue_problem("torus");
+  const CoveringResult covering = cover(setup, covering_methods().front(), {});
+  ASSERT_TRUE(covering.summary.is_complete()) << covering.summary.message;
+  const FoldCurves along = find_fold_curves(*setup.problem, covering.mesh,
+                                            parse_parameter_plane("y,z", *setup.problem));
+  ASSERT_EQ(along.curves.size(), 2u);
+  EXPECT_EQ(along.cusp_count, 0);
+  std::vector<double> radii;
+  for (const FoldCurve& curve : along.curves) {
+    EXPECT_TRUE(curve.is_closed);
+    const double radius = std::hypot(curve.points[0].x(1), curve.points[0].x(2));
+    radii.push_back(radius);
+    for (const FoldPoint& point : curve.points) {
+      EXPECT_NEAR(point.x(0), 0.0, 1e-9);
+      EXPECT_NEAR(std::hypot(point.x(1), point.x(2)), radius, 1e-9);
+    }
+  }
+  std::sort(radii.begin(), radii.end());
+  EXPECT_NEAR(radii[0], 0.6, 1e-9);
+  EXPECT_NEAR(radii[1], 1.4, 1e-9);
+
+  const FoldCurves oblique = find_fold_curves(
+      *setup.problem, covering.mesh, parse_parameter_plane("y, w = z + 2*x", *setup.problem));
+  EXPECT_EQ(oblique.unrefined_count, 0);
+  ASSERT_EQ(oblique.cusp_count, 4);
+  std::vector<Eigen::Vector3d> cusps;
+  for (const FoldCurve& curve : oblique.curves) {
+    for (const FoldPoint& point : curve.points) {
+      if (point.is_cusp) {
+        cusps.push_back(point.x.head<3>().cwiseAbs());
+      }
+    }
+  }
+  for (const Eigen::Vector3d& cusp : cusps) {
+    EXPECT_LT((cusp - cusps[0]).norm(), 1e-8) << cusp.transpose() << " vs " << cusps[0].transpose();
+  }
+}
+
+// The flat torus x1² + x2² = 1, x3² + x4² = 1 maps onto the unit circle of the (x1, x2) plane:
+// Dπ·T has rank 1 everywhere, M folds along no curve, and every triangle is reported singular.
+TEST(FoldCurves, APlaneSingularOnAllOfMGivesNoCurvesAndSaysSo) {
+  const ProblemSetup setup = make_catalogue_problem("flat_torus");
+  MethodSettings settings;
+  settings.tolerance = 0.01;
+  const CoveringResult covering = cover(setup, covering_methods().front(), settings);
+  ASSERT_TRUE(covering.summary.is_complete()) << covering.summary.message;
+  const FoldCurves folds = find_fold_curves(*setup.problem, covering.mesh,
+                                            parse_parameter_plane("x1,x2", *setup.problem));
+  EXPECT_EQ(folds.curves.size(), 0u);
+  EXPECT_EQ(folds.singular_triangle_count, covering.mesh.triangle_count());
 }
 
 TEST(FoldCurves, RefusesANonDifferentiablePlaneAndAWrongDimension) {

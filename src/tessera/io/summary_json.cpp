@@ -69,6 +69,7 @@ nlohmann::json folds_json(const FoldReport& folds) {
           {"point_count", folds.point_count},
           {"edge_crossings", folds.crossing_count},
           {"unrefined_points", folds.unrefined_count},
+          {"singular_triangles", folds.singular_triangle_count},
           {"cusps", std::move(cusps)},
           {"max_residual", folds.max_residual},
           {"newton_iterations", folds.newton_iterations},
@@ -312,6 +313,10 @@ std::string to_text(const MeshReport& report) {
         << folds.point_count << " points on the fold to solver tolerance";
     if (folds.unrefined_count > 0) {
       out << " (" << folds.unrefined_count << " NOT refined: at the mesh's estimate)";
+    }
+    if (folds.singular_triangle_count > 0) {
+      out << " (det(Dπ·T) = 0 on all of " << folds.singular_triangle_count
+          << " triangles: no fold curve there)";
     }
     out << ", " << folds.cusps.size() << " cusp(s)";
     for (const auto& cusp : folds.cusps) {

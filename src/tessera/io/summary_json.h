@@ -57,6 +57,7 @@ struct FoldReport {
   int point_count = 0;
   int crossing_count = 0;
   int unrefined_count = 0;
+  int singular_triangle_count = 0;
   int newton_iterations = 0;
   int tangent_evaluations = 0;
   double max_residual = 0.0;

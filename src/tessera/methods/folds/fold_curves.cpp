@@ -99,9 +99,10 @@ class FoldSolver {
   }
 
   // det(Dπ·T) at a vertex with T oriented like the triangles around it (det(Tᵀ·[e₁ e₂]) > 0 for
-  // their edges from y): the quantity whose sign changes across the fold curve.
-  std::optional<double> vertex_determinant(const Eigen::VectorXd& y,
-                                           const std::vector<Eigen::Matrix<double, -1, 2>>& edges) {
+  // their edges from y): the quantity whose sign changes across the fold curve; and ‖Dπ‖²
+  // (Frobenius), its scale.
+  std::optional<std::pair<double, double>> vertex_determinant(
+      const Eigen::VectorXd& y, const std::vector<Eigen::Matrix<double, -1, 2>>& edges) {
     if (!linearization_.factor(*counted_, y)) {
       return std::nullopt;
     }
@@ -109,7 +110,7 @@ class FoldSolver {
     orient(T, edges);
     Eigen::MatrixXd G;
     plane_gradient(y, G);
-    return determinant(G * T);
+    return std::make_pair(determinant(G * T), G.squaredNorm());
   }
 
   // Flips T's second column unless Σ det(Tᵀ·[e₁ e₂]) over the given oriented edge pairs is > 0.
@@ -322,6 +323,11 @@ FoldCurves find_fold_curves(const ImplicitProblem& problem, const TriangleMesh& 
   // of the projected triangles around the vertex stands in (its sign is what matters).
   std::vector<double> vertex_value(static_cast<std::size_t>(vertex_count),
                                    std::numeric_limits<double>::quiet_NaN());
+  // Vertices where det(Dπ·T) vanishes to rounding (|det| ≤ 10⁻¹⁰‖Dπ‖²): on a generic fold
+  // curve only by a coincidence of 10⁻¹⁰ of an edge; where Dπ·T is singular on a whole region
+  // (a plane M does not fold over along curves, e.g. a cylinder seen along its axis) at
+  // every vertex there.
+  std::vector<char> is_singular(static_cast<std::size_t>(vertex_count), 0);
   auto ensure_value = [&](int v) {
     double& value = vertex_value[static_cast<std::size_t>(v)];
     if (!std::isnan(value)) {
@@ -329,7 +335,8 @@ FoldCurves find_fold_curves(const ImplicitProblem& problem, const TriangleMesh& 
     }
     ++result.tangent_evaluations;
     if (const auto exact = solver.vertex_determinant(y_of(v), edges_around(v))) {
-      value = *exact;
+      value = exact->first;
+      is_singular[static_cast<std::size_t>(v)] = std::abs(exact->first) <= 1e-10 * exact->second;
       return;
     }
     double sum = 0.0;
@@ -394,6 +401,11 @@ FoldCurves find_fold_curves(const ImplicitProblem& problem, const TriangleMesh& 
     }
     is_processed[static_cast<std::size_t>(t)] = 1;
     const Triangle& tri = triangles[static_cast<std::size_t>(t)];
+    if (is_singular[static_cast<std::size_t>(tri[0])] && is_singular[static_cast<std::size_t>(tri[1])] &&
+        is_singular[static_cast<std::size_t>(tri[2])]) {
+      ++result.singular_triangle_count;  // the signs there are rounding: no curve to follow
+      continue;
+    }
     std::vector<int> crossed;
     for (int k = 0; k < 3; ++k) {
       const int a = tri[static_cast<std::size_t>(k)];

@@ -56,6 +56,10 @@ struct FoldCurves {
   int unrefined_count = 0;    ///< fold points where Newton failed (kept at the mesh's estimate)
   int cusp_count = 0;         ///< cusps found and refined (FoldPoint::is_cusp)
   int unrefined_cusp_count = 0;  ///< cusps bracketed but not refined (marked at the bracket)
+  /// Triangles where det(Dπ·T) vanishes at all three corners to rounding: Dπ is singular on M's
+  /// tangent planes over a region there (e.g. a cylinder over a plane curve, seen along its
+  /// axis), so M does not fold along a curve; left out of the marching.
+  int singular_triangle_count = 0;
   int newton_iterations = 0;  ///< over all fold and cusp points
   int tangent_evaluations = 0;  ///< vertices where det(Dπ·T) was evaluated exactly
   double max_residual = 0.0;    ///< largest ‖F‖ over the refined points
