@@ -9,6 +9,7 @@
 #include "compare_command.h"
 #include "ddt_command.h"
 #include "improve_command.h"
+#include "picture_command.h"
 #include "mesh_command.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_quality.h"
@@ -102,7 +103,9 @@ int main(int argc, char** argv) {
   tessera::app::DdtCommand ddt;
   tessera::app::add_ddt_command(app, ddt);
   tessera::app::ImproveCommand improve;
+  tessera::app::RenderCommand render;
   tessera::app::add_improve_command(app, improve);
+  tessera::app::add_render_command(app, render);
 
   std::string check_mesh;
   std::string check_problem;
@@ -134,6 +137,9 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("ddt")) {
       return tessera::app::run_ddt(ddt);
+    }
+    if (app.got_subcommand("render")) {
+      return tessera::app::run_render(render);
     }
     if (app.got_subcommand("improve")) {
       return tessera::app::run_improve(improve);

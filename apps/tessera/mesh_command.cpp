@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 
@@ -14,6 +15,7 @@
 
 #include "cli_support.h"
 #include "fold_output.h"
+#include "picture_command.h"
 #include "output_checks.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/bezier_surface.h"
@@ -119,6 +121,9 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_option("--folds-output", mesh.folds_output,
                        "file of the fold curves in the mesh's view: .vtk, .vtu, .ply, .json or "
                        ".csv (default: beside the mesh, e.g. out.folds.ply)");
+  mesh_app->add_option("--picture", mesh.picture,
+                       "draw the mesh in its view to this .png or .svg, coloured by height, with "
+                       "its boundary and fold curves (`tessera render` for more control)");
   mesh_app->add_option("--obj-coordinates", mesh.obj_coordinates,
                        "deprecated, use --view: the view of three coordinate indices, e.g. 0,2,3 "
                        "(every format)");
@@ -265,6 +270,11 @@ int run_mesh(const MeshCommand& command) {
   TESSERA_CHECK(!command.folds.empty() || command.folds_output.empty(),
                 "--folds-output " << command.folds_output
                                   << " needs --folds (the parameter plane, e.g. --folds lambda,mu)");
+  if (!command.picture.empty()) {
+    check_output_folder(command.picture);
+    TESSERA_CHECK(is_picture_file(command.picture),
+                  "--picture " << command.picture << ": a picture is .png or .svg");
+  }
   std::optional<ParameterPlane> fold_plane;
   std::string fold_file;
   if (!command.folds.empty()) {
@@ -351,10 +361,12 @@ int run_mesh(const MeshCommand& command) {
                                   command.report_samples);
   report.run = result.summary;
   report.view = view_report;
+  std::vector<Polyline> fold_curves;
   if (has_mesh && fold_plane) {
     // On the finished mesh, in its view; a partial mesh has the folds of what it covers.
     const FoldOutput folds =
         compute_folds(setup, result.mesh, *fold_plane, view, fold_file, file_options.comments);
+    fold_curves = folds.curves_in_view;
     report.folds = folds.report;
     written.push_back(fold_file);
     if (folds.report.unrefined_count > 0) {
@@ -379,6 +391,38 @@ int run_mesh(const MeshCommand& command) {
                                  setup.problem->coordinate_blocks()};
     written.push_back(report.states->states_file);
     written.push_back(report.states->triangles_file);
+  }
+  if (has_mesh && !command.picture.empty()) {
+    PictureOptions picture;
+    picture.edges = result.mesh.triangle_count() <= 20000;
+    picture.title = command.problem + " (" + method.name + ")";
+    // Fold curves of a surface in R³ are pictured with the parameter plane horizontal and the
+    // third coordinate (the state) as the height, as bifurcation diagrams are drawn.
+    View picture_view = view;
+    if (fold_plane && n == 3 && view.is_all_coordinates()) {
+      std::vector<std::string> order = fold_plane->view().names();
+      for (const auto& name : setup.problem->coordinate_names()) {
+        if (std::find(order.begin(), order.end(), name) == order.end()) {
+          order.push_back(name);
+        }
+      }
+      if (order.size() == 3) {
+        picture_view = parse_view(order[0] + "," + order[1] + "," + order[2], *setup.problem);
+        for (Polyline& curve : fold_curves) {  // the same reordering of the curves' columns
+          Eigen::MatrixXd points(3, curve.points.cols());
+          for (int row = 0; row < 3; ++row) {
+            const auto& names = setup.problem->coordinate_names();
+            const auto at = std::find(names.begin(), names.end(), order[static_cast<std::size_t>(row)]);
+            points.row(row) = curve.points.row(static_cast<Eigen::Index>(at - names.begin()));
+          }
+          curve.points = std::move(points);
+        }
+      }
+    }
+    write_mesh_picture(command.picture, result.mesh, mesh_in_view(result.mesh, picture_view),
+                       coordinate_names_in_view(picture_view), fold_curves, "height", picture,
+                       &setup);
+    written.push_back(command.picture);
   }
   if (!command.summary.empty()) {
     write_summary_json(command.summary, report);

@@ -22,6 +22,7 @@ struct MeshCommand {
   std::string states;           ///< --states: the vertices as .npy (and the triangles beside)
   std::string folds;            ///< --folds: the parameter plane of the fold curves, e.g. lambda,mu
   std::string folds_output;     ///< --folds-output: their file (default beside the mesh)
+  std::string picture;          ///< --picture: a .png or .svg of the mesh in its view
   int report_samples = -1;  ///< --report-samples: -1 the default (make_report), 0 all
   bool ascii = false;
   bool quiet = false;

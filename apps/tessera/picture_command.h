@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// `tessera render` and `tessera mesh --picture`: pictures of meshes (docs/pictures.md).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "tessera/geometry/triangle_mesh.h"
+#include "tessera/io/polylines.h"
+#include "tessera/picture/picture.h"
+#include "tessera/problems/problem_setup.h"
+
+namespace tessera::app {
+
+struct RenderCommand {
+  std::string mesh;     ///< mesh file, any format read_mesh reads
+  std::string output;   ///< .png or .svg
+  std::string problem;  ///< catalogue name or problem file: names, views, `distance`
+  std::string view;     ///< with a problem: the view whose first three functionals are drawn
+  std::string colour = "height";
+  std::string curves;  ///< polylines to draw over it (.json or .csv, as `mesh --folds` writes)
+  std::string size = "800x600";
+  std::string edges = "auto";
+  std::string aspect = "auto";
+  double azimuth = -60.0;
+  double elevation = 30.0;
+  double zoom = 1.0;
+  bool perspective = false;
+  bool top = false;
+  bool no_boundary = false;
+  std::string title;
+};
+
+CLI::App* add_render_command(CLI::App& app, RenderCommand& command);
+
+/// \return 0. \throw InvalidArgument for bad input (before drawing).
+int run_render(const RenderCommand& command);
+
+/// The colour quantities `--colour` accepts besides the view's column names.
+std::vector<std::string> picture_quantities();
+
+/// A picture of `mesh` (in the problem's R^n) drawn in the view `mesh_in_view` (R^k, k ≥ 2; the
+/// first three columns, a third of 0 for k = 2 gives a top view), coloured by `colour` (a
+/// quantity or one of `names`), with the mesh's boundary and `curves` (in the view, e.g. fold
+/// curves; their marked points as dots) over it. `setup` may be null (then `distance` is refused).
+/// \throw InvalidArgument for an unknown quantity (listing the known ones) and as write_picture.
+void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
+                        const TriangleMesh& mesh_in_view, const std::vector<std::string>& names,
+                        const std::vector<Polyline>& curves, const std::string& colour,
+                        PictureOptions options, const ProblemSetup* setup,
+                        bool draw_boundary = true);
+
+}  // namespace tessera::app

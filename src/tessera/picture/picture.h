@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+// Pictures of a surface: shaded triangles seen from a camera, coloured by a quantity, with curves
+// and points drawn over them, as PNG or SVG through cairo (one code path for both). Hidden
+// surfaces by depth-sorted painting. The cairo headers stay in picture.cpp.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tessera/geometry/triangle_mesh.h"
+
+namespace tessera {
+
+/// A polyline drawn over the surface (a boundary, a fold curve).
+struct PictureCurve {
+  Eigen::Matrix3Xd points;                    ///< 3×m, in the scene's coordinates
+  bool is_closed = false;                     ///< the last point joins the first
+  std::array<double, 3> rgb = {0.8, 0.1, 0.1};  ///< colour, components in [0, 1]
+  double width = 2.0;                         ///< line width in pixels
+};
+
+/// What is drawn: triangles in R³ (the three coordinates of a view), optionally one value per
+/// triangle (colour), curves and marked points.
+struct PictureScene {
+  Eigen::Matrix3Xd positions;  ///< 3×V vertex positions
+  std::vector<Triangle> triangles;
+  Eigen::VectorXd triangle_values;  ///< one per triangle, or empty: one colour for all
+  std::string value_label;          ///< the colour bar's title, e.g. "min angle (degrees)"
+  std::vector<PictureCurve> curves;
+  Eigen::Matrix3Xd markers;         ///< 3×k points drawn as dots (e.g. cusps); may be 3×0
+  std::array<std::string, 3> axis_names = {"x", "y", "z"};
+};
+
+/// How the axes of the scene are scaled before the camera looks at it.
+enum class PictureAspect {
+  /// Equal scales where the axes' extents are comparable (within a factor 4: geometry), else
+  /// each axis scaled to its own extent (continuation views such as (λ, ε, max u), whose axes
+  /// have unrelated units and ranges).
+  Automatic,
+  Equal,  ///< one scale for all three axes
+  Box,    ///< each axis scaled to the same length: the bounding box becomes a cube
+};
+
+struct PictureOptions {
+  int width = 800;   ///< pixels (SVG: points)
+  int height = 600;
+  /// The camera looks from direction (cos e cos a, cos e sin a, sin e) at the scene's centre:
+  /// a = azimuth about the third axis, e = elevation above the plane of the first two.
+  double azimuth_degrees = -60.0;
+  double elevation_degrees = 30.0;
+  double zoom = 1.0;          ///< 1: the surface fills the frame with a small margin
+  bool perspective = false;   ///< else orthographic
+  bool edges = true;          ///< draw the triangles' edges
+  bool colour_bar = true;     ///< when the scene has values
+  bool axes = true;           ///< a small triad naming the axes
+  /// No shading: every triangle in its colour as it is (maps of data seen from above, where
+  /// light would only darken steep triangles).
+  bool flat_shading = false;
+  PictureAspect aspect = PictureAspect::Automatic;
+  std::array<double, 3> surface_rgb = {0.62, 0.72, 0.86};  ///< without values
+  std::array<double, 3> background_rgb = {1.0, 1.0, 1.0};
+  std::string title;
+};
+
+/// A raster picture: `pixels` row by row from the top, 0xAARRGGBB (cairo's ARGB32, opaque).
+struct PictureImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint32_t> pixels;
+  std::uint32_t at(int x, int y) const {
+    return pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                  static_cast<std::size_t>(x)];
+  }
+};
+
+/// The scene drawn into an image (what write_picture writes as PNG).
+/// \throw InvalidArgument for a scene with no triangles, indices out of range, values of the
+///        wrong count, non-finite positions, or options out of range (the message names them).
+PictureImage render_picture(const PictureScene& scene, const PictureOptions& options);
+
+/// Writes the picture to `path`: .png (raster) or .svg (vector; the same drawing), by extension
+/// (case-insensitive); the file is replaced atomically.
+/// \throw InvalidArgument as render_picture, for another extension (naming both) and if the
+///        file cannot be written.
+void write_picture(const std::string& path, const PictureScene& scene,
+                   const PictureOptions& options);
+
+/// True if write_picture knows the extension of `path`.
+bool is_picture_file(const std::string& path);
+
+/// The colour of `t` in [0, 1] in the viridis colour map (clamped), components in [0, 1].
+std::array<double, 3> viridis(double t);
+
+/// The boundary of a mesh as closed curves in the scene's positions (3×V), one per loop.
+std::vector<PictureCurve> boundary_curves(const TriangleMesh& mesh_in_scene);
+
+}  // namespace tessera
