@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "tessera/core/error.h"
+#include "tessera/io/file_names.h"
 #include "tessera/io/view_mesh.h"
 #include "tessera/methods/folds/fold_curves.h"
 
@@ -12,10 +13,7 @@ namespace tessera::app {
 std::string default_fold_file(const std::string& mesh_path) {
   std::filesystem::path path(mesh_path);
   std::string extension = path.extension().string();
-  std::string lower = extension;
-  for (char& c : lower) {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
+  const std::string lower = lowercase_extension(mesh_path);
   if (lower != ".ply" && lower != ".vtk" && lower != ".vtu") {
     extension = ".csv";
   }

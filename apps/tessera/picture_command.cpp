@@ -13,6 +13,7 @@
 #include "output_checks.h"
 #include "tessera/core/corrector.h"
 #include "tessera/core/error.h"
+#include "tessera/io/file_names.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/view_mesh.h"
@@ -24,14 +25,6 @@ namespace tessera::app {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::string lowercase_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return extension;
-}
 
 // The smallest angle of each triangle, in degrees, in the mesh's own coordinates.
 Eigen::VectorXd minimum_angles(const TriangleMesh& mesh) {

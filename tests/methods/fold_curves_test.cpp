@@ -16,13 +16,6 @@
 namespace tessera {
 namespace {
 
-CoveringResult cover_catalogue(const std::string& specification, MethodSettings settings = {}) {
-  const ProblemSetup setup = make_catalogue_problem(specification);
-  CoveringResult result = cover(setup, covering_methods().front(), settings);
-  EXPECT_TRUE(result.summary.is_complete()) << result.summary.message;
-  return result;
-}
-
 TEST(FoldCurves, WhitneyPleatFoldIsTheExactCurveAndItsCuspTheOrigin) {
   const ProblemSetup setup = make_catalogue_problem("whitney_pleat");
   MethodSettings settings;

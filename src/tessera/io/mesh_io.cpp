@@ -5,19 +5,12 @@
 #include <filesystem>
 
 #include "tessera/core/error.h"
+#include "tessera/io/file_names.h"
 #include "tessera/io/npy.h"
 
 namespace tessera {
 
 namespace {
-
-std::string lowercase_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return extension;
-}
 
 }  // namespace
 

@@ -6,19 +6,12 @@
 #include <set>
 
 #include "tessera/core/error.h"
+#include "tessera/io/file_names.h"
 #include "tessera/io/detail/file_buffer.h"
 
 namespace tessera {
 
 namespace {
-
-std::string lowercase_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return extension;
-}
 
 int point_total(const std::vector<Polyline>& polylines) {
   int total = 0;

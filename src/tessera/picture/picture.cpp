@@ -14,6 +14,7 @@
 #include <numeric>
 
 #include "tessera/core/error.h"
+#include "tessera/io/file_names.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/io/detail/file_buffer.h"
 
@@ -24,14 +25,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kColourBarWidth = 110;  // pixels kept on the right for the bar and its labels
 constexpr int kTitleHeight = 24;
-
-std::string lowercase_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return extension;
-}
 
 void check_scene(const PictureScene& scene, const PictureOptions& options) {
   TESSERA_CHECK(!scene.triangles.empty(), "a picture needs at least one triangle, the mesh has none");
