@@ -5,6 +5,8 @@
 // mesh, so what comes back is a valid piece of M, smaller than the whole.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -74,6 +76,14 @@ TEST_P(StopHook, StopsWithAValidPartialMesh) {
   EXPECT_TRUE(validation.is_valid()) << validation.report();
   EXPECT_TRUE(validation.is_geometry_checked);
   EXPECT_EQ(partial.summary.removed_triangles, 0);
+  // A stop skips the tolerance's bisection (minutes at large n) and says so.
+  if (partial.summary.tolerance > 0) {
+    EXPECT_EQ(partial.summary.max_sampled_distance, -1.0);
+    const auto& notes = partial.summary.notes;
+    EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& note) {
+      return note.find("was not enforced") != std::string::npos;
+    }));
+  }
   // A partial covering of a closed surface has a boundary.
   EXPECT_FALSE(validation.is_closed());
 

@@ -401,9 +401,16 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
              "): the problem's Jacobian factorisation or the mesh did not fit; try a coarser "
              "tolerance or step, or fewer unknowns");
   }
-  // 6. The distance bound, checked on every triangle and enforced by bisection on M.
+  // 6. The distance bound, checked on every triangle and enforced by bisection on M. Not after
+  //    a stop request: the user wants the partial mesh now, and at large n the bisection costs
+  //    factorisations (minutes at n = 10⁵); validity is still checked below.
   const int triangles_built = result.mesh.triangle_count();
-  if (options.tolerance > 0 && result.mesh.triangle_count() > 0) {
+  const bool is_interrupted = summary.termination == CoveringTermination::Interrupted;
+  if (is_interrupted && options.tolerance > 0 && result.mesh.triangle_count() > 0) {
+    summary.notes.push_back("interrupted: the tolerance " + std::to_string(options.tolerance) +
+                            " was not enforced on the partial mesh (no triangle was checked)");
+  }
+  if (options.tolerance > 0 && result.mesh.triangle_count() > 0 && !is_interrupted) {
     ToleranceRefinementOptions refine;
     refine.tolerance = options.tolerance;
     refine.corrector = options.corrector;
@@ -425,7 +432,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
   //    by a repair are held to the tolerance too, and what refinement makes is validated.
   const int repaired = validate_and_repair(problem, domain, result);
   end_phase("validate");
-  if (repaired > 0 && options.tolerance > 0) {
+  if (repaired > 0 && options.tolerance > 0 && !is_interrupted) {
     std::vector<int> added;
     for (int t = result.mesh.triangle_count() - repaired; t < result.mesh.triangle_count(); ++t) {
       added.push_back(t);
