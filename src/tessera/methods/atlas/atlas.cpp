@@ -8,6 +8,8 @@
 // polygon complex: every polygon vertex where the cells of i, j, k meet is the triangle ijk.
 #include "tessera/methods/atlas/atlas.h"
 
+#include <unistd.h>
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -22,6 +24,16 @@
 #include "tessera/methods/start_point.h"
 
 namespace tessera {
+
+double default_factorisation_budget() {
+  constexpr double minimum = 2.0 * 1024 * 1024 * 1024;
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long page_size = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page_size <= 0) {
+    return minimum;
+  }
+  return std::max(minimum, 0.25 * static_cast<double>(pages) * static_cast<double>(page_size));
+}
 
 void AtlasOptions::validate() const {
   validate_common("AtlasOptions");

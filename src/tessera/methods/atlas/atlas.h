@@ -24,6 +24,10 @@ enum class AtlasPlacement {
   Hexagonal,
 };
 
+/// A quarter of the physical memory of this machine (sysconf), and at least 2 GiB: the bytes
+/// the atlas may spend on factorisations kept for its queued charts by default.
+double default_factorisation_budget();
+
 /// The atlas's own options; the shared ones (tolerance, step = the largest chart radius,
 /// max_vertices, max_start_distance, corrector, progress) are in CoveringOptions.
 struct AtlasOptions : CoveringOptions {
@@ -65,9 +69,11 @@ struct AtlasOptions : CoveringOptions {
   /// The factorisations of the charts waiting in the queue are kept until the chart projects
   /// its children, at most this many bytes of them (the newest are dropped first and factored
   /// again when their turn comes). At n = 10⁴ on a 2-D grid one factorisation holds about
-  /// 10 MB and the boundary of an atlas a few hundred charts, so without a bound the boundary
-  /// alone would outgrow the machine.
-  double max_factorisation_bytes = 2.0 * 1024 * 1024 * 1024;
+  /// 10 MB, at n = 10⁵ about 120 MB, and the boundary of an atlas a few hundred charts, so
+  /// without a bound the boundary alone would outgrow the machine; with too small a bound most
+  /// charts are factored twice (bratu2d:N=316 with 2 GiB: 256 of 422). Default: a quarter of
+  /// the machine's physical memory, at least 2 GiB (default_factorisation_budget).
+  double max_factorisation_bytes = default_factorisation_budget();
 
   /// \throw InvalidArgument naming the first option out of range.
   void validate() const;
