@@ -11,6 +11,16 @@ import pytest
 import tessera
 
 
+@pytest.fixture(autouse=True)
+def python_handles_sigint():
+    """Python's own SIGINT handler, whatever the runner inherited: a shell without job control
+    starts background commands with SIGINT ignored, and then Python installs no handler and
+    tessera (which only takes over from Python's default handler) none either."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
 def interrupt_after(seconds: float) -> threading.Timer:
     timer = threading.Timer(seconds, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()
