@@ -8,9 +8,12 @@ out=docs/images
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 size=(--size 600x450)
+# Fine meshes drawn with their edges are mostly antialiased lines, which PNG compresses badly:
+# these are drawn smaller (or coarser) to stay under ~150 KB each.
+small=(--size 480x360)
 # Each method on catalogue surfaces.
-"$tessera" mesh sphere --tolerance 1e-3 -q -o "$work/sphere.ply"
-"$tessera" render "$work/sphere.ply" "${size[@]}" --title "sphere, atlas (tolerance 1e-3)" \
+"$tessera" mesh sphere --tolerance 5e-3 -q -o "$work/sphere.ply"
+"$tessera" render "$work/sphere.ply" "${small[@]}" --title "sphere, atlas (tolerance 5e-3)" \
   -o "$out/sphere_atlas.png"
 "$tessera" mesh torus --method front --step 0.1 -q -o "$work/torus_front.ply"
 "$tessera" render "$work/torus_front.ply" --colour min-angle --elevation 40 "${size[@]}" \
@@ -18,11 +21,15 @@ size=(--size 600x450)
 "$tessera" mesh torus --method bezier --tolerance 0.01 -q -o "$work/torus_bezier.ply"
 "$tessera" render "$work/torus_bezier.ply" --colour curvature --elevation 40 "${size[@]}" \
   --title "torus, bezier (tolerance 0.01): Gauss curvature" -o "$out/torus_bezier.png"
-"$tessera" mesh flat_torus --tolerance 2e-3 -q -o "$work/flat_torus.vtu"
+"$tessera" mesh flat_torus --tolerance 5e-3 -q -o "$work/flat_torus.vtu"
 # The flat torus of R^4 drawn through the embedding ((2 + x3) x1, (2 + x3) x2, x4) in R^3.
 "$tessera" render "$work/flat_torus.vtu" --problem flat_torus \
-  --view 'a = (2 + x3)*x1, b = (2 + x3)*x2, c = x4' --colour min-angle "${size[@]}" \
+  --view 'a = (2 + x3)*x1, b = (2 + x3)*x2, c = x4' --colour min-angle "${small[@]}" \
   --title "flat torus in R^4, atlas: smallest angles (in R^4)" -o "$out/flat_torus_atlas.png"
+# A continuation surface in its default view (lambda, epsilon, max:u): the axes scaled apart.
+"$tessera" mesh bvp:points=100 -q -o "$work/bvp100.ply"
+"$tessera" render "$work/bvp100.ply" "${size[@]}" --edges off --azimuth -50 \
+  --title "bvp:points=100 in (lambda, epsilon, max u), coloured by max u" -o "$out/bvp100_view.png"
 # Fold curves and cusps.
 "$tessera" mesh whitney_pleat --folds lambda,mu -q -o "$work/pleat.ply" --picture "$out/pleat_folds.png"
 "$tessera" mesh cstr --folds Da,B --view Da,B,x1 -q -o "$work/cstr.ply" --folds-output "$work/cstr.json"

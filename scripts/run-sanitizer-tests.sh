@@ -24,6 +24,9 @@ sanitizer_exit=86
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:exitcode=${sanitizer_exit}:print_stacktrace=1:\
 check_initialization_order=1:strict_init_order=1:detect_stack_use_after_return=1\
 ${ASAN_OPTIONS:+:${ASAN_OPTIONS}}"
+# fontconfig's process-lifetime cache (cairo's text) is the one leak suppressed: see the file.
+export LSAN_OPTIONS="suppressions=$(pwd)/tests/sanitizers/lsan.supp:print_suppressions=0\
+${LSAN_OPTIONS:+:${LSAN_OPTIONS}}"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:exitcode=${sanitizer_exit}\
 ${UBSAN_OPTIONS:+:${UBSAN_OPTIONS}}"
 cd build-asan

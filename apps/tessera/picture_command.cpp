@@ -7,14 +7,16 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "cli_support.h"
 #include "output_checks.h"
-#include "tessera/core/corrector.h"
 #include "tessera/core/error.h"
-#include "tessera/io/file_names.h"
+#include "tessera/core/scaled_problem.h"
+#include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
+#include "tessera/io/file_names.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/view_mesh.h"
 #include "tessera/problems/catalogue.h"
@@ -26,21 +28,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The smallest angle of each triangle, in degrees, in the mesh's own coordinates.
+// The smallest angle of each triangle, in degrees, in the mesh's own coordinates: the measure
+// of `tessera check` and the summary (atan2, accurate for slivers where acos is not).
 Eigen::VectorXd minimum_angles(const TriangleMesh& mesh) {
   Eigen::VectorXd angles(mesh.triangle_count());
   for (int t = 0; t < mesh.triangle_count(); ++t) {
-    const Triangle& tri = mesh.triangle(t);
-    double smallest = 180.0;
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::VectorXd a = mesh.point(tri[static_cast<std::size_t>((k + 1) % 3)]) -
-                                mesh.point(tri[static_cast<std::size_t>(k)]);
-      const Eigen::VectorXd b = mesh.point(tri[static_cast<std::size_t>((k + 2) % 3)]) -
-                                mesh.point(tri[static_cast<std::size_t>(k)]);
-      const double cosine = a.dot(b) / std::max(a.norm() * b.norm(), 1e-300);
-      smallest = std::min(smallest, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / kPi);
-    }
-    angles(t) = smallest;
+    angles(t) = min_angle(mesh, mesh.triangle(t)) * 180.0 / kPi;
   }
   return angles;
 }
@@ -93,17 +86,27 @@ Eigen::VectorXd gaussian_curvature(const TriangleMesh& mesh) {
   return curvature;
 }
 
-// Distance of each triangle's centroid to M: the length of its Gauss–Newton projection.
+// Distance of each triangle's centroid to M, as the summary's centroid_distance measures it
+// (measure_quality): ‖c − P(c)‖ with P = project_onto_manifold, in the problem's metric (for
+// coordinate blocks of weight ≠ 1, in y = W x). NaN (drawn grey) where P does not converge.
 Eigen::VectorXd centroid_distances(const TriangleMesh& mesh, const ImplicitProblem& problem) {
+  const Eigen::VectorXd weights = metric_weights(problem);
+  std::optional<ScaledProblem> scaled;
+  if (weights.size() > 0) {
+    scaled.emplace(problem, weights);
+  }
+  const ImplicitProblem& measured = scaled ? static_cast<const ImplicitProblem&>(*scaled) : problem;
   Eigen::VectorXd distance(mesh.triangle_count());
   Linearization workspace;
-  CorrectorOptions options;
   for (int t = 0; t < mesh.triangle_count(); ++t) {
     const Triangle& tri = mesh.triangle(t);
-    const Eigen::VectorXd centroid = (mesh.point(tri[0]) + mesh.point(tri[1]) + mesh.point(tri[2])) / 3.0;
-    Eigen::VectorXd x = centroid;
-    const auto summary = project_gauss_newton(problem, x, options, workspace);
-    distance(t) = summary.is_success() ? (x - centroid).norm() : std::nan("");
+    Eigen::VectorXd centroid = (mesh.point(tri[0]) + mesh.point(tri[1]) + mesh.point(tri[2])) / 3.0;
+    if (scaled) {
+      centroid = scaled->to_scaled(centroid);
+    }
+    Eigen::VectorXd y = centroid;
+    distance(t) =
+        project_onto_manifold(measured, y, workspace) ? (y - centroid).norm() : std::nan("");
   }
   return distance;
 }
@@ -149,6 +152,9 @@ std::vector<Polyline> read_polylines(const std::string& path) {
           line.marked[i] = true;
         }
         line.is_closed = item.value("closed", false);
+        TESSERA_CHECK(line.points.allFinite(), "--curves "
+                                                   << path << ": polyline " << lines.size()
+                                                   << " has a coordinate that is not finite");
         lines.push_back(std::move(line));
       }
     } catch (const nlohmann::json::exception& error) {
@@ -163,6 +169,9 @@ std::vector<Polyline> read_polylines(const std::string& path) {
     int line_number = 0;
     while (std::getline(text, line_text)) {
       ++line_number;
+      if (!line_text.empty() && line_text.back() == '\r') {
+        line_text.pop_back();  // a file written on Windows
+      }
       if (line_text.empty() || line_text[0] == '#') {
         continue;
       }
@@ -195,11 +204,14 @@ std::vector<Polyline> read_polylines(const std::string& path) {
         line.points.col(m).setZero();
         for (int c = 0; c < columns; ++c) {
           line.points(c, m) = std::stod(fields[static_cast<std::size_t>(2 + c)]);
+          if (!std::isfinite(line.points(c, m))) {
+            throw std::invalid_argument("not finite");
+          }
         }
         line.marked.push_back(fields.back() == "1");
       } catch (const std::exception&) {
         throw InvalidArgument("--curves " + path + ", line " + std::to_string(line_number) +
-                              ": not a number");
+                              ": not a finite number");
       }
     }
   } else {
@@ -407,7 +419,9 @@ int run_render(const RenderCommand& command) {
     in_view = mesh_in_view(mesh, view);
     names = coordinate_names_in_view(view);
   } else {
-    names = setup ? setup->problem->coordinate_names() : default_coordinate_names(n);
+    // Without a problem, the names the file carries (a mesh written in a view keeps its
+    // columns, e.g. lambda, epsilon, max_u): axis labels and --colour by a column.
+    names = setup ? setup->problem->coordinate_names() : read_coordinate_names(command.mesh, n);
     if (n <= 3) {
       in_view = mesh;
     } else {

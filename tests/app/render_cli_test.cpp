@@ -42,6 +42,19 @@ TEST(RenderCli, DrawsAMeshFileADdtTriangulationAndARunWithItsFolds) {
   ASSERT_EQ(distance.exit_code, 0) << distance.output;
   EXPECT_TRUE(std::filesystem::file_size(dir + "/torus.svg") > 1000);
 
+  // A file keeps its problem's coordinate names (x, lambda, mu): a column is a colour by name.
+  ASSERT_EQ(run_cli("mesh whitney_pleat --tolerance 0.01 -q -o " + dir + "/named.vtu").exit_code,
+            0);
+  const auto named =
+      run_cli("render " + dir + "/named.vtu --colour lambda -o " + dir + "/named.svg");
+  ASSERT_EQ(named.exit_code, 0) << named.output;
+  const auto unnamed = run_cli("render " + dir + "/named.vtu --colour y -o " + dir + "/named.svg");
+  EXPECT_EQ(unnamed.exit_code, 2);
+  EXPECT_TRUE(contains(unnamed.output,
+                       "known: height, none, min-angle, area, curvature, "
+                       "distance, x, lambda, mu"))
+      << unnamed.output;
+
   ASSERT_EQ(run_cli("ddt " + testing::source_path("examples/data/franke33.csv") +
                     " --function F2 -o " + dir + "/ddt.ply").exit_code, 0);
   const auto ddt = run_cli("render " + dir + "/ddt.ply --top --colour z -o " + dir + "/ddt.png");
@@ -66,6 +79,11 @@ TEST(RenderCli, BadOptionsAreRefusedBeforeDrawing) {
     std::string message;
   };
   const std::string mesh = dir + "/s.ply -o " + dir + "/s.png";
+  // A mesh file with vertices and no triangles, and fold curves with a coordinate "nan".
+  std::ofstream(dir + "/empty.ply") << "ply\nformat ascii 1.0\nelement vertex 3\n"
+                                       "property double x\nproperty double y\nproperty double z\n"
+                                       "end_header\n0 0 0\n1 0 0\n0 1 0\n";
+  std::ofstream(dir + "/nan.csv") << "curve,point,x,y,z,cusp\n0,0,0,0,0,0\n0,1,nan,1,0,0\n";
   for (const Case& bad : {
            Case{"render " + mesh + " --colour curly", "unknown quantity"},
            Case{"render " + mesh + " --colour distance", "--problem"},
@@ -74,6 +92,9 @@ TEST(RenderCli, BadOptionsAreRefusedBeforeDrawing) {
            Case{"render " + mesh + " --view x,y", "needs --problem"},
            Case{"render " + mesh + " --curves " + dir + "/s.ply", ".json or .csv"},
            Case{"render " + dir + "/missing.ply -o " + dir + "/s.png", "missing.ply"},
+           Case{"render " + dir + "/empty.ply -o " + dir + "/s.png", "no triangles"},
+           Case{"render " + mesh + " --curves " + dir + "/nan.csv", "line 3: not a finite number"},
+           Case{"render " + mesh + " --aspect squashed", "--aspect"},
            Case{"mesh sphere -o " + dir + "/t.ply --picture " + dir + "/t.gif", ".png or .svg"},
        }) {
     const auto result = run_cli(bad.arguments);

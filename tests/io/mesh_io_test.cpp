@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "io/io_test_support.h"
+#include "tessera/core/implicit_problem.h"
 
 namespace tessera {
 namespace {
@@ -38,6 +39,45 @@ TEST(MeshFile, UnknownExtensionListsTheSupportedOnes) {
                              std::filesystem::copy_options::overwrite_existing);
   expect_invalid_argument([&] { read_mesh(test_path("m.vtkx")); },
                           {"m.vtkx", "'.vtkx'", "supported: .ply, .obj, .vtk, .vtu"});
+}
+
+// The names a mesh was written with come back from every format that keeps them (PLY, VTK,
+// VTU), with a scalar field beside them; otherwise the defaults.
+TEST(MeshFile, CoordinateNamesReadBack) {
+  for (const int n : {3, 4}) {
+    const auto mesh = random_mesh(n, 20, 30);
+    std::vector<std::string> names = {"lambda", "epsilon", "max_u", "B"};
+    names.resize(static_cast<std::size_t>(n));
+    for (const std::string file_name : {"names.ply", "names_ascii.ply", "names.vtk", "names.VTU"}) {
+      const std::string path = test_path(std::to_string(n) + file_name);
+      write_mesh(path, mesh,
+                 {.binary = file_name != "names_ascii.ply",
+                  .coordinate_names = names,
+                  .vertex_scalars = {{"residual", std::vector<double>(20, 0.5)}},
+                  .comments = {"coordinates: a b"}});
+      EXPECT_EQ(read_coordinate_names(path, n), names) << file_name;
+      write_mesh(path, mesh);
+      EXPECT_EQ(read_coordinate_names(path, n), default_coordinate_names(n)) << file_name;
+    }
+  }
+  // `tessera mesh` without a view names the problem's coordinates in a comment only.
+  const auto mesh = random_mesh(3, 20, 30);
+  write_mesh(test_path("comment.ply"), mesh, {.comments = {"coordinates: u v w"}});
+  EXPECT_EQ(read_coordinate_names(test_path("comment.ply"), 3),
+            (std::vector<std::string>{"u", "v", "w"}));
+  write_mesh(test_path("comment.vtk"), mesh, {.comments = {"coordinates: u v w"}});
+  EXPECT_EQ(read_coordinate_names(test_path("comment.vtk"), 3),
+            (std::vector<std::string>{"x", "y", "z"}));  // the arrays of write_vtk come first
+  // Counts that do not match, repeated names, other formats, missing files: the defaults.
+  write_mesh(test_path("short.ply"), mesh, {.comments = {"coordinates: u v"}});
+  EXPECT_EQ(read_coordinate_names(test_path("short.ply"), 3), default_coordinate_names(3));
+  write_text(test_path("repeated.ply"),
+             "ply\nformat ascii 1.0\ncomment coordinate names: a a b\nelement vertex 0\n"
+             "property double x\nproperty double y\nproperty double z\nend_header\n");
+  EXPECT_EQ(read_coordinate_names(test_path("repeated.ply"), 3), default_coordinate_names(3));
+  write_mesh(test_path("m.obj"), mesh);
+  EXPECT_EQ(read_coordinate_names(test_path("m.obj"), 3), default_coordinate_names(3));
+  EXPECT_EQ(read_coordinate_names(test_path("missing.ply"), 4), default_coordinate_names(4));
 }
 
 // Every format tessera writes reads back: PLY (both encodings), VTK and VTU with all n

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -189,6 +191,111 @@ TEST(Picture, SvgIsTheSameDrawingAndBadInputIsRefused) {
   PictureOptions tiny;
   tiny.width = 4;
   EXPECT_THROW(render_picture(scene, tiny), InvalidArgument);
+}
+
+// The closed box [0, a] × [0, b] × [0, c] as 12 triangles.
+PictureScene box_scene(double a, double b, double c) {
+  PictureScene scene;
+  scene.positions.resize(3, 8);
+  for (int v = 0; v < 8; ++v) {
+    scene.positions.col(v) = Eigen::Vector3d((v & 1) ? a : 0, (v & 2) ? b : 0, (v & 4) ? c : 0);
+  }
+  scene.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                     {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return scene;
+}
+
+// Width over height of the non-background pixels of the box seen from the front (first axis
+// to the right, third up).
+double silhouette_aspect(const PictureScene& scene, PictureAspect aspect) {
+  PictureOptions options = plain_options(400);
+  options.azimuth_degrees = -90;
+  options.elevation_degrees = 0;
+  options.aspect = aspect;
+  const PictureImage image = render_picture(scene, options);
+  int left = image.width, right = -1, top = image.height, bottom = -1;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      if (image.at(x, y) != kWhite) {
+        left = std::min(left, x), right = std::max(right, x);
+        top = std::min(top, y), bottom = std::max(bottom, y);
+      }
+    }
+  }
+  return (right - left + 1.0) / (bottom - top + 1.0);
+}
+
+// Geometry keeps its shape (a box of 5 × 5 × 1, like a torus of R = 2, r = 0.5, seen from the
+// side is five times wider than high); axes whose extents differ by more than a factor 10 (a
+// continuation view) are each scaled to the same length unless equal scales are asked for.
+TEST(Picture, AutomaticAspectKeepsGeometryAndStretchesUnrelatedAxes) {
+  // Tolerance: the silhouette's height is 368/5 ≈ 74 pixels, known to ±1 pixel of antialiasing.
+  EXPECT_NEAR(silhouette_aspect(box_scene(5, 5, 1), PictureAspect::Automatic), 5.0, 0.15);
+  EXPECT_NEAR(silhouette_aspect(box_scene(5, 5, 1), PictureAspect::Box), 1.0, 0.03);
+  EXPECT_NEAR(silhouette_aspect(box_scene(20, 20, 1), PictureAspect::Automatic), 1.0, 0.03);
+  EXPECT_NEAR(silhouette_aspect(box_scene(20, 20, 1), PictureAspect::Equal), 20.0, 1.5);
+}
+
+// The SVG is well-formed XML (parsed by Python's xml.etree) with at least one <path> per
+// triangle: every triangle is a vector shape, not a raster.
+TEST(Picture, SvgParsesAsXmlWithAPathPerTriangle) {
+  PictureScene scene;
+  constexpr int cells = 4;
+  scene.positions.resize(3, (cells + 1) * (cells + 1));
+  for (int j = 0; j <= cells; ++j) {
+    for (int i = 0; i <= cells; ++i) {
+      scene.positions.col(j * (cells + 1) + i) = Eigen::Vector3d(i, j, 0.1 * i * j);
+    }
+  }
+  for (int j = 0; j < cells; ++j) {
+    for (int i = 0; i < cells; ++i) {
+      const int v = j * (cells + 1) + i;
+      scene.triangles.push_back({v, v + 1, v + cells + 2});
+      scene.triangles.push_back({v, v + cells + 2, v + cells + 1});
+    }
+  }
+  PictureOptions options;
+  options.edges = false;
+  const std::string path = testing::temporary_directory("picture_svg_xml") + "/grid.svg";
+  write_picture(path, scene, options);
+  if (std::system("/usr/bin/python3 -c 'import xml.etree.ElementTree' >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "no /usr/bin/python3 to parse the SVG with";
+  }
+  // Prints the root's name, its width and the number of <path> elements.
+  const std::string script =
+      R"(import sys, xml.etree.ElementTree as E; r = E.parse(sys.argv[1]).getroot(); )"
+      R"(print(r.tag.split('}')[-1], r.get('width'), sum(1 for e in r.iter() if e.tag.endswith('}path'))))";
+  const std::string command = "/usr/bin/python3 -c \"" + script + "\" '" + path + "' 2>&1";
+  std::string output;
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  char buffer[512];
+  for (std::size_t count; (count = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) {
+    output.append(buffer, count);
+  }
+  ASSERT_EQ(pclose(pipe), 0) << output;
+  std::istringstream fields(output);
+  std::string root, width;
+  int paths = 0;
+  fields >> root >> width >> paths;
+  EXPECT_EQ(root, "svg") << output;
+  EXPECT_EQ(width, "800pt") << output;  // cairo sizes SVG in points, one per pixel
+  EXPECT_GE(paths, static_cast<int>(scene.triangles.size())) << output;
+}
+
+TEST(Picture, NonFiniteCurvesAndMarkersAreRefused) {
+  PictureScene scene;
+  scene.positions = Eigen::Matrix3d::Identity();
+  scene.triangles = {{0, 1, 2}};
+  PictureScene bad_curve = scene;
+  PictureCurve curve;
+  curve.points = Eigen::Matrix3Xd::Zero(3, 2);
+  curve.points(1, 1) = NAN;
+  bad_curve.curves.push_back(curve);
+  EXPECT_THROW(render_picture(bad_curve, {}), InvalidArgument);
+  PictureScene bad_marker = scene;
+  bad_marker.markers = Eigen::Matrix3Xd::Constant(3, 1, INFINITY);
+  EXPECT_THROW(render_picture(bad_marker, {}), InvalidArgument);
 }
 
 }  // namespace

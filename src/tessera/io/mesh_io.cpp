@@ -3,14 +3,108 @@
 
 #include <cctype>
 #include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
 
 #include "tessera/core/error.h"
+#include "tessera/core/implicit_problem.h"
 #include "tessera/io/file_names.h"
 #include "tessera/io/npy.h"
 
 namespace tessera {
 
 namespace {
+
+std::vector<std::string> whitespace_tokens(const std::string& text) {
+  std::istringstream stream(text);
+  std::vector<std::string> tokens;
+  for (std::string token; stream >> token;) {
+    tokens.push_back(token);
+  }
+  return tokens;
+}
+
+// The tokens after `marker` in `line` (up to a ';', which separates the parts of a VTK title),
+// or nothing if `line` does not contain `marker`.
+std::vector<std::string> tokens_after(const std::string& line, const std::string& marker) {
+  const std::size_t at = line.find(marker);
+  if (at == std::string::npos) {
+    return {};
+  }
+  const std::string rest = line.substr(at + marker.size());
+  return whitespace_tokens(rest.substr(0, rest.find(';')));
+}
+
+// The headers are ASCII in every format; a header line longer than this is not one of ours.
+constexpr std::size_t kMaxHeaderLine = 1 << 16;
+
+std::vector<std::string> ply_coordinate_names(std::istream& in) {
+  std::vector<std::string> names, coordinates;
+  for (std::string line; std::getline(in, line) && line.size() < kMaxHeaderLine;) {
+    if (line.rfind("end_header", 0) == 0) {
+      break;
+    }
+    if (line.rfind("comment coordinate names:", 0) == 0) {
+      names = tokens_after(line, "coordinate names:");
+    } else if (line.rfind("comment coordinates:", 0) == 0) {
+      coordinates = tokens_after(line, "coordinates:");
+    }
+  }
+  return names.empty() ? coordinates : names;
+}
+
+std::vector<std::string> vtk_coordinate_names(std::istream& in, int dimension) {
+  std::string line;
+  std::getline(in, line);  // "# vtk DataFile Version …"
+  std::string title;
+  std::getline(in, title);
+  if (title.rfind("tessera triangle mesh in R^", 0) != 0) {
+    return tokens_after(title, "coordinates:");
+  }
+  std::vector<std::string> names;
+  bool is_point_data = false;
+  while (static_cast<int>(names.size()) < dimension && std::getline(in, line)) {
+    const std::vector<std::string> tokens = whitespace_tokens(line);
+    if (tokens.empty()) {
+      continue;
+    }
+    if (tokens[0] == "POINT_DATA") {
+      is_point_data = true;
+    } else if (tokens[0] == "CELL_DATA") {
+      is_point_data = false;
+    } else if (is_point_data && tokens[0] == "SCALARS" && tokens.size() >= 2) {
+      names.push_back(tokens[1]);
+    }
+  }
+  return names;
+}
+
+std::vector<std::string> vtu_coordinate_names(std::istream& in) {
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  if (text.find("<!-- written by tessera:") == std::string::npos) {
+    return {};
+  }
+  const std::size_t begin = text.find("<PointData");
+  const std::size_t end = text.find("</PointData>", begin);
+  if (begin == std::string::npos || end == std::string::npos) {
+    return {};
+  }
+  std::vector<std::string> names;
+  for (std::size_t at = text.find("<DataArray", begin); at < end;
+       at = text.find("<DataArray", at + 1)) {
+    const std::size_t name = text.find("Name=\"", at);
+    const std::size_t tag_end = text.find('>', at);
+    if (name == std::string::npos || name > tag_end) {
+      return {};
+    }
+    const std::size_t quote = text.find('"', name + 6);
+    names.push_back(text.substr(name + 6, quote - name - 6));
+  }
+  return names;
+}
 
 }  // namespace
 
@@ -59,6 +153,30 @@ TriangleMesh read_mesh(const std::string& path) {
   TESSERA_CHECK(false, "cannot read '" << path << "': unknown extension '" << extension
                                        << "'; supported: .ply, .obj, .vtk, .vtu, .npy (states)");
   return {};
+}
+
+std::vector<std::string> read_coordinate_names(const std::string& path, int dimension) {
+  TESSERA_CHECK(dimension >= 1,
+                "read_coordinate_names: dimension " << dimension << " must be >= 1");
+  const std::string extension = lowercase_extension(path);
+  std::vector<std::string> names;
+  std::ifstream in(path, std::ios::binary);
+  if (in) {
+    if (extension == ".ply") {
+      names = ply_coordinate_names(in);
+    } else if (extension == ".vtk") {
+      names = vtk_coordinate_names(in, dimension);
+    } else if (extension == ".vtu") {
+      names = vtu_coordinate_names(in);
+    }
+  }
+  if (static_cast<int>(names.size()) > dimension && extension == ".vtu") {
+    names.resize(static_cast<std::size_t>(dimension));  // the coordinates come first
+  }
+  const std::set<std::string> distinct(names.begin(), names.end());
+  const bool is_usable = static_cast<int>(names.size()) == dimension &&
+                         distinct.size() == names.size() && !distinct.contains("");
+  return is_usable ? names : default_coordinate_names(dimension);
 }
 
 }  // namespace tessera

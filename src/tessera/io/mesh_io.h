@@ -47,4 +47,17 @@ void write_mesh(const std::string& path, const TriangleMesh& mesh,
 ///        whatever the chosen reader throws.
 TriangleMesh read_mesh(const std::string& path);
 
+/// The names of the `dimension` coordinates of the mesh file `path` as tessera wrote them, so
+/// that a mesh written in a view (`tessera mesh --view lambda,epsilon,max:u`) is labelled and
+/// coloured by its columns when it is read back:
+///   .ply  the comment "coordinate names: …" (write_ply with names), else "coordinates: …"
+///         (`tessera mesh`);
+///   .vtk  the first `dimension` POINT_DATA arrays if the title starts "tessera triangle mesh in
+///         R^" (write_vtk), else the names after "coordinates:" in the title;
+///   .vtu  the first `dimension` PointData arrays if a comment says "written by tessera".
+/// Anything else (another format or writer, a count other than `dimension`, empty or repeated
+/// names, a file that cannot be read): default_coordinate_names(dimension). Never throws for a
+/// dimension ≥ 1: the names are labels, read_mesh has checked the file.
+std::vector<std::string> read_coordinate_names(const std::string& path, int dimension);
+
 }  // namespace tessera

@@ -25,6 +25,11 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kColourBarWidth = 110;  // pixels kept on the right for the bar and its labels
 constexpr int kTitleHeight = 24;
+// PictureAspect::Automatic keeps equal scales up to this ratio of the largest to the smallest
+// axis extent. Geometry stays below it (a torus of R/r = 9 has 10; at 4 a torus of R = 2,
+// r = 0.5 was drawn as a barrel), continuation views lie far above it (bvp:points=100 in
+// (λ, ε, max u): 66; cstr in (x1, x2, Da): 27).
+constexpr double kMaxEqualAspectRatio = 10.0;
 
 void check_scene(const PictureScene& scene, const PictureOptions& options) {
   TESSERA_CHECK(!scene.triangles.empty(), "a picture needs at least one triangle, the mesh has none");
@@ -36,6 +41,11 @@ void check_scene(const PictureScene& scene, const PictureOptions& options) {
     }
   }
   TESSERA_CHECK(scene.positions.allFinite(), "picture: a vertex position is not finite");
+  for (std::size_t c = 0; c < scene.curves.size(); ++c) {
+    TESSERA_CHECK(scene.curves[c].points.allFinite(),
+                  "picture: curve " << c << " has a point that is not finite");
+  }
+  TESSERA_CHECK(scene.markers.allFinite(), "picture: a marker is not finite");
   TESSERA_CHECK(scene.triangle_values.size() == 0 ||
                     scene.triangle_values.size() == static_cast<Eigen::Index>(scene.triangles.size()),
                 "picture: " << scene.triangle_values.size() << " values for "
@@ -68,8 +78,9 @@ class Camera {
         smallest = std::min(smallest, extent(k));
       }
     }
-    const bool is_box = options.aspect == PictureAspect::Box ||
-                        (options.aspect == PictureAspect::Automatic && largest > 4.0 * smallest);
+    const bool is_box =
+        options.aspect == PictureAspect::Box ||
+        (options.aspect == PictureAspect::Automatic && largest > kMaxEqualAspectRatio * smallest);
     for (int k = 0; k < 3; ++k) {
       scale_(k) = is_box && extent(k) > 1e-12 * largest ? 1.0 / extent(k) : 1.0 / largest;
     }
@@ -227,7 +238,13 @@ void stroke_curve(cairo_t* cr, const PictureCurve& curve, bool is_seen) {
   cairo_set_dash(cr, nullptr, 0, 0.0);
 }
 
-std::string label_of(double value) {
+// A colour bar label. The inner ticks are low + i·(high − low)/4; where the range straddles 0
+// one of them is 0 up to rounding and would print as "-1.216e-05", so an inner tick below a
+// thousandth of the range prints as 0. The end ticks are the data's extremes, printed as they are.
+std::string label_of(double value, double range, bool is_inner) {
+  if (is_inner && std::abs(value) < 1e-3 * range) {
+    value = 0.0;
+  }
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value);
   return text;
@@ -301,7 +318,8 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
     cairo_set_source_rgb(cr, light * rgb[0], light * rgb[1], light * rgb[2]);
     cairo_fill_preserve(cr);
     // Antialiased fills of neighbours leave a faint seam along shared edges; a thin stroke in
-    // the fill colour closes it (or, with edges on, the edge itself in a darker shade).
+    // the fill colour closes it (or, with edges on, the edge itself in a darker shade). Not
+    // CAIRO_ANTIALIAS_NONE: jagged silhouettes in PNG, and SVG viewers antialias anyway.
     if (options.edges) {
       cairo_set_source_rgb(cr, 0.45 * light * rgb[0], 0.45 * light * rgb[1], 0.45 * light * rgb[2]);
       cairo_set_line_width(cr, 0.5);
@@ -368,9 +386,15 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
       cairo_line_to(cr, end(0), end(1));
       cairo_set_line_width(cr, 1.2);
       cairo_stroke(cr);
-      // The name beyond the axis's end, so that the three names stay apart.
-      cairo_move_to(cr, origin(0) + 36.0 * direction(0) - 4.0, origin(1) - 36.0 * direction(1) + 4.0);
-      cairo_show_text(cr, scene.axis_names[static_cast<std::size_t>(k)].c_str());
+      // The name beyond the axis's end, so that the three names stay apart, moved left where
+      // it would leave the frame (long names such as "lambda" under the colour bar).
+      const char* name = scene.axis_names[static_cast<std::size_t>(k)].c_str();
+      cairo_text_extents_t extents;
+      cairo_text_extents(cr, name, &extents);
+      const double x = std::clamp(origin(0) + 36.0 * direction(0) - 4.0, 2.0,
+                                  std::max(2.0, options.width - 3.0 - extents.x_advance));
+      cairo_move_to(cr, x, origin(1) - 36.0 * direction(1) + 4.0);
+      cairo_show_text(cr, name);
     }
   }
   if (has_bar) {
@@ -390,7 +414,8 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
     for (int i = 0; i <= 4; ++i) {
       const double y = y0 + bar_height * (1.0 - i / 4.0);
       cairo_move_to(cr, x0 + 22.0, y + 4.0);
-      cairo_show_text(cr, label_of(low + (high - low) * i / 4.0).c_str());
+      const double value = i == 4 ? high : low + (high - low) * i / 4.0;
+      cairo_show_text(cr, label_of(value, high - low, i > 0 && i < 4).c_str());
     }
     cairo_move_to(cr, x0 - 8.0, y0 - 12.0);
     cairo_show_text(cr, scene.value_label.c_str());

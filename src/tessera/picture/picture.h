@@ -36,9 +36,9 @@ struct PictureScene {
 
 /// How the axes of the scene are scaled before the camera looks at it.
 enum class PictureAspect {
-  /// Equal scales where the axes' extents are comparable (within a factor 4: geometry), else
-  /// each axis scaled to its own extent (continuation views such as (λ, ε, max u), whose axes
-  /// have unrelated units and ranges).
+  /// Equal scales where the axes' extents are comparable (within a factor 10: geometry, e.g. a
+  /// torus up to R/r = 9), else each axis scaled to its own extent (continuation views such as
+  /// (λ, ε, max u), whose axes have unrelated units: bvp 66, cstr 27).
   Automatic,
   Equal,  ///< one scale for all three axes
   Box,    ///< each axis scaled to the same length: the bounding box becomes a cube
@@ -78,7 +78,8 @@ struct PictureImage {
 
 /// The scene drawn into an image (what write_picture writes as PNG).
 /// \throw InvalidArgument for a scene with no triangles, indices out of range, values of the
-///        wrong count, non-finite positions, or options out of range (the message names them).
+///        wrong count, non-finite positions (of vertices, curves or markers), or options out of
+///        range (the message names them).
 PictureImage render_picture(const PictureScene& scene, const PictureOptions& options);
 
 /// Writes the picture to `path`: .png (raster) or .svg (vector; the same drawing), by extension
