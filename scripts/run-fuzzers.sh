@@ -17,7 +17,7 @@ shift || true
 scripts/install-dependencies.sh clang libclang-rt-dev
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DTESSERA_SANITIZE=address,undefined \
-  -DTESSERA_BUILD_FUZZERS=ON -DTESSERA_BUILD_TESTS=OFF -DTESSERA_BUILD_PYTHON=OFF >/dev/null
+  -DTESSERA_BUILD_FUZZERS=ON -DTESSERA_BUILD_TESTS=OFF -DTESSERA_BUILD_PYTHON=OFF -DTESSERA_USE_PETSC=OFF >/dev/null
 cmake --build build-fuzz --target fuzzers --parallel "$(nproc)"
 
 targets=("$@")

@@ -9,6 +9,7 @@
 #include "tessera/core/bordered_jacobian.h"
 #include "tessera/core/error.h"
 #include "tessera/core/sparse_lu.h"
+#include "tessera/problems/detail/arrhenius.h"
 
 namespace tessera {
 
@@ -187,19 +188,8 @@ Eigen::VectorXd StirredTankReactor::point_on_manifold(double x1, double B) const
 
 namespace {
 
-// Arrhenius term φ(u) = u/(1 + εu) and its partial derivatives.
-struct Arrhenius {
-  double value;               // exp(φ)
-  double derivative_u;        // d exp(φ)/du = exp(φ) / (1 + εu)²
-  double derivative_epsilon;  // d exp(φ)/dε = −exp(φ) u² / (1 + εu)²
-};
-
-Arrhenius arrhenius(double u, double epsilon) {
-  const double denominator = 1.0 + epsilon * u;
-  const double value = std::exp(u / denominator);
-  const double inverse_square = 1.0 / (denominator * denominator);
-  return {value, value * inverse_square, -value * u * u * inverse_square};
-}
+using detail::Arrhenius;
+using detail::arrhenius;
 
 // Solves A v = rhs in place for the tridiagonal A with unit off-diagonals and the given diagonal,
 // by the Thomas algorithm. There is no pivoting: A = ∂F/∂u is singular only exactly at a fold,

@@ -1,0 +1,271 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/petsc/petsc_linearization.h"
+
+#include <cmath>
+
+#include "tessera/core/error.h"
+
+namespace tessera::petsc {
+
+namespace {
+
+// A value and the global index where it was found, for MPI_MAXLOC: the largest value, the
+// smallest index among equal values, so that the choice does not depend on the rank count.
+struct ValueAndIndex {
+  double value;
+  int index;
+};
+
+ValueAndIndex largest_over_ranks(ValueAndIndex local, MPI_Comm communicator) {
+  ValueAndIndex global{};
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, communicator);
+  return global;
+}
+
+// Distinct columns the border rows may have held before the matrix is made anew: each old
+// column stays in the pattern as an explicit zero, and many would make the rows dense.
+constexpr int kMaxBorderColumnChanges = 8;
+
+}  // namespace
+
+void zero_border_entries(Vec v) {
+  PetscInt n = 0;
+  PetscInt first = 0;
+  PetscInt end = 0;
+  check(VecGetSize(v, &n), "VecGetSize");
+  check(VecGetOwnershipRange(v, &first, &end), "VecGetOwnershipRange");
+  if (end <= n - 2) {
+    return;
+  }
+  PetscScalar* values = nullptr;
+  check(VecGetArray(v, &values), "VecGetArray");
+  for (PetscInt i = std::max(first, n - 2); i < end; ++i) {
+    values[i - first] = 0.0;
+  }
+  check(VecRestoreArray(v, &values), "VecRestoreArray");
+}
+
+DistributedLinearization::DistributedLinearization(const PetscProblem& problem)
+    : problem_(problem), n_(problem.ambient_dimension()) {
+  TESSERA_CHECK(n_ >= 3, "DistributedLinearization: n = " << n_ << " must be >= 3");
+}
+
+void DistributedLinearization::make_solver() {
+  check(KSPCreate(problem_.communicator(), solver_.out()), "KSPCreate");
+  check(KSPSetType(solver_, KSPPREONLY), "KSPSetType");
+  PC preconditioner = nullptr;
+  check(KSPGetPC(solver_, &preconditioner), "KSPGetPC");
+  check(PCSetType(preconditioner, PCLU), "PCSetType");
+#if defined(PETSC_HAVE_MUMPS)
+  check(PCFactorSetMatSolverType(preconditioner, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+#endif
+  // PETSc's command-line options (-ksp_type, -pc_type, -mat_mumps_…) win over these defaults.
+  check(KSPSetFromOptions(solver_), "KSPSetFromOptions");
+}
+
+bool DistributedLinearization::factor(Vec x, const TangentPair* reference) {
+  is_factored_ = false;
+  last_failure_.clear();
+  if (!point_) {
+    point_ = problem_.create_vector();
+    unit_ = problem_.create_vector();
+    rhs_ = problem_.create_vector();
+    tangent_[0] = problem_.create_vector();
+    tangent_[1] = problem_.create_vector();
+  }
+  check(VecCopy(x, point_), "VecCopy");
+  if (!bordered_ || border_changes_ >= kMaxBorderColumnChanges) {
+    bordered_ = problem_.create_jacobian();
+    border_i_ = border_j_ = -1;
+    border_changes_ = 0;
+  }
+  problem_.jacobian(x, bordered_);
+  PetscReal norm = 0.0;
+  check(MatNorm(bordered_, NORM_FROBENIUS, &norm), "MatNorm");
+  if (!std::isfinite(norm)) {
+    last_failure_ = "DF(x) is not finite";
+    return false;
+  }
+  // The border: PITCON's coordinate rows from the reference (or the last basis), else the last
+  // two coordinates (the parameters).
+  const TangentPair* guide = reference != nullptr ? reference : (has_basis_ ? &tangent_ : nullptr);
+  PetscInt i = n_ - 2;
+  PetscInt j = n_ - 1;
+  if (guide != nullptr) {
+    choose_border(*guide, i, j);
+  }
+  bool is_regular = factor_with_border(i, j);
+  if (!is_regular && (i != n_ - 2 || j != n_ - 1)) {
+    is_regular = factor_with_border(n_ - 2, n_ - 1);
+  }
+  has_basis_ = is_regular;
+  if (!is_regular) {
+    if (last_failure_.empty()) {
+      last_failure_ = "the bordered Jacobian is singular for every border tried";
+    }
+    return false;
+  }
+  if (reference != nullptr) {
+    // det(Tᵀ Tᵣ) > 0: neighbouring frames keep one orientation.
+    PetscScalar a = 0, b = 0, c = 0, d = 0;
+    check(VecDot(tangent_[0], (*reference)[0], &a), "VecDot");
+    check(VecDot(tangent_[0], (*reference)[1], &b), "VecDot");
+    check(VecDot(tangent_[1], (*reference)[0], &c), "VecDot");
+    check(VecDot(tangent_[1], (*reference)[1], &d), "VecDot");
+    if (a * d - b * c < 0.0) {
+      check(VecScale(tangent_[1], -1.0), "VecScale");
+    }
+  }
+  is_factored_ = true;
+  return true;
+}
+
+void DistributedLinearization::choose_border(const TangentPair& guide, PetscInt& i,
+                                             PetscInt& j) const {
+  PetscInt first = 0;
+  PetscInt end = 0;
+  check(VecGetOwnershipRange(guide[0], &first, &end), "VecGetOwnershipRange");
+  const PetscScalar* t0 = nullptr;
+  const PetscScalar* t1 = nullptr;
+  check(VecGetArrayRead(guide[0], &t0), "VecGetArrayRead");
+  check(VecGetArrayRead(guide[1], &t1), "VecGetArrayRead");
+  // i: the row of T of largest norm.
+  ValueAndIndex best{-1.0, 0};
+  for (PetscInt k = first; k < end; ++k) {
+    const double norm2 = t0[k - first] * t0[k - first] + t1[k - first] * t1[k - first];
+    if (norm2 > best.value) {
+      best = {norm2, static_cast<int>(k)};
+    }
+  }
+  const MPI_Comm communicator = problem_.communicator();
+  i = largest_over_ranks(best, communicator).index;
+  const bool owns_i = i >= first && i < end;
+  const double ti0 = sum_over_ranks(owns_i ? t0[i - first] : 0.0, communicator);
+  const double ti1 = sum_over_ranks(owns_i ? t1[i - first] : 0.0, communicator);
+  // j: maximises |det T([i, j], :)|.
+  best = {-1.0, 0};
+  for (PetscInt k = first; k < end; ++k) {
+    const double det = std::abs(ti0 * t1[k - first] - ti1 * t0[k - first]);
+    if (k != i && det > best.value) {
+      best = {det, static_cast<int>(k)};
+    }
+  }
+  j = largest_over_ranks(best, communicator).index;
+  check(VecRestoreArrayRead(guide[0], &t0), "VecRestoreArrayRead");
+  check(VecRestoreArrayRead(guide[1], &t1), "VecRestoreArrayRead");
+}
+
+bool DistributedLinearization::factor_with_border(PetscInt i, PetscInt j) {
+  PetscInt first = 0;
+  PetscInt end = 0;
+  check(MatGetOwnershipRange(bordered_, &first, &end), "MatGetOwnershipRange");
+  const PetscInt row_i = n_ - 2;
+  const PetscInt row_j = n_ - 1;
+  const auto set_entry = [&](PetscInt row, PetscInt column, double value) {
+    if (row >= first && row < end) {
+      check(MatSetValue(bordered_, row, column, value, INSERT_VALUES), "MatSetValue");
+    }
+  };
+  if (border_i_ >= 0 && (border_i_ != i || border_j_ != j)) {
+    set_entry(row_i, border_i_, 0.0);  // the old border column stays as an explicit zero
+    set_entry(row_j, border_j_, 0.0);
+  }
+  set_entry(row_i, i, 1.0);
+  set_entry(row_j, j, 1.0);
+  check(MatAssemblyBegin(bordered_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(bordered_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  if (border_i_ != i || border_j_ != j) {
+    ++analyses_;  // a new pattern: the solver analyses it again
+    ++border_changes_;
+  }
+  border_i_ = i;
+  border_j_ = j;
+
+  if (!solver_) {
+    make_solver();
+  }
+  check(KSPSetOperators(solver_, bordered_, bordered_), "KSPSetOperators");
+  ++factorisations_;
+  const PetscErrorCode code = KSPSetUp(solver_);
+  PC preconditioner = nullptr;
+  check(KSPGetPC(solver_, &preconditioner), "KSPGetPC");
+  PCFailedReason reason = PC_NOERROR;
+  check(PCGetFailedReason(preconditioner, &reason), "PCGetFailedReason");
+  if (code != 0 || reason != PC_NOERROR) {
+    const char* text = nullptr;
+    if (code != 0) {
+      PetscErrorMessage(code, &text, nullptr);
+    }
+    last_failure_ = std::string("the factorisation failed: ") +
+                    (code != 0 ? (text != nullptr ? text : "PETSc error") : PCFailedReasons[reason]);
+    return false;
+  }
+  last_failure_.clear();
+  // ker DF = span A⁻¹ e_{n−2}, A⁻¹ e_{n−1}.
+  for (int k = 0; k < 2; ++k) {
+    check(VecSet(unit_, 0.0), "VecSet");
+    check(VecSetValue(unit_, n_ - 2 + k, 1.0, INSERT_VALUES), "VecSetValue");
+    check(VecAssemblyBegin(unit_), "VecAssemblyBegin");
+    check(VecAssemblyEnd(unit_), "VecAssemblyEnd");
+    check(KSPSolve(solver_, unit_, tangent_[static_cast<std::size_t>(k)]), "KSPSolve");
+    KSPConvergedReason converged = KSP_CONVERGED_ITERATING;
+    check(KSPGetConvergedReason(solver_, &converged), "KSPGetConvergedReason");
+    if (converged < 0) {
+      last_failure_ = std::string("the tangent solve did not converge: ") +
+                      KSPConvergedReasons[converged];
+      return false;
+    }
+  }
+  // Orthonormalise (modified Gram–Schmidt, twice for stability).
+  for (int pass = 0; pass < 2; ++pass) {
+    PetscReal length = 0.0;
+    check(VecNormalize(tangent_[0], &length), "VecNormalize");
+    if (!std::isfinite(length) || length == 0.0) {
+      last_failure_ = "the tangent is not finite";
+      return false;
+    }
+    PetscScalar overlap = 0.0;
+    check(VecDot(tangent_[0], tangent_[1], &overlap), "VecDot");
+    check(VecAXPY(tangent_[1], -overlap, tangent_[0]), "VecAXPY");
+    check(VecNormalize(tangent_[1], &length), "VecNormalize");
+    if (!std::isfinite(length) || length == 0.0) {
+      last_failure_ = "the tangent basis is degenerate";
+      return false;
+    }
+  }
+  // The basis must lie in ker DF to 1e-8 relative to ‖DF‖ (a border nearly blind to the tangent
+  // plane gives an inaccurate one). ‖DF‖²_F = ‖A‖²_F − 2: the border holds two ones.
+  PetscReal bordered_norm = 0.0;
+  check(MatNorm(bordered_, NORM_FROBENIUS, &bordered_norm), "MatNorm");
+  const double jacobian_norm = std::sqrt(std::max(0.0, bordered_norm * bordered_norm - 2.0));
+  double residual2 = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    check(MatMult(bordered_, tangent_[static_cast<std::size_t>(k)], unit_), "MatMult");
+    zero_border_entries(unit_);
+    PetscReal residual = 0.0;
+    check(VecNorm(unit_, NORM_2, &residual), "VecNorm");
+    residual2 += residual * residual;
+  }
+  if (!(std::sqrt(residual2) <= 1e-8 * std::max(1.0, jacobian_norm))) {
+    last_failure_ = "the tangent basis is not accurate (|DF T| = " +
+                    std::to_string(std::sqrt(residual2)) + ")";
+    return false;
+  }
+  return true;
+}
+
+void DistributedLinearization::solve_minimum_norm(Vec rhs, Vec dx) const {
+  TESSERA_CHECK(is_factored_, "DistributedLinearization::solve_minimum_norm: not factored");
+  check(VecCopy(rhs, rhs_), "VecCopy");
+  zero_border_entries(rhs_);
+  check(KSPSolve(solver_, rhs_, dx), "KSPSolve");
+  // Remove the ker-DF component: what remains is the minimum-norm solution.
+  Vec basis[2] = {tangent_[0], tangent_[1]};
+  PetscScalar dots[2] = {0.0, 0.0};
+  check(VecMDot(dx, 2, basis, dots), "VecMDot");
+  dots[0] = -dots[0];
+  dots[1] = -dots[1];
+  check(VecMAXPY(dx, 2, dots, basis), "VecMAXPY");
+}
+
+}  // namespace tessera::petsc
