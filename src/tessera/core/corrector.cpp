@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include "tessera/core/ambient_space.h"
+
 namespace tessera {
 
 const char* to_string(CorrectorTermination termination) {
@@ -39,7 +41,9 @@ namespace {
 CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::VectorXd> x,
                          const CorrectorOptions& options, Linearization& linearization,
                          bool refactor) {
-  const int n = problem.ambient_dimension();
+  // Local rows (all of them in one process) and global reductions: see AmbientSpace.
+  const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
+  const AmbientSpace& space = *shared_space;
   CorrectorSummary summary;
   // Scratch kept between calls (a covering projects millions of points; at small n the
   // allocations would cost more than the arithmetic). iterate never calls itself.
@@ -48,12 +52,12 @@ CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vecto
   thread_local Eigen::VectorXd minus_F;
   thread_local Eigen::VectorXd dx;
   start = x;
-  F.resize(n - 2);
-  dx.resize(n);
+  F.resize(space.local_equations());
+  dx.resize(space.local_rows());
   double previous_correction = 0.0;
   for (int k = 0; k < options.max_iterations; ++k) {
     problem.evaluate(x, F);
-    summary.residual_norm = F.norm();
+    summary.residual_norm = space.norm(F);
     if (!std::isfinite(summary.residual_norm)) {
       summary.termination = CorrectorTermination::NonFiniteResidual;
       return summary;
@@ -70,13 +74,13 @@ CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vecto
     linearization.solve_minimum_norm(minus_F, dx);
     x += dx;
     summary.iterations = k + 1;
-    summary.correction_norm = dx.norm();
-    summary.displacement = (x - start).norm();
+    summary.correction_norm = space.norm(dx);
+    summary.displacement = space.distance(x, start);
     if (k > 0 && previous_correction > 0) {
       const double theta = summary.correction_norm / previous_correction;
       summary.contraction = std::max(summary.contraction, theta);
       if (theta > options.max_contraction &&
-          summary.correction_norm > options.tolerance * (1.0 + x.norm())) {
+          summary.correction_norm > options.tolerance * (1.0 + space.norm(x))) {
         summary.termination = CorrectorTermination::Diverged;
         return summary;
       }
@@ -86,9 +90,9 @@ CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vecto
       summary.termination = CorrectorTermination::TooFar;
       return summary;
     }
-    if (summary.correction_norm <= options.tolerance * (1.0 + x.norm())) {
+    if (summary.correction_norm <= options.tolerance * (1.0 + space.norm(x))) {
       problem.evaluate(x, F);
-      summary.residual_norm = F.norm();
+      summary.residual_norm = space.norm(F);
       if (!std::isfinite(summary.residual_norm)) {
         summary.termination = CorrectorTermination::NonFiniteResidual;
         return summary;
@@ -123,32 +127,33 @@ double chord_distance_bound(const ImplicitProblem& problem, const Linearization&
   // refused one a factorisation or a Gauss–Newton projection (measured on bratu2d from an
   // anchor two edges away: θ = 0.5–0.62 for one sample in twenty).
   constexpr double kMaxBoundContraction = 0.8;
-  const int n = problem.ambient_dimension();
+  const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
+  const AmbientSpace& space = *shared_space;
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   thread_local Eigen::VectorXd y;
   thread_local Eigen::VectorXd F;
   thread_local Eigen::VectorXd dx;
   y = x;
-  F.resize(n - 2);
-  dx.resize(n);
+  F.resize(space.local_equations());
+  dx.resize(space.local_rows());
   double previous = 0.0;
   double theta = 0.0;
   for (int k = 0; k < options.max_iterations; ++k) {
     problem.evaluate(y, F);
-    if (!F.allFinite()) {
+    if (!space.all_finite(F)) {
       return kInfinity;
     }
     F = -F;
     frozen.solve_minimum_norm(F, dx);
     y += dx;
-    const double correction = dx.norm();
-    const double displacement = (y - x).norm();
+    const double correction = space.norm(dx);
+    const double displacement = space.distance(y, x);
     if (!std::isfinite(correction) || displacement > options.max_displacement) {
       return kInfinity;
     }
     if (k > 0) {
       // Converged to solver tolerance: the remainder is rounding.
-      if (correction <= options.tolerance * (1.0 + y.norm())) {
+      if (correction <= options.tolerance * (1.0 + space.norm(y))) {
         return displacement;
       }
       theta = std::max(theta, correction / previous);

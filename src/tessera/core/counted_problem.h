@@ -3,7 +3,9 @@
 // Jacobian made by Linearization, for summaries and benchmarks.
 #pragma once
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/implicit_problem.h"
+#include "tessera/core/linearization_backend.h"
 
 namespace tessera {
 
@@ -53,6 +55,13 @@ class CountedProblem final : public ImplicitProblem {
   std::vector<CoordinateBlock> coordinate_blocks() const override {
     return inner_.coordinate_blocks();
   }
+  std::shared_ptr<const AmbientSpace> space() const override { return inner_.space(); }
+  std::unique_ptr<LinearizationBackend> make_linearization_backend() const override {
+    return inner_.make_linearization_backend();
+  }
+  /// Called by Linearization::factor for the evaluations of DF that a problem's own backend
+  /// made without calling `jacobian` (the PETSc backend evaluates DF on distributed matrices).
+  void record_jacobian_evaluations(long count) const { jacobian_evaluations_ += count; }
 
   /// Called by Linearization::factor with the factorisations it made for this problem and the
   /// wall time they took (evaluating DF, bordering, analysing and factoring).

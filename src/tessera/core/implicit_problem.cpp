@@ -3,7 +3,9 @@
 
 #include <cmath>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/error.h"
+#include "tessera/core/linearization_backend.h"
 
 namespace tessera {
 
@@ -69,6 +71,14 @@ std::vector<std::string> default_coordinate_names(int n) {
     names.push_back("x" + std::to_string(i));
   }
   return names;
+}
+
+std::shared_ptr<const AmbientSpace> ImplicitProblem::space() const {
+  return std::make_shared<AmbientSpace>(ambient_dimension());
+}
+
+std::unique_ptr<LinearizationBackend> ImplicitProblem::make_linearization_backend() const {
+  return nullptr;
 }
 
 }  // namespace tessera

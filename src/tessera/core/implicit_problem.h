@@ -4,10 +4,14 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace tessera {
+
+class AmbientSpace;
+class LinearizationBackend;
 
 /// A named range of coordinates, e.g. the grid values u of a discretised PDE.
 ///
@@ -67,6 +71,16 @@ class ImplicitProblem {
   /// Named ranges of coordinates and their weights in the metric (see CoordinateBlock); the
   /// default is none: M is measured in the Euclidean norm of R^n.
   virtual std::vector<CoordinateBlock> coordinate_blocks() const { return {}; }
+
+  /// Where the problem's vectors live and how they are reduced (AmbientSpace): R^n in one
+  /// process by default. A distributed problem (src/tessera/petsc) returns its split over the
+  /// ranks; then `evaluate` and the solvers see the local rows only. Decorators forward their
+  /// inner problem's.
+  virtual std::shared_ptr<const AmbientSpace> space() const;
+
+  /// The factorisation the problem brings for Linearization, or null (the default): tessera's
+  /// dense QR or sparse bordered LU, as has_sparse_jacobian says. Decorators forward.
+  virtual std::unique_ptr<LinearizationBackend> make_linearization_backend() const;
 };
 
 /// The n weights w of the problem's metric ‖x‖² = Σ (w_i x_i)², from its coordinate blocks;

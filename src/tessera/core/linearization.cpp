@@ -8,9 +8,11 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/bordered_jacobian.h"
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/error.h"
+#include "tessera/core/linearization_backend.h"
 #include "tessera/core/sparse_lu.h"
 
 namespace tessera {
@@ -18,25 +20,6 @@ namespace tessera {
 // Relative threshold below which |R_ii| counts as zero: J is then treated as rank deficient.
 // 1e-10 leaves ample room above rounding (1e-16) for Jacobians of moderate condition.
 constexpr double kRankThreshold = 1e-10;
-
-class LinearizationBackend {
- public:
-  virtual ~LinearizationBackend() = default;
-  virtual std::unique_ptr<LinearizationBackend> clone() const = 0;
-  /// Factors; fills the (unnormalised, unoriented) tangent basis. Returns false if singular.
-  virtual bool factor(const ImplicitProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& x,
-                      const Eigen::MatrixXd* reference, Eigen::MatrixXd& tangent,
-                      double& reciprocal_condition) = 0;
-  virtual void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd& tangent,
-                     Eigen::Ref<Eigen::VectorXd> dx) const = 0;
-  /// Numerical factorisations made so far (a sparse factor() may try more than one border).
-  long factorisations() const { return factorisations_; }
-  /// Heap bytes held (the factors, the Jacobian), approximately.
-  virtual std::size_t memory_bytes() const = 0;
-
- protected:
-  long factorisations_ = 0;
-};
 
 namespace {
 
@@ -262,15 +245,20 @@ std::size_t Linearization::memory_bytes() const {
 bool Linearization::factor(const ImplicitProblem& problem,
                            const Eigen::Ref<const Eigen::VectorXd>& x,
                            const Eigen::MatrixXd* reference_tangent) {
-  const int n = problem.ambient_dimension();
+  // The local rows of the problem's space: all n in one process (see AmbientSpace).
+  const std::shared_ptr<const AmbientSpace> space = problem.space();
+  const int n = space->local_rows();
   TESSERA_CHECK(x.size() == n, "point has " << x.size() << " coordinates, problem '"
                                             << problem.name() << "' has n = " << n);
   TESSERA_CHECK(reference_tangent == nullptr ||
                     (reference_tangent->rows() == n && reference_tangent->cols() == 2),
                 "reference tangent basis must be " << n << "×2");
   factored_ = false;
-  if (!x.allFinite()) {
+  if (!space->all_finite(x)) {
     return false;
+  }
+  if (!backend_) {
+    backend_ = problem.make_linearization_backend();
   }
   if (!backend_) {
     if (problem.has_sparse_jacobian()) {
@@ -281,6 +269,7 @@ bool Linearization::factor(const ImplicitProblem& problem,
   }
   point_ = x;
   const long before = backend_->factorisations();
+  const long jacobians_before = backend_->own_jacobian_evaluations();
   const auto started = std::chrono::steady_clock::now();
   const bool is_factored =
       backend_->factor(problem, x, reference_tangent, tangent_, reciprocal_condition_);
@@ -290,12 +279,13 @@ bool Linearization::factor(const ImplicitProblem& problem,
     counted->record_factorisations(
         backend_->factorisations() - before,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+    counted->record_jacobian_evaluations(backend_->own_jacobian_evaluations() - jacobians_before);
   }
   if (!is_factored) {
     return false;
   }
   if (reference_tangent != nullptr) {
-    align_tangent_basis(tangent_, *reference_tangent);
+    align_tangent_basis(tangent_, *reference_tangent, *space);
   }
   factored_ = true;
   return true;
@@ -311,6 +301,9 @@ bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& nea
                         const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::MatrixXd& T,
                         double tolerance, int max_iterations) {
   TESSERA_ASSERT(near.is_factored());
+  if (problem.space()->is_distributed()) {
+    return false;  // J(y)·T needs the distributed Jacobian: the caller factors at y instead
+  }
   const int n = problem.ambient_dimension();
   const int m = n - 2;
   // J(y)·T, from the sparse or the dense Jacobian as the problem prefers.
@@ -369,7 +362,12 @@ bool solve_minimum_norm_dense(const Eigen::Ref<const Eigen::MatrixXd>& J,
 }
 
 void align_tangent_basis(Eigen::MatrixXd& T, const Eigen::MatrixXd& reference) {
-  const Eigen::Matrix2d overlap = T.transpose() * reference;
+  align_tangent_basis(T, reference, AmbientSpace(static_cast<int>(T.rows())));
+}
+
+void align_tangent_basis(Eigen::MatrixXd& T, const Eigen::MatrixXd& reference,
+                         const AmbientSpace& space) {
+  const Eigen::Matrix2d overlap = space.products(T, reference);
   if (overlap.determinant() < 0) {
     T.col(1) *= -1.0;
   }

@@ -13,6 +13,7 @@
 namespace tessera {
 
 class LinearizationBackend;
+class AmbientSpace;
 
 /// The linearisation of F at a point x.
 ///
@@ -81,5 +82,8 @@ bool solve_minimum_norm_dense(const Eigen::Ref<const Eigen::MatrixXd>& J,
 /// Flips the second column of T if needed so that det(Tᵀ·reference) > 0: keeps frames of
 /// neighbouring points consistently oriented.
 void align_tangent_basis(Eigen::MatrixXd& T, const Eigen::MatrixXd& reference);
+/// The same for local rows of a distributed space (the product Tᵀ·reference reduced over ranks).
+void align_tangent_basis(Eigen::MatrixXd& T, const Eigen::MatrixXd& reference,
+                         const AmbientSpace& space);
 
 }  // namespace tessera

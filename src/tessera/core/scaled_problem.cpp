@@ -3,12 +3,18 @@
 
 #include <cmath>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/error.h"
 
 namespace tessera {
 
 ScaledProblem::ScaledProblem(const ImplicitProblem& inner, Eigen::VectorXd weights)
     : inner_(inner), weights_(std::move(weights)) {
+  // A distributed problem scales itself (its weights are split like its rows):
+  // petsc::DistributedProblem presents the metric's coordinates already.
+  TESSERA_CHECK(!inner.space()->is_distributed(),
+                "ScaledProblem: problem '" << inner.name()
+                                           << "' is distributed; it must present scaled coordinates itself");
   TESSERA_CHECK(weights_.size() == inner.ambient_dimension(),
                 "metric of problem '" << inner.name() << "' has " << weights_.size()
                                       << " weights for n = " << inner.ambient_dimension());

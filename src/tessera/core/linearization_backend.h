@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+// The factorisation behind a Linearization: tessera's dense (QR) and sparse (bordered LU) ones
+// live in linearization.cpp; a problem may bring its own (the PETSc backend's distributed one)
+// through ImplicitProblem::make_linearization_backend.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <memory>
+
+namespace tessera {
+
+class ImplicitProblem;
+
+/// One factorisation of DF at a point, and the solves from it. Vectors are the local rows of
+/// the problem's AmbientSpace (all n rows in one process).
+class LinearizationBackend {
+ public:
+  virtual ~LinearizationBackend() = default;
+  virtual std::unique_ptr<LinearizationBackend> clone() const = 0;
+  /// Factors DF(x); fills an orthonormal tangent basis (local rows × 2, oriented by the caller).
+  /// `reference` (may be null) guides the choice of border. Returns false if DF(x) is singular
+  /// or not finite.
+  virtual bool factor(const ImplicitProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& x,
+                      const Eigen::MatrixXd* reference, Eigen::MatrixXd& tangent,
+                      double& reciprocal_condition) = 0;
+  /// dx with DF·dx = rhs and dx ⟂ ker DF. rhs: the local rows of F; dx: the local rows of x.
+  virtual void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd& tangent,
+                     Eigen::Ref<Eigen::VectorXd> dx) const = 0;
+  /// Numerical factorisations made so far (a sparse factor() may try more than one border).
+  long factorisations() const { return factorisations_; }
+  /// Evaluations of DF the backend made itself, not through ImplicitProblem::jacobian or
+  /// sparse_jacobian (0 for tessera's own backends).
+  long own_jacobian_evaluations() const { return own_jacobian_evaluations_; }
+  /// Heap bytes held (the factors, the Jacobian), approximately, on this rank.
+  virtual std::size_t memory_bytes() const = 0;
+
+ protected:
+  long factorisations_ = 0;
+  long own_jacobian_evaluations_ = 0;
+};
+
+}  // namespace tessera

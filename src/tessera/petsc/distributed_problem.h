@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// A PETSc problem seen through tessera's ImplicitProblem interface, on the local rows of every
+// rank: the covering code (SPMD, the same on every rank) and the correctors run on it unchanged,
+// reducing through its AmbientSpace and factoring through its PETSc linearisation.
+#pragma once
+
+#include <memory>
+
+#include "tessera/core/ambient_space.h"
+#include "tessera/core/implicit_problem.h"
+#include "tessera/petsc/petsc_problem.h"
+
+namespace tessera::petsc {
+
+/// The ranks' split of R^n for a PETSc layout: each rank the contiguous rows PETSc gave it,
+/// F in the same rows (the last two, the border rows, zero). Sums gather the ranks' partial
+/// values and add them in rank order, so that every rank gets the same bits (an MPI_Allreduce
+/// may add in a different order on different ranks) and the result does not depend on timing.
+class DistributedSpace final : public AmbientSpace {
+ public:
+  DistributedSpace(MPI_Comm communicator, int dimension, int first_row, int local_rows);
+  bool is_distributed() const override { return true; }
+  void sum(double* values, int count) const override;
+  double maximum(double value) const override;
+
+ private:
+  MPI_Comm communicator_;
+  int ranks_ = 1;
+};
+
+/// An ImplicitProblem over the local rows of a PetscProblem (which must outlive it).
+///
+/// x is this rank's rows of a point (space()->local_rows() entries), F(x) its rows of the
+/// residual (as many; the border rows are 0). Jacobians are never formed as Eigen matrices:
+/// Linearization factors through make_linearization_backend (MUMPS by default), and
+/// `jacobian`/`sparse_jacobian` throw. The metric's weights are the PetscProblem's business
+/// (wrap it in a ScaledPetscProblem first): tessera's ScaledProblem refuses distributed problems.
+class DistributedProblem final : public ImplicitProblem {
+ public:
+  explicit DistributedProblem(const PetscProblem& problem);
+
+  int ambient_dimension() const override { return static_cast<int>(problem_.ambient_dimension()); }
+  void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::VectorXd> F) const override;
+  /// \throw InvalidArgument always: a distributed Jacobian is not an Eigen matrix.
+  void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                Eigen::Ref<Eigen::MatrixXd> J) const override;
+  bool has_sparse_jacobian() const override { return true; }
+  /// \throw InvalidArgument always: a distributed Jacobian is not an Eigen matrix.
+  void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                       Eigen::SparseMatrix<double>& J) const override;
+  std::string name() const override { return problem_.name(); }
+  std::vector<CoordinateBlock> coordinate_blocks() const override;
+  std::shared_ptr<const AmbientSpace> space() const override { return space_; }
+  std::unique_ptr<LinearizationBackend> make_linearization_backend() const override;
+
+  const PetscProblem& petsc_problem() const { return problem_; }
+
+ private:
+  const PetscProblem& problem_;
+  std::shared_ptr<const DistributedSpace> space_;
+  Owned<Vec> x_;  // wrappers of the caller's arrays (VecPlaceArray)
+  Owned<Vec> F_;
+};
+
+}  // namespace tessera::petsc
