@@ -74,7 +74,13 @@ std::vector<std::string> default_coordinate_names(int n) {
 }
 
 std::shared_ptr<const AmbientSpace> ImplicitProblem::space() const {
-  return std::make_shared<AmbientSpace>(ambient_dimension());
+  // The correctors ask at every call (millions at n = 3): one R^n per thread and dimension.
+  thread_local std::shared_ptr<const AmbientSpace> last;
+  const int n = ambient_dimension();
+  if (!last || last->dimension() != n) {
+    last = std::make_shared<AmbientSpace>(n);
+  }
+  return last;
 }
 
 std::unique_ptr<LinearizationBackend> ImplicitProblem::make_linearization_backend() const {
