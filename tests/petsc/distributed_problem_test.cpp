@@ -47,18 +47,32 @@ TEST(DistributedSpace, SumsAreTheSameBitsOnEveryRankAndMatchOneProcess) {
             1e-12 * a.squaredNorm());
 }
 
-TEST(DistributedProblem, TheSerialCorrectorsRunOnTheLocalRowsAndLandWhereTheyLandInOneProcess) {
-  const ArrheniusBratu2D serial(7);
-  const Eigen::VectorXd on_M = serial.point_with_amplitude(3.0, 0.1);
+class Corrector : public testing::TestWithParam<int> {};
+
+TEST_P(Corrector, TheSerialCorrectorsRunOnTheLocalRowsAndLandWhereTheyLandInOneProcess) {
+  const int dimension = GetParam();
+  std::unique_ptr<ImplicitProblem> serial_problem;
+  Eigen::VectorXd on_M;
+  if (dimension == 1) {
+    auto bvp = std::make_unique<ArrheniusBratu>(40);
+    on_M = bvp->point_with_amplitude(3.0, 0.1);
+    serial_problem = std::move(bvp);
+  } else {
+    auto bratu2d = std::make_unique<ArrheniusBratu2D>(7);
+    on_M = bratu2d->point_with_amplitude(3.0, 0.1);
+    serial_problem = std::move(bratu2d);
+  }
+  const ImplicitProblem& serial = *serial_problem;
   const int n = serial.ambient_dimension();
   const Eigen::VectorXd start = on_M + 0.05 * wobble(n, 0.5);
 
   Eigen::VectorXd serial_x = start;
   Linearization serial_workspace;
-  ASSERT_TRUE(project_gauss_newton(serial, serial_x, CorrectorOptions{}, serial_workspace)
-                  .is_success());
+  const CorrectorSummary serial_summary =
+      project_gauss_newton(serial, serial_x, CorrectorOptions{}, serial_workspace);
+  ASSERT_TRUE(serial_summary.is_success());
 
-  PetscArrheniusBratu petsc_problem(PETSC_COMM_WORLD, 2, 7);
+  PetscArrheniusBratu petsc_problem(PETSC_COMM_WORLD, dimension, dimension == 1 ? 40 : 7);
   const DistributedProblem distributed(petsc_problem);
   const CountedProblem counted(distributed);
   const AmbientSpace& space = *distributed.space();
@@ -68,6 +82,7 @@ TEST(DistributedProblem, TheSerialCorrectorsRunOnTheLocalRowsAndLandWhereTheyLan
   ASSERT_TRUE(summary.is_success()) << summary.brief_report();
   EXPECT_LE((x - serial_x.segment(space.first_row(), space.local_rows())).norm(),
             1e-9 * serial_x.norm());
+  EXPECT_EQ(summary.iterations, serial_summary.iterations);
   EXPECT_EQ(counted.factorisations(), summary.iterations);
   EXPECT_EQ(counted.jacobian_evaluations(), summary.iterations);
   EXPECT_EQ(workspace.tangent_basis().rows(), space.local_rows());
@@ -85,6 +100,12 @@ TEST(DistributedProblem, TheSerialCorrectorsRunOnTheLocalRowsAndLandWhereTheyLan
   EXPECT_GT(bound, 0.0);
   EXPECT_LT(bound, 0.2);
 }
+
+INSTANTIATE_TEST_SUITE_P(Bratu, Corrector, testing::Values(1, 2),
+                         [](const testing::TestParamInfo<int>& info) {
+                           return info.param == 1 ? std::string("OneDimensional")
+                                                  : std::string("TwoDimensional");
+                         });
 
 TEST(DistributedProblem, RefusesWhatNeedsAnEigenJacobianOrSerialScaling) {
   PetscArrheniusBratu petsc_problem(PETSC_COMM_WORLD, 1, 20);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The PETSc backend against the serial one: the same problem (residual, Jacobian), the same
-// tangent plane, the same projections, on whatever number of ranks mpiexec started.
+// tangent plane and solves, on whatever number of ranks mpiexec started. The correctors on a
+// distributed problem: distributed_problem_test.cpp.
 #include <gtest/gtest.h>
 
 #include <Eigen/QR>
@@ -9,7 +10,10 @@
 #include "tessera/core/error.h"
 #include "tessera/core/scaled_problem.h"
 #include "tessera/petsc/petsc_bratu.h"
-#include "tessera/petsc/petsc_corrector.h"
+#include "tessera/core/ambient_space.h"
+#include "tessera/core/corrector.h"
+#include "tessera/petsc/distributed_problem.h"
+#include "tessera/petsc/petsc_linearization.h"
 #include "tessera/problems/examples.h"
 
 namespace tessera::petsc {
@@ -130,61 +134,6 @@ TEST_P(Backend, MinimumNormSolveSolvesTheSystemAndIsNormalToM) {
   EXPECT_LE(std::abs(t0.dot(d)) + std::abs(t1.dot(d)), 1e-10 * d.norm());
 }
 
-TEST_P(Backend, GaussNewtonLandsWhereTheSerialCorrectorLands) {
-  const Pair pair = make_pair(GetParam());
-  const int n = pair.serial->ambient_dimension();
-  const Eigen::VectorXd start = pair.on_M + 0.05 * wobble(n, 2.0);
-  Eigen::VectorXd serial_x = start;
-  Linearization serial_workspace;
-  const CorrectorSummary serial =
-      tessera::project_gauss_newton(*pair.serial, serial_x, CorrectorOptions{}, serial_workspace);
-  ASSERT_TRUE(serial.is_success()) << serial.brief_report();
-
-  Owned<Vec> x = to_petsc(*pair.distributed, start);
-  DistributedLinearization workspace(*pair.distributed);
-  const CorrectorSummary summary =
-      project_gauss_newton(*pair.distributed, x, CorrectorOptions{}, workspace);
-  ASSERT_TRUE(summary.is_success()) << summary.brief_report();
-  const Eigen::VectorXd distributed_x = gather(x);
-  EXPECT_LE((distributed_x - serial_x).norm(), 1e-8 * (1.0 + serial_x.norm()));
-  Eigen::VectorXd F(n - 2);
-  pair.serial->evaluate(distributed_x, F);
-  EXPECT_LE(F.norm(), 1e-9);
-  // One factorisation per iteration: the field's currency, deterministic.
-  EXPECT_EQ(workspace.factorisations(), summary.iterations);
-  EXPECT_EQ(summary.iterations, serial.iterations);
-}
-
-TEST_P(Backend, ChordProjectsOrthogonallyToTheFrozenTangentPlaneAsTheSerialChord) {
-  const Pair pair = make_pair(GetParam());
-  const int n = pair.serial->ambient_dimension();
-  Owned<Vec> x0 = to_petsc(*pair.distributed, pair.on_M);
-  DistributedLinearization frozen(*pair.distributed);
-  ASSERT_TRUE(frozen.factor(x0)) << frozen.last_failure();
-  const Eigen::VectorXd t0 = gather(frozen.tangent_basis()[0]);
-  const Eigen::VectorXd t1 = gather(frozen.tangent_basis()[1]);
-  const Eigen::VectorXd predicted = pair.on_M + 0.3 * t0 - 0.2 * t1;
-
-  Owned<Vec> y = to_petsc(*pair.distributed, predicted);
-  const CorrectorSummary summary = project_chord(*pair.distributed, frozen, y, CorrectorOptions{});
-  ASSERT_TRUE(summary.is_success()) << summary.brief_report();
-  EXPECT_EQ(frozen.factorisations(), 1);
-  const Eigen::VectorXd landed = gather(y);
-  Eigen::VectorXd F(n - 2);
-  pair.serial->evaluate(landed, F);
-  EXPECT_LE(F.norm(), 1e-9);
-  // The chord moves in range DFᵀ: the tangent coordinates of the predictor are kept.
-  EXPECT_NEAR(t0.dot(landed - pair.on_M), 0.3, 1e-9);
-  EXPECT_NEAR(t1.dot(landed - pair.on_M), -0.2, 1e-9);
-
-  Linearization serial_frozen;
-  ASSERT_TRUE(serial_frozen.factor(*pair.serial, pair.on_M));
-  Eigen::VectorXd serial_y = predicted;
-  ASSERT_TRUE(tessera::project_chord(*pair.serial, serial_frozen, serial_y, CorrectorOptions{})
-                  .is_success());
-  EXPECT_LE((landed - serial_y).norm(), 1e-8 * (1.0 + serial_y.norm()));
-}
-
 TEST_P(Backend, ScaledProblemIsTheSerialScaledProblem) {
   const Pair pair = make_pair(GetParam());
   const int n = pair.serial->ambient_dimension();
@@ -201,12 +150,18 @@ TEST_P(Backend, ScaledProblemIsTheSerialScaledProblem) {
   Owned<Vec> x = to_petsc(distributed, pair.on_M);
   distributed.to_scaled(x);
   EXPECT_LE((gather(x) - serial.to_scaled(pair.on_M)).norm(), 1e-14 * pair.on_M.norm());
-  DistributedLinearization workspace(distributed);
-  Owned<Vec> start = to_petsc(distributed, y);
-  ASSERT_TRUE(project_gauss_newton(distributed, start, CorrectorOptions{}, workspace).is_success());
-  Eigen::VectorXd landed = gather(start);
-  distributed.from_scaled(start);
-  EXPECT_LE((gather(start) - serial.from_scaled(landed)).norm(), 1e-14 * (1.0 + landed.norm()));
+  // Projected by tessera's own corrector on the local rows: the serial scaled problem's point.
+  const DistributedProblem adapter(distributed);
+  const AmbientSpace& space = *adapter.space();
+  Eigen::VectorXd local = y.segment(space.first_row(), space.local_rows());
+  Linearization workspace;
+  ASSERT_TRUE(tessera::project_gauss_newton(adapter, local, CorrectorOptions{}, workspace).is_success());
+  Eigen::VectorXd serial_y = y;
+  Linearization serial_workspace;
+  ASSERT_TRUE(tessera::project_gauss_newton(serial, serial_y, CorrectorOptions{}, serial_workspace)
+                  .is_success());
+  EXPECT_LE((local - serial_y.segment(space.first_row(), space.local_rows())).norm(),
+            1e-9 * (1.0 + serial_y.norm()));
 }
 
 INSTANTIATE_TEST_SUITE_P(Bratu, Backend, testing::Values(1, 2),
