@@ -4,7 +4,8 @@
 set -euo pipefail
 # python3-meshio: tests/io/meshio_test.cpp checks that meshio reads the PLY files tessera writes.
 # libsuitesparse-dev (UMFPACK, KLU) and libsuperlu-dev: sparse LU solvers for large n
-# (core/sparse_lu.h); without them the build falls back to Eigen's SparseLU.
+# (core/sparse_lu.h); without them the build falls back to Eigen's SparseLU. libmetis-dev: the
+# nested-dissection ordering of Eigen's SparseLU (half the fill of COLAMD on 2-D PDEs).
 # python3-numpy: tests/io/npy_test.cpp and tests/app/view_cli_test.cpp check that numpy.load reads
 # the .npy states tessera writes (meshio depends on it too).
 # libcairo2-dev: pictures (`tessera render`, `mesh --picture`), PNG and SVG from one drawing.
@@ -14,7 +15,7 @@ set -euo pipefail
 # docs/python.md) for Debian's /usr/bin/python3, and its tests.
 packages=(cmake ninja-build g++ libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev
           libbenchmark-dev ccache libcgal-dev python3-meshio python3-numpy libsuitesparse-dev
-          libsuperlu-dev python3-dev python3-pybind11 python3-pytest python3-scipy libcairo2-dev petsc-dev "$@")
+          libsuperlu-dev libmetis-dev python3-dev python3-pybind11 python3-pytest python3-scipy libcairo2-dev petsc-dev "$@")
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||

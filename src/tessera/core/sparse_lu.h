@@ -19,7 +19,8 @@ namespace tessera {
 /// configured (`is_available`); Eigen is always there. bench/RESULTS.md section 9 compares them
 /// on tessera's bordered Jacobians.
 enum class SparseLuSolver {
-  Eigen,    ///< Eigen's SparseLU: supernodal, COLAMD ordering, partial pivoting
+  Eigen,    ///< Eigen's SparseLU: supernodal, partial pivoting, ordered by nested dissection
+            ///< (METIS) where the build has it, else (or TESSERA_SPARSE_LU_ORDERING=colamd) COLAMD
   Umfpack,  ///< SuiteSparse UMFPACK: multifrontal, AMD/COLAMD ordering, BLAS-3 on dense fronts
   Klu,      ///< SuiteSparse KLU: BTF + AMD ordering, left-looking; refactors without re-pivoting
   SuperLu,  ///< SuperLU: supernodal, COLAMD ordering (through Eigen's SuperLUSupport)

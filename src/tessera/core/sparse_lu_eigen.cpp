@@ -1,8 +1,13 @@
 // SPDX-License-Identifier: MIT
-// SparseLu by Eigen's SparseLU (supernodal, COLAMD column ordering, partial pivoting).
+// SparseLu by Eigen's SparseLU (supernodal, partial pivoting), with a nested-dissection column
+// ordering where the build has METIS and COLAMD otherwise.
 #include <Eigen/SparseLU>
+#include <cstdlib>
 #include <new>
+#include <string_view>
+#include <vector>
 
+#include "tessera/core/detail/nested_dissection.h"
 #include "tessera/core/detail/sparse_lu_implementations.h"
 
 namespace tessera::detail {
@@ -16,7 +21,28 @@ namespace {
 // Reserving 4× and letting the rare larger fill grow costs a few copies there instead.
 constexpr int kReservedFill = 4;
 
-class LeanSparseLU : public Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> {
+// Eigen's ordering hook (default-constructed inside analyzePattern): nested dissection
+// (detail/nested_dissection.h: half of COLAMD's fill on 2-D PDEs), COLAMD where METIS is absent
+// or fails, or where TESSERA_SPARSE_LU_ORDERING=colamd asks for it (benchmarks compare the two).
+struct FillReducingOrdering {
+  using PermutationType = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
+  template <typename MatrixType>
+  void operator()(const MatrixType& A, PermutationType& permutation) {
+    const char* requested = std::getenv("TESSERA_SPARSE_LU_ORDERING");
+    const bool wants_colamd = requested != nullptr && std::string_view(requested) == "colamd";
+    const std::vector<int> order = wants_colamd ? std::vector<int>() : nested_dissection_ordering(A);
+    if (order.empty()) {
+      Eigen::COLAMDOrdering<int>()(A, permutation);
+      return;
+    }
+    permutation.resize(static_cast<Eigen::Index>(order.size()));
+    for (int k = 0; k < static_cast<int>(order.size()); ++k) {
+      permutation.indices()(order[k]) = k;  // Eigen's convention: indices()(old) = new
+    }
+  }
+};
+
+class LeanSparseLU : public Eigen::SparseLU<Eigen::SparseMatrix<double>, FillReducingOrdering> {
  public:
   LeanSparseLU() { this->m_perfv.fillfactor = kReservedFill; }
 };
