@@ -43,7 +43,8 @@ PerVertex per_vertex(const tessera::CoveringSummary& summary) {
 }
 
 // The target is 2 factorisations and 4 Jacobians per vertex of the final mesh. The atlas
-// meets it on bvp (1.95 and 2.9 measured), the front nearly (2.13 and 3.04); the bounds hold
+// meets it on bvp (1.95 and 2.9 measured), the front too (1.16 and 3.05: one factorisation per
+// processed vertex, the tangents of new vertices by the chord from their creator's); the bounds hold
 // that, so that a change that spends more fails here. Evaluations of F (the chord's steps)
 // are bounded too: 40 per vertex for the atlas (each distance bound takes at least three chord
 // steps: θ is trusted from two ratios), 6 for the front.
@@ -70,7 +71,7 @@ TEST(LargeN, FrontWorkPerVertexIsBounded) {
   const auto result = cover(setup, "front");
   ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
   const PerVertex work = per_vertex(result.summary);
-  EXPECT_LE(work.factorisations, 2.2);
+  EXPECT_LE(work.factorisations, 1.3);
   EXPECT_LE(work.jacobians, 3.1);
   EXPECT_LE(result.summary.function_evaluations, 6.5 * result.summary.vertex_count);
 }

@@ -97,6 +97,8 @@ class FrontBuilder {
   Eigen::VectorXd new_point(int center, const Linearization& frame, const Eigen::MatrixXd& U,
                             double angle);
   int add_point(const Eigen::VectorXd& x);
+  /// Caches the tangent basis at a new frontal vertex v from its creator's factorisation.
+  void remember_tangent(int v, const Linearization& frame);
   bool close_small_loop(int center, const Eigen::MatrixXd& U);
   /// The next frontal vertex in the order of options.order; nullopt when the front is empty.
   std::optional<int> next_frontal();
@@ -535,10 +537,30 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
     const int v = add_point(x);
     require_fit({center, previous, v}, U);
     state_.add_triangle(center, previous, v);
+    remember_tangent(v, frame);
     previous = v;
   }
   require_fit({center, previous, gap.first}, U);
   state_.add_triangle(center, previous, gap.first);
+}
+
+// The smallest-gap order needs the tangent plane at every frontal vertex. Factoring DF there
+// for it, and again when the vertex is processed, cost a sparse problem two factorisations per
+// vertex; the chord of tangent_basis_near from the creator's factorisation (one DF and a few
+// solves) gives the same basis, so that a vertex is factored once, when it is processed. Dense
+// problems keep factoring: a QR of the (n−2)×n Jacobian at small n costs less than the solves.
+void FrontBuilder::remember_tangent(int v, const Linearization& frame) {
+  if (!problem_.has_sparse_jacobian() || state_.type(v) != VertexType::Frontal) {
+    return;
+  }
+  Eigen::MatrixXd T;
+  if (!tangent_basis_near(problem_, frame, state_.point(v), T)) {
+    return;  // too far from the creator: smallest_gap factors at v
+  }
+  if (tangent_cache_.size() <= static_cast<std::size_t>(v)) {
+    tangent_cache_.resize(v + 1);
+  }
+  tangent_cache_[v] = std::move(T);
 }
 
 std::optional<int> FrontBuilder::colliding_front_vertex(int center, int previous,
