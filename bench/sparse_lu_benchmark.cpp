@@ -15,15 +15,18 @@
 //   BM_Factorize          a numerical factorisation on the analysed pattern, repeated (for KLU a
 //                         refactorisation that reuses the pivot sequence)
 //   BM_Solve              one solve with one right-hand side
-// Counters: n, nnz(A) and fill = nnz(L) + nnz(U) as the solver reports it.
+// Counters: n, nnz(A) and fill = nnz(L) + nnz(U) as the solver reports it. "eigen" is ordered by
+// nested dissection where the build has METIS; "eigen-colamd" is the same LU ordered by COLAMD.
 // One vertex of a covering costs about one factorisation and 20–40 solves.
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
 
 #include "tessera/core/bordered_jacobian.h"
+#include "tessera/core/detail/nested_dissection.h"
 #include "tessera/core/linearization.h"
 #include "tessera/core/sparse_lu.h"
 #include "tessera/problems/catalogue.h"
@@ -136,6 +139,20 @@ const bool registered = [] {
         const std::string name =
             family + "/" + std::string(tessera::name(solver)) + "/" + specification;
         benchmark::RegisterBenchmark(name.c_str(), function, solver, specification)
+            ->Unit(benchmark::kMicrosecond);
+      }
+      // Eigen's SparseLU with COLAMD, its ordering before nested dissection (and where the
+      // build has no METIS), for the comparison of bench/RESULTS.md section 9.
+      if (tessera::detail::has_nested_dissection()) {
+        const std::string name = family + "/eigen-colamd/" + specification;
+        benchmark::RegisterBenchmark(
+            name.c_str(),
+            [function = function](benchmark::State& state, std::string matrix) {
+              setenv("TESSERA_SPARSE_LU_ORDERING", "colamd", 1);
+              function(state, tessera::SparseLuSolver::Eigen, std::move(matrix));
+              unsetenv("TESSERA_SPARSE_LU_ORDERING");
+            },
+            specification)
             ->Unit(benchmark::kMicrosecond);
       }
     }
