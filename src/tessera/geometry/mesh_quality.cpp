@@ -19,10 +19,12 @@
 namespace tessera {
 namespace {
 
-double triangle_area(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& c) {
+double triangle_area(const Eigen::Ref<const Eigen::VectorXd>& a,
+                     const Eigen::Ref<const Eigen::VectorXd>& b,
+                     const Eigen::Ref<const Eigen::VectorXd>& c) {
   // Gram determinant: valid in any dimension.
-  const Eigen::VectorXd u = b - a;
-  const Eigen::VectorXd v = c - a;
+  const auto u = b - a;
+  const auto v = c - a;
   const double uu = u.squaredNorm();
   const double vv = v.squaredNorm();
   const double uv = u.dot(v);
@@ -57,8 +59,10 @@ std::vector<int> sample_indices(int population, int limit) {
 double corner_angle(const Eigen::Ref<const Eigen::VectorXd>& apex,
                     const Eigen::Ref<const Eigen::VectorXd>& p,
                     const Eigen::Ref<const Eigen::VectorXd>& q) {
-  const Eigen::VectorXd u = p - apex;
-  const Eigen::VectorXd w = q - apex;
+  // u = p − apex, w = q − apex as expressions: no n-vector is allocated (this runs for every
+  // angle that edge swaps, clipping and refinement compare, in R^n).
+  const auto u = p - apex;
+  const auto w = q - apex;
   // |u ∧ w|² = |u|²|w|² − (u·w)² (Lagrange's identity, valid in R^n).
   const double dot = u.dot(w);
   const double wedge = std::sqrt(std::max(0.0, u.squaredNorm() * w.squaredNorm() - dot * dot));
@@ -79,17 +83,16 @@ MeshQuality measure_shape(const TriangleMesh& mesh) {
   double max_edge = 0.0;
   long below = 0;
   for (const Triangle& t : mesh.triangles()) {
-    const Eigen::VectorXd p[3] = {mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2])};
-    quality.area += triangle_area(p[0], p[1], p[2]);
+    const auto p = [&](int r) { return mesh.point(t[r % 3]); };
+    quality.area += triangle_area(p(0), p(1), p(2));
     for (int r = 0; r < 3; ++r) {
-      const Eigen::VectorXd u = p[(r + 1) % 3] - p[r];
-      const double angle =
-          corner_angle(p[r], p[(r + 1) % 3], p[(r + 2) % 3]) * 180.0 / std::numbers::pi;
+      const double angle = corner_angle(p(r), p(r + 1), p(r + 2)) * 180.0 / std::numbers::pi;
       min_angle = std::min(min_angle, angle);
       max_angle = std::max(max_angle, angle);
       below += angle < 30.0 ? 1 : 0;
-      min_edge = std::min(min_edge, u.norm());
-      max_edge = std::max(max_edge, u.norm());
+      const double length = (p(r + 1) - p(r)).norm();
+      min_edge = std::min(min_edge, length);
+      max_edge = std::max(max_edge, length);
     }
   }
   if (mesh.triangle_count() > 0) {
