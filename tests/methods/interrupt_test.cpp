@@ -107,6 +107,49 @@ INSTANTIATE_TEST_SUITE_P(Methods, StopHook,
                                            InterruptCase{"bezier", "torus", 40}),
                          name_of);
 
+// A stop after the build, during the tolerance check (minutes of chord steps at n = 10⁵): the
+// check ends between two triangles, the mesh is the whole build's, valid, and the summary says
+// the tolerance holds on part of it only. The front's build does not depend on the tolerance,
+// so a run without one counts the build's polls.
+TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
+  const ProblemSetup setup = make_catalogue_problem("torus");
+  const CoveringMethod& front = find_covering_method("front");
+  MethodSettings settings;
+  int build_polls = 0;
+  settings.stop_requested = [&build_polls] {
+    ++build_polls;
+    return false;
+  };
+  const CoveringResult built = cover(setup, front, settings);
+  ASSERT_TRUE(built.summary.is_complete()) << built.summary.message;
+
+  settings.tolerance = 2e-4;  // far below the front's own accuracy: many triangles to split
+  int polls = 0;
+  const int stop_after = build_polls + 50;  // 50 triangles checked, then stop
+  settings.stop_requested = [&polls, stop_after] { return ++polls > stop_after; };
+  const CoveringResult stopped = cover(setup, front, settings);
+  EXPECT_EQ(stopped.summary.termination, CoveringTermination::Interrupted)
+      << stopped.summary.message;
+  EXPECT_NE(stopped.summary.message.find("tolerance check"), std::string::npos)
+      << stopped.summary.message;
+  EXPECT_EQ(polls, stop_after + 1);  // not asked again after the first `true`
+  const auto& notes = stopped.summary.notes;
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& note) {
+    return note.find("enforced on part of the mesh only") != std::string::npos;
+  }));
+  // The stop came in the first round's checks, before any split: the build's mesh, validated.
+  EXPECT_EQ(stopped.summary.refined_edges, 0);
+  EXPECT_EQ(stopped.mesh.vertex_count(), built.mesh.vertex_count());
+  const MeshValidation validation = validate(stopped.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+  EXPECT_TRUE(validation.is_closed());
+
+  // Without the stop the same settings bisect: the check did run and would have changed it.
+  settings.stop_requested = nullptr;
+  const CoveringResult refined = cover(setup, front, settings);
+  EXPECT_GT(refined.summary.refined_edges, 0);
+}
+
 // A hook that says stop at once still leaves a summary and a valid (possibly tiny) mesh.
 TEST(StopRequest, StopAtTheFirstPollIsAnOutcomeForEveryMethod) {
   const ProblemSetup setup = make_catalogue_problem("sphere");

@@ -405,7 +405,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
   //    a stop request: the user wants the partial mesh now, and at large n the bisection costs
   //    factorisations (minutes at n = 10⁵); validity is still checked below.
   const int triangles_built = result.mesh.triangle_count();
-  const bool is_interrupted = summary.termination == CoveringTermination::Interrupted;
+  bool is_interrupted = summary.termination == CoveringTermination::Interrupted;
   if (is_interrupted && options.tolerance > 0 && result.mesh.triangle_count() > 0) {
     summary.notes.push_back("interrupted: the tolerance " + std::to_string(options.tolerance) +
                             " was not enforced on the partial mesh (no triangle was checked)");
@@ -414,11 +414,20 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
     ToleranceRefinementOptions refine;
     refine.tolerance = options.tolerance;
     refine.corrector = options.corrector;
+    refine.stop_requested = options.stop_requested;
     const ToleranceRefinement refined =
         refine_to_tolerance(problem, domain, result.mesh, {}, refine);
     summary.refined_edges += refined.split_edges;
     summary.max_sampled_distance = refined.max_distance;
-    if (refined.remaining > 0) {
+    if (refined.interrupted) {
+      // A stop during the check (minutes at n = 10⁵): the mesh is as valid as before it.
+      fail(summary, CoveringTermination::Interrupted,
+           "interrupted during the tolerance check, after " + std::to_string(refined.rounds) +
+               " round(s) of bisection");
+      summary.notes.push_back("interrupted: the tolerance " + std::to_string(options.tolerance) +
+                              " was enforced on part of the mesh only");
+      is_interrupted = true;
+    } else if (refined.remaining > 0) {
       std::ostringstream message;
       message << refined.remaining << " triangle(s) are still farther than the tolerance "
               << options.tolerance << " from M after " << refined.rounds

@@ -252,6 +252,12 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     std::vector<std::pair<int, int>> to_split;
     std::vector<std::uint8_t> is_far(mesh.triangle_count(), 0);
     for (const auto& [anchor, t] : anchored(mesh, candidates, rings)) {
+      // Checked here only, where nothing of the round has changed the mesh yet: at large n
+      // the samples are minutes of chord steps, and a stopped run wants its mesh now.
+      if (options.stop_requested && options.stop_requested()) {
+        summary.interrupted = true;
+        break;
+      }
       const Triangle tri = mesh.triangle(t);
       const double worst = sample(anchor, t);
       if (worst <= threshold) {
@@ -273,6 +279,9 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       if (!unsplittable.contains(edge_key(u, v)) && midpoint_of.emplace(edge_key(u, v), -1).second) {
         to_split.emplace_back(u, v);
       }
+    }
+    if (summary.interrupted) {
+      return summary;
     }
     if (to_split.empty()) {
       // Nothing left to split: done if no candidate is too far, otherwise the far ones (whose

@@ -2,6 +2,7 @@
 // Edge bisection on M until sampled points of the chosen triangles lie within a distance of M.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "tessera/core/corrector.h"
@@ -25,12 +26,18 @@ struct ToleranceRefinementOptions {
   /// Points within this of a domain face count as lying on it (boundary edges stay on ∂S).
   double face_tolerance = 1e-8;
   CorrectorOptions corrector;
+  /// Polled once per triangle checked; true stops the refinement between two checks, with the
+  /// mesh as valid as it was (ToleranceRefinement::interrupted). Empty: never stopped.
+  std::function<bool()> stop_requested;
 };
 
 struct ToleranceRefinement {
   int rounds = 0;
   int split_edges = 0;
   int remaining = 0;  ///< triangles still above the threshold after max_rounds
+  /// stop_requested said so: the triangles not yet checked were left as they were, and
+  /// remaining and max_distance speak only of those checked.
+  bool interrupted = false;
   /// The largest sampled distance to M over the triangles checked last (all candidates and
   /// their offspring); +infinity if a sample could not be projected.
   double max_distance = 0.0;
