@@ -71,6 +71,35 @@ TEST(NestedDissection, IsAPermutationWithTheParameterColumnsLast) {
   EXPECT_EQ(order[n - 1], n - 1);
 }
 
+// Graphs without edges (a diagonal matrix, a 1×1 one) and a matrix of only dense columns are
+// orderings too, not failures or crashes in METIS.
+TEST(NestedDissection, OrdersDegenerateGraphs) {
+  if (!detail::has_nested_dissection()) {
+    GTEST_SKIP() << "this build has no METIS";
+  }
+  for (int n : {1, 2, 7}) {
+    Eigen::SparseMatrix<double> D(n, n);
+    D.setIdentity();
+    D.makeCompressed();
+    const std::vector<int> order = detail::nested_dissection_ordering(D);
+    std::vector<int> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<int> identity(n);
+    std::iota(identity.begin(), identity.end(), 0);
+    EXPECT_EQ(sorted, identity) << "n = " << n;
+    const Factored solved = factor_with_eigen(D, Eigen::VectorXd::Ones(n));
+    EXPECT_EQ(solved.x, Eigen::VectorXd::Ones(n));
+  }
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Identity(40, 40);
+  dense.col(3).setConstant(2.0);
+  dense.row(5).setConstant(3.0);
+  dense(3, 3) = 4.0;
+  const Eigen::SparseMatrix<double> A = dense.sparseView();
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(40, 1.0, 2.0);
+  const Factored solved = factor_with_eigen(A, b);
+  EXPECT_LT((A * solved.x - b).norm(), 1e-12 * b.norm());
+}
+
 // The border rows are the parameters' rows, left out of the graph with them: every border gives
 // the same ordering, so the covering runs METIS once per pattern. A fresh thread (no remembered
 // graph) computes the same ordering: runs are deterministic.
