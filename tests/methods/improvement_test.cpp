@@ -164,6 +164,26 @@ TEST(EdgeSwap, SweepCapIsRespected) {
   EXPECT_TRUE(validate(mesh).is_valid());
 }
 
+// A stop request ends the swaps at once (a covering's Ctrl-C), keeping those made, each checked.
+TEST(EdgeSwap, StopRequestEndsTheSwapsWithAValidMesh) {
+  const FrontRun run = run_front("torus");
+  TriangleMesh scrambled = run.result.mesh;
+  scramble(scrambled, *run.setup.problem, 3 * scrambled.triangle_count() / 10, 7);
+  TriangleMesh whole = scrambled;
+  const ImprovementSummary finished = improve_by_edge_swaps(whole, *run.setup.problem);
+  ASSERT_GT(finished.swaps, 20);
+  int polls = 0;
+  ImprovementOptions options;
+  options.stop_requested = [&polls] { return ++polls > 200; };
+  TriangleMesh stopped = scrambled;
+  const ImprovementSummary summary = improve_by_edge_swaps(stopped, *run.setup.problem, options);
+  EXPECT_TRUE(summary.interrupted);
+  EXPECT_FALSE(summary.converged);
+  EXPECT_EQ(polls, 201);
+  EXPECT_LT(summary.swaps, finished.swaps);
+  EXPECT_TRUE(validate(stopped, *run.setup.problem, run.setup.domain).is_valid());
+}
+
 // Two triangles in the plane z = 0: (a, b, c) and (b, a, d), both counter-clockwise.
 TriangleMesh two_triangles(const Eigen::Vector3d& d) {
   Eigen::MatrixXd points(3, 4);

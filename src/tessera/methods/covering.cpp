@@ -387,8 +387,14 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
         fail(summary, CoveringTermination::ProjectionFailed, refusal);
       }
       if (context.swap_after_clipping && result.mesh.triangle_count() > 0) {
-        // Clipping leaves poor angles at ∂S that swaps in the tangent planes repair.
-        improve_by_edge_swaps(result.mesh, problem, ImprovementOptions{});
+        // Clipping leaves poor angles at ∂S that swaps in the tangent planes repair. A stop
+        // request ends them (the mesh is valid after every swap): they are an improvement.
+        ImprovementOptions swaps;
+        swaps.stop_requested = options.stop_requested;
+        if (improve_by_edge_swaps(result.mesh, problem, swaps).interrupted) {
+          fail(summary, CoveringTermination::Interrupted,
+               "interrupted while improving the angles at the domain boundary");
+        }
       }
     }
     end_phase("clip");

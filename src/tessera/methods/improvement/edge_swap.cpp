@@ -451,6 +451,10 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
         ++summary.rejected_existing_edge;
         continue;
       }
+      if (options.stop_requested && options.stop_requested()) {
+        summary.interrupted = true;
+        break;
+      }
       // The criterion first: most edges of a reasonable mesh do not want a swap, and for them
       // the projection and the five factorisations of the validity check would be wasted.
       const Verdict verdict = judge_swap(mesh, problem, q, options, workspace);
@@ -483,6 +487,9 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
     }
     summary.interior_edges = interior_edges;
     summary.swaps += swaps_in_sweep;
+    if (summary.interrupted) {
+      break;
+    }
     if (swaps_in_sweep == 0) {
       summary.converged = true;
       break;

@@ -4,6 +4,8 @@
 // triangulation, carried from the plane to a surface in R^n).
 #pragma once
 
+#include <functional>
+
 #include <string>
 
 #include "tessera/core/implicit_problem.h"
@@ -45,6 +47,10 @@ struct ImprovementOptions {
   /// with the orientation of the old triangles. 1e-6 rejects near-flat corners (a swap there
   /// would make a sliver) while an equilateral triangle has ratio 0.43.
   double min_area_ratio = 1e-6;
+  /// Polled once per edge the criterion is asked about; true ends the swaps there, with the
+  /// swaps made so far (each checked) kept. Empty: never stopped. A covering passes its own
+  /// (Ctrl-C): at large n a swap's checks cost factorisations.
+  std::function<bool()> stop_requested;
 
   /// \throw InvalidArgument naming the first option that is out of range.
   void validate() const;
@@ -54,6 +60,7 @@ struct ImprovementSummary {
   int swaps = 0;
   int sweeps = 0;
   bool converged = false;  ///< the last sweep made no swap (false: max_sweeps was hit)
+  bool interrupted = false;  ///< stop_requested ended the swaps
   int interior_edges = 0;
   // Refusals are summed over all sweeps (an edge refused in every sweep counts every time).
   // The criterion is evaluated before the geometric checks, so the two counters below count
