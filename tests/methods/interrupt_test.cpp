@@ -133,6 +133,7 @@ TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
   EXPECT_NE(stopped.summary.message.find("tolerance check"), std::string::npos)
       << stopped.summary.message;
   EXPECT_EQ(polls, stop_after + 1);  // not asked again after the first `true`
+  EXPECT_EQ(stopped.summary.max_sampled_distance, -1.0);  // no bound for the whole mesh
   const auto& notes = stopped.summary.notes;
   EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& note) {
     return note.find("enforced on part of the mesh only") != std::string::npos;

@@ -426,7 +426,10 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
     summary.refined_edges += refined.split_edges;
     summary.max_sampled_distance = refined.max_distance;
     if (refined.interrupted) {
-      // A stop during the check (minutes at n = 10⁵): the mesh is as valid as before it.
+      // A stop during the check (minutes at n = 10⁵): the mesh is as valid as before it. The
+      // largest distance of the triangles checked is no bound for the mesh: reported unknown
+      // (−1), as for a stop before the check.
+      summary.max_sampled_distance = -1.0;
       fail(summary, CoveringTermination::Interrupted,
            "interrupted during the tolerance check, after " + std::to_string(refined.rounds) +
                " round(s) of bisection");
