@@ -2,6 +2,7 @@
 #include "tessera/geometry/mesh_quality.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -75,7 +76,13 @@ double min_angle(const TriangleMesh& mesh, const Triangle& t) {
                    corner_angle(mesh.point(t[2]), mesh.point(t[0]), mesh.point(t[1]))});
 }
 
-MeshQuality measure_shape(const TriangleMesh& mesh) {
+namespace {
+
+// The shape measures of the mesh whose vertex v is at point(v): the mesh's own points, or
+// their images in a problem's metric (computed on the fly: a scaled copy of the mesh would
+// double the memory of a large-n run at its end).
+template <class PointOf>
+MeshQuality shape_of(const TriangleMesh& mesh, const PointOf& point) {
   MeshQuality quality;
   double min_angle = std::numeric_limits<double>::infinity();
   double max_angle = 0.0;
@@ -83,7 +90,9 @@ MeshQuality measure_shape(const TriangleMesh& mesh) {
   double max_edge = 0.0;
   long below = 0;
   for (const Triangle& t : mesh.triangles()) {
-    const auto p = [&](int r) { return mesh.point(t[r % 3]); };
+    using Point = decltype(point(0));  // a Map of the mesh's column, or a scaled copy
+    const std::array<Point, 3> corners = {point(t[0]), point(t[1]), point(t[2])};
+    const auto p = [&](int r) -> const Point& { return corners[r % 3]; };
     quality.area += triangle_area(p(0), p(1), p(2));
     for (int r = 0; r < 3; ++r) {
       const double angle = corner_angle(p(r), p(r + 1), p(r + 2)) * 180.0 / std::numbers::pi;
@@ -105,6 +114,12 @@ MeshQuality measure_shape(const TriangleMesh& mesh) {
   return quality;
 }
 
+}  // namespace
+
+MeshQuality measure_shape(const TriangleMesh& mesh) {
+  return shape_of(mesh, [&mesh](int v) { return mesh.point(v); });
+}
+
 double surface_area(const TriangleMesh& mesh) { return measure_shape(mesh).area; }
 
 bool project_onto_manifold(const ImplicitProblem& problem, Eigen::Ref<Eigen::VectorXd> x,
@@ -115,6 +130,14 @@ bool project_onto_manifold(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vec
   options.max_contraction = 0.9;
   return project_gauss_newton(problem, x, options, workspace).is_success();
 }
+
+namespace {
+
+template <class PointOf>
+MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
+                       const ImplicitProblem& problem, const QualityOptions& options);
+
+}  // namespace
 
 MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem,
                             const QualityOptions& options) {
@@ -128,10 +151,19 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& pro
   if (weights.size() > 0) {
     // In the metric's coordinates y = W x, where lengths are the problem's own.
     const ScaledProblem scaled(problem, weights);
-    TriangleMesh scaled_mesh(weights.asDiagonal() * mesh.points(), mesh.triangles());
-    return measure_quality(scaled_mesh, scaled, options);
+    return quality_of(
+        mesh, [&](int v) -> Eigen::VectorXd { return weights.cwiseProduct(mesh.point(v)); },
+        scaled, options);
   }
-  MeshQuality quality = measure_shape(mesh);
+  return quality_of(mesh, [&mesh](int v) { return mesh.point(v); }, problem, options);
+}
+
+namespace {
+
+template <class PointOf>
+MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
+                       const ImplicitProblem& problem, const QualityOptions& options) {
+  MeshQuality quality = shape_of(mesh, point);
   const int n = problem.ambient_dimension();
   Eigen::VectorXd F(n - 2);
   Linearization workspace;
@@ -153,7 +185,7 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& pro
     if (is_sparse && corner >= 0) {
       const Linearization* at_corner = corners.find(corner);
       if (at_corner == nullptr) {
-        at_corner = corners.factor(corner, problem, mesh.point(corner));
+        at_corner = corners.factor(corner, problem, point(corner));
       }
       if (at_corner != nullptr && at_corner->is_factored() &&
           project_chord(problem, *at_corner, y, chord).is_success()) {
@@ -184,28 +216,29 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& pro
     accumulate(statistic, (y - x).norm());
   };
   for (int v = 0; v < mesh.vertex_count(); ++v) {
-    problem.evaluate(mesh.point(v), F);
+    problem.evaluate(point(v), F);
     accumulate(quality.vertex_residual, F.norm());
   }
   quality.vertex_residual.population = mesh.vertex_count();
   for (int v : sample_indices(mesh.vertex_count(), options.max_samples)) {
-    distance(mesh.point(v), -1, quality.vertex_distance);
+    distance(point(v), -1, quality.vertex_distance);
   }
   quality.vertex_distance.population = mesh.vertex_count();
   for (int t : sample_indices(mesh.triangle_count(), options.max_samples)) {
     const Triangle& tri = mesh.triangle(t);
-    distance((mesh.point(tri[0]) + mesh.point(tri[1]) + mesh.point(tri[2])) / 3.0, tri[0],
+    distance((point(tri[0]) + point(tri[1]) + point(tri[2])) / 3.0, tri[0],
              quality.centroid_distance);
   }
   quality.centroid_distance.population = mesh.triangle_count();
   const MeshTopology topology(mesh);
   const auto& edges = topology.edges();
   for (int e : sample_indices(static_cast<int>(edges.size()), options.max_samples)) {
-    distance(0.5 * (mesh.point(edges[e][0]) + mesh.point(edges[e][1])), edges[e][0],
+    distance(0.5 * (point(edges[e][0]) + point(edges[e][1])), edges[e][0],
              quality.midpoint_distance);
   }
   quality.midpoint_distance.population = static_cast<int>(edges.size());
   return quality;
 }
 
+}  // namespace
 }  // namespace tessera

@@ -9,16 +9,18 @@ namespace tessera {
 
 TriangleMesh::TriangleMesh(const Eigen::Ref<const Eigen::MatrixXd>& points,
                            std::vector<Triangle> triangles)
-    : dimension_(static_cast<int>(points.rows())),
-      coordinates_(static_cast<std::size_t>(points.size())),
-      triangles_(std::move(triangles)) {
-  Eigen::Map<Eigen::MatrixXd>(coordinates_.data(), points.rows(), points.cols()) = points;
+    : points_(static_cast<int>(points.rows())), triangles_(std::move(triangles)) {
+  points_.resize(static_cast<int>(points.cols()));
+  if (points.size() > 0) {
+    Eigen::Map<Eigen::MatrixXd>(points_.data(), points.rows(), points.cols()) = points;
+  }
 }
 
 int TriangleMesh::add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x) {
-  TESSERA_CHECK(x.size() == dimension_,
-                "vertex has " << x.size() << " coordinates, mesh is in R^" << dimension_);
-  coordinates_.insert(coordinates_.end(), x.data(), x.data() + x.size());
+  TESSERA_CHECK(x.size() == ambient_dimension(), "vertex has " << x.size()
+                                                              << " coordinates, mesh is in R^"
+                                                              << ambient_dimension());
+  points_.push_back(x);
   return vertex_count() - 1;
 }
 
@@ -28,16 +30,26 @@ int TriangleMesh::add_triangle(int a, int b, int c) {
 }
 
 TriangleMesh TriangleMesh::copy_with_room(int extra_vertices, int extra_triangles) const {
-  TriangleMesh copy(dimension_);
+  TriangleMesh copy(ambient_dimension());
   copy.reserve(vertex_count() + extra_vertices, triangle_count() + extra_triangles);
-  copy.coordinates_.assign(coordinates_.begin(), coordinates_.end());
+  copy.points_.resize(vertex_count());
+  if (vertex_count() > 0) {
+    std::copy(points_.data(), points_.data() + points().size(), copy.points_.data());
+  }
   copy.triangles_.assign(triangles_.begin(), triangles_.end());
   return copy;
 }
 
 void TriangleMesh::reserve(int vertices, int triangles) {
-  coordinates_.reserve(static_cast<std::size_t>(vertices) * dimension_);
+  points_.reserve(vertices);
   triangles_.reserve(triangles);
+}
+
+void TriangleMesh::truncate_vertices(int count) {
+  TESSERA_CHECK(count >= 0 && count <= vertex_count(),
+                "truncate_vertices(" << count << ") of a mesh with " << vertex_count()
+                                     << " vertices");
+  points_.resize(count);
 }
 
 std::vector<int> TriangleMesh::keep_triangles(const std::vector<bool>& keep) {
@@ -57,13 +69,11 @@ std::vector<int> TriangleMesh::keep_triangles(const std::vector<bool>& keep) {
   int count = 0;
   for (int v = 0; v < vertex_count(); ++v) {
     if (new_index[v] >= 0) {
-      const auto from = coordinates_.begin() + static_cast<std::ptrdiff_t>(v) * dimension_;
-      std::copy(from, from + dimension_,
-                coordinates_.begin() + static_cast<std::ptrdiff_t>(count) * dimension_);
+      points_.move_column(v, count);
       new_index[v] = count++;
     }
   }
-  coordinates_.resize(static_cast<std::size_t>(count) * dimension_);
+  points_.resize(count);
   for (Triangle& triangle : kept) {
     for (int& v : triangle) {
       v = new_index[v];

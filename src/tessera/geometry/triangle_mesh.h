@@ -6,6 +6,8 @@
 #include <array>
 #include <vector>
 
+#include "tessera/core/point_storage.h"
+
 namespace tessera {
 
 /// Three vertex indices; their order defines the orientation of the triangle.
@@ -18,26 +20,21 @@ using Triangle = std::array<int, 3>;
 class TriangleMesh {
  public:
   TriangleMesh() = default;
-  explicit TriangleMesh(int ambient_dimension) : dimension_(ambient_dimension) {}
+  explicit TriangleMesh(int ambient_dimension) : points_(ambient_dimension) {}
   /// \param points n×N matrix, one vertex per column. \param triangles indices into the columns.
   TriangleMesh(const Eigen::Ref<const Eigen::MatrixXd>& points, std::vector<Triangle> triangles);
+  /// Takes the points over without copying them (at large n they are most of the memory).
+  TriangleMesh(PointStorage points, std::vector<Triangle> triangles)
+      : points_(std::move(points)), triangles_(std::move(triangles)) {}
 
-  int ambient_dimension() const { return dimension_; }
-  int vertex_count() const {
-    return dimension_ == 0 ? 0 : static_cast<int>(coordinates_.size()) / dimension_;
-  }
+  int ambient_dimension() const { return points_.dimension(); }
+  int vertex_count() const { return points_.size(); }
   int triangle_count() const { return static_cast<int>(triangles_.size()); }
 
   /// n×N view of all vertices (column j is vertex j).
-  Eigen::Map<const Eigen::MatrixXd> points() const {
-    return {coordinates_.data(), dimension_, vertex_count()};
-  }
-  Eigen::Map<const Eigen::VectorXd> point(int vertex) const {
-    return {coordinates_.data() + static_cast<std::ptrdiff_t>(vertex) * dimension_, dimension_};
-  }
-  Eigen::Map<Eigen::VectorXd> mutable_point(int vertex) {
-    return {coordinates_.data() + static_cast<std::ptrdiff_t>(vertex) * dimension_, dimension_};
-  }
+  Eigen::Map<const Eigen::MatrixXd> points() const { return points_.matrix(); }
+  Eigen::Map<const Eigen::VectorXd> point(int vertex) const { return points_.column(vertex); }
+  Eigen::Map<Eigen::VectorXd> mutable_point(int vertex) { return points_.column(vertex); }
   const std::vector<Triangle>& triangles() const { return triangles_; }
   const Triangle& triangle(int t) const { return triangles_[t]; }
 
@@ -51,14 +48,16 @@ class TriangleMesh {
   /// A copy with room for `extra_vertices` and `extra_triangles` more, so that growing it does
   /// not copy it again (at large n the vertices are most of the memory).
   TriangleMesh copy_with_room(int extra_vertices, int extra_triangles) const;
+  /// Drops the vertices from index `count` on (the last ones added), e.g. to undo an attempt.
+  /// \pre no triangle refers to them.
+  void truncate_vertices(int count);
   /// Keeps the triangles t with keep[t] (in order) and the vertices they use (in order).
   /// \return the new index of every old vertex, −1 for a vertex dropped.
   /// \pre keep.size() == triangle_count(), indices in range.
   std::vector<int> keep_triangles(const std::vector<bool>& keep);
 
  private:
-  int dimension_ = 0;
-  std::vector<double> coordinates_;  // column-major n×N
+  PointStorage points_;  // column-major n×N
   std::vector<Triangle> triangles_;
 };
 

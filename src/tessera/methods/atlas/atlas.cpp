@@ -62,6 +62,22 @@ namespace {
 
 using detail::AtlasBuilder;
 
+// The median radius of the charts outside or within one radius of ∂S; −1 if there are none.
+double median_boundary_radius(const Domain& domain, const AtlasBuilder& builder) {
+  std::vector<double> boundary_radii;
+  for (int c = 0; c < builder.chart_count(); ++c) {
+    if (domain.boundary_distance(builder.center(c)).signed_distance < builder.chart(c).radius) {
+      boundary_radii.push_back(builder.chart(c).radius);
+    }
+  }
+  if (boundary_radii.empty()) {
+    return -1.0;
+  }
+  std::nth_element(boundary_radii.begin(), boundary_radii.begin() + boundary_radii.size() / 2,
+                   boundary_radii.end());
+  return boundary_radii[boundary_radii.size() / 2];
+}
+
 // The atlas and its triangulation; the skeleton (covering.h) clips it to the domain, refines
 // it to the tolerance and validates it.
 void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringResult& result) {
@@ -84,6 +100,14 @@ void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringRe
   cells.polygon = [&builder](int c) -> const ChartPolygon& { return builder.chart(c).polygon; };
   cells.radius = [&builder](int c) { return builder.chart(c).radius; };
   cells.is_closed = [&builder](int c) { return builder.is_closed(c); };
+  cells.take_centers = [&builder](const std::vector<bool>& keep) {
+    return builder.take_centers(keep);
+  };
+  // What the boundary needs of the charts, measured before their centres become the mesh's.
+  double boundary_scale = -1.0;
+  if (!context.domain.is_unbounded()) {
+    boundary_scale = median_boundary_radius(context.domain, builder);
+  }
   AtlasTriangulation triangulation = triangulate_atlas(cells);
   result.mesh = std::move(triangulation.mesh);
   summary.filled_holes = triangulation.filled_holes;
@@ -112,20 +136,7 @@ void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringRe
     // charts outside or within one radius of ∂S. Clipping leaves poor angles at ∂S that
     // Delaunay swaps in the tangent planes repair (the interior is a weighted Delaunay
     // triangulation already; measured: cut sphere 22° → 28°).
-    std::vector<double> boundary_radii;
-    for (int c = 0; c < builder.chart_count(); ++c) {
-      if (context.domain.boundary_distance(builder.center(c)).signed_distance <
-          builder.chart(c).radius) {
-        boundary_radii.push_back(builder.chart(c).radius);
-      }
-    }
-    double scale = min_radius;
-    if (!boundary_radii.empty()) {
-      std::nth_element(boundary_radii.begin(), boundary_radii.begin() + boundary_radii.size() / 2,
-                       boundary_radii.end());
-      scale = boundary_radii[boundary_radii.size() / 2];
-    }
-    context.boundary_edge_length = scale;
+    context.boundary_edge_length = boundary_scale > 0 ? boundary_scale : min_radius;
     context.swap_after_clipping = true;
     context.retry_if_clipping_fails = options.boundary_snap > 0;
   }

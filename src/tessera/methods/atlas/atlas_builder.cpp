@@ -39,6 +39,7 @@ AtlasBuilder::AtlasBuilder(const ImplicitProblem& problem, const Domain& domain,
       watch_crossings_(!problem.has_sparse_jacobian() &&
                        problem.ambient_dimension() <= kMaxCrossingTestDimension),
       first_step_probes_(problem.has_sparse_jacobian()),
+      centers_(problem.ambient_dimension()),
       frame_view_(problem.ambient_dimension()) {}
 
 void AtlasBuilder::evaluate_jacobian(const Eigen::VectorXd& x) {
@@ -160,14 +161,14 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
     chart.jacobian_scale = static_cast<float>(jacobian_scale());
   }
   charts_.push_back(std::move(chart));
-  centers_.insert(centers_.end(), x.data(), x.data() + n_);
+  centers_.push_back(x);
   const Eigen::MatrixXd& T = linearization.tangent_basis();
   tangents_.push_back(T);
   frames_.push_back(frame_signature(T));
   connect_neighbours(k);
   index_.insert(k, x, radius);
   if (index_.refit_due()) {
-    index_.refit(Eigen::Map<const Eigen::MatrixXd>(centers_.data(), n_, chart_count()));
+    index_.refit(centers_.matrix());
   }
   for (int m : too_close) {
     const double half = 0.5 * (center(m) - center(k)).norm();
@@ -176,6 +177,17 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
     }
   }
   return k;
+}
+
+PointStorage AtlasBuilder::take_centers(const std::vector<bool>& keep) {
+  int kept = 0;
+  for (int c = 0; c < centers_.size(); ++c) {
+    if (keep[c]) {
+      centers_.move_column(c, kept++);
+    }
+  }
+  centers_.resize(kept);
+  return std::move(centers_);
 }
 
 bool AtlasBuilder::same_sheet(int a, int b, const Eigen::VectorXd& offset) const {

@@ -14,6 +14,7 @@
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/linearization.h"
+#include "tessera/core/point_storage.h"
 #include "tessera/geometry/principal_view.h"
 #include "tessera/methods/atlas/atlas.h"
 #include "tessera/methods/atlas/chart_index.h"
@@ -49,9 +50,10 @@ class AtlasBuilder {
   void run(const Eigen::VectorXd& start, CoveringSummary& summary);
 
   int chart_count() const { return static_cast<int>(charts_.size()); }
-  Eigen::Map<const Eigen::VectorXd> center(int c) const {
-    return {centers_.data() + static_cast<std::ptrdiff_t>(c) * n_, n_};
-  }
+  Eigen::Map<const Eigen::VectorXd> center(int c) const { return centers_.column(c); }
+  /// The centres of the charts `keep` marks, in chart order, handed over without a copy (they
+  /// become the mesh's vertices). The builder's centres are gone afterwards.
+  PointStorage take_centers(const std::vector<bool>& keep);
   /// The chart's tangent basis (n×2), the frame its polygon lives in. Retired charts (closed,
   /// among closed neighbours) do not keep it; it is recomputed if they are touched again.
   /// The reference stays valid until the next chart is added.
@@ -106,7 +108,7 @@ class AtlasBuilder {
   const bool watch_crossings_;
   // Radius probes by the chord's first step only (sparse problems, where solves are the cost).
   const bool first_step_probes_;
-  std::vector<double> centers_;  // n per chart
+  PointStorage centers_;  // n per chart
   // n×2 per chart while it may still be cut; empty once retired (memory that grows like n per
   // vertex, not 3n). Mutable: a retired chart's basis is restored on demand (a cache).
   mutable std::vector<Eigen::MatrixXd> tangents_;

@@ -387,10 +387,12 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
       vertex_of[c] = 0;
     }
   }
-  result.mesh = TriangleMesh(cells.ambient_dimension);
+  std::vector<bool> carries(cells.chart_count, false);
+  int vertex_count = 0;
   for (int c = 0; c < cells.chart_count; ++c) {
     if (vertex_of[c] == 0) {
-      vertex_of[c] = result.mesh.add_vertex(cells.center(c));
+      carries[c] = true;
+      vertex_of[c] = vertex_count++;
       result.radius.push_back(cells.radius(c));
     }
   }
@@ -400,7 +402,18 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
     }
   }
   std::sort(triangles.begin(), triangles.end());  // deterministic order
-  result.mesh.set_triangles(std::move(triangles));
+  PointStorage points(cells.ambient_dimension);
+  if (cells.take_centers) {
+    points = cells.take_centers(carries);
+  } else {
+    points.reserve(vertex_count);
+    for (int c = 0; c < cells.chart_count; ++c) {
+      if (carries[c]) {
+        points.push_back(cells.center(c));
+      }
+    }
+  }
+  result.mesh = TriangleMesh(std::move(points), std::move(triangles));
   return result;
 }
 

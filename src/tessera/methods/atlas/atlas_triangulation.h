@@ -25,6 +25,9 @@ struct AtlasCells {
   /// The chart's polygon is finished: every edge comes from a neighbour and every vertex lies
   /// inside its disk. Only holes surrounded by closed charts are filled.
   std::function<bool(int)> is_closed;
+  /// Optional: the centres of the charts marked, in chart order, handed over for the mesh's
+  /// vertices without a copy (the last use of the centres). Without it they are copied.
+  std::function<PointStorage(const std::vector<bool>&)> take_centers;
 };
 
 struct AtlasTriangulation {

@@ -173,6 +173,12 @@ std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& mesh) {
   return neighbours;
 }
 
+// Valid but for vertices no triangle uses (those cut or collapsed away, compacted later).
+bool is_valid_but_unreferenced(const MeshValidation& validation) {
+  return validation.defects.size() ==
+         static_cast<std::size_t>(validation.unreferenced_vertex_count > 0 ? 1 : 0);
+}
+
 // Records which bounding hyperplanes each vertex already lies on (to kOnFaceTolerance) and
 // puts it on them exactly.
 FaceSets faces_of_vertices(const Domain& domain, TriangleMesh& mesh) {
@@ -209,11 +215,35 @@ void compact(TriangleMesh& mesh, FaceSets& on_faces, const std::vector<bool>& ke
   on_faces = std::move(kept_faces);
 }
 
-// Clips to face k. Returns false (with `message` set) if a cut point cannot be found or a
-// triangle would fold; `mesh` is then left moved from (the caller passes its own attempt).
+// What an attempt at clipping changed, to undo it: the mesh's vertex count and triangles
+// before, and the old place of every vertex it moved (a copy of the mesh would be most of the
+// memory at large n).
+struct ClipUndo {
+  int vertex_count = 0;
+  std::vector<Triangle> triangles;
+  std::vector<std::pair<int, Eigen::VectorXd>> moved;
+
+  explicit ClipUndo(const TriangleMesh& mesh)
+      : vertex_count(mesh.vertex_count()), triangles(mesh.triangles()) {}
+  void move(TriangleMesh& mesh, int v, const Eigen::VectorXd& x) {
+    moved.emplace_back(v, mesh.point(v));
+    mesh.mutable_point(v) = x;
+  }
+  void undo(TriangleMesh& mesh) {
+    mesh.set_triangles(std::move(triangles));
+    mesh.truncate_vertices(vertex_count);
+    for (auto it = moved.rbegin(); it != moved.rend(); ++it) {
+      mesh.mutable_point(it->first) = it->second;
+    }
+  }
+};
+
+// Clips to face k, in place; the cut-away vertices are left unreferenced (compacted by the
+// caller once the result is accepted). Returns false (with `message` set) if a cut point cannot
+// be found or a triangle would fold; `undo` then restores the mesh.
 bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, double snap_distance,
                   const CorrectorOptions& corrector, TriangleMesh& mesh, FaceSets& on_faces,
-                  ClipSummary& summary) {
+                  ClipSummary& summary, ClipUndo& undo) {
   const int n = problem.ambient_dimension();
   const int m = problem.equation_count();
   OrientationGuard guard(problem, vertex_neighbours(mesh));
@@ -224,9 +254,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
                ? 0.0
                : domain.signed_distance(k, mesh.point(v));
   }
-  // The caller's `mesh` is its own attempt, replaced on success and dropped on failure: it is
-  // moved, not copied (at large n a copy of the mesh costs more than the clipping).
-  TriangleMesh work = std::move(mesh);
+  TriangleMesh& work = mesh;
   {
     // Room for the cut vertices (at most one per edge across the face, fewer than the
     // triangles across it), so that adding them does not double the mesh's storage.
@@ -330,7 +358,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       if (are_adjacent(v, occupant) && collapse_into[occupant] < 0 &&
           star_keeps_orientation(v, work.point(occupant), occupant)) {
         collapse_into[v] = occupant;
-        work.mutable_point(v) = work.point(occupant);  // later checks see where v went
+        undo.move(work, v, work.point(occupant));  // later checks see where v went
         d[v] = 0.0;
       }
       continue;
@@ -338,7 +366,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     if (!star_keeps_orientation(v, x, -1)) {
       continue;
     }
-    work.mutable_point(v) = x;
+    undo.move(work, v, x);
     work_faces[v] = faces;
     d[v] = 0.0;
     ++summary.snapped_vertices;
@@ -525,11 +553,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     summary.message = fold;
     return false;
   }
-  // 4. Compact in place: drop vertices no longer used.
-  const std::size_t kept_count = kept.size();
   work.set_triangles(std::move(kept));
-  compact(work, work_faces, std::vector<bool>(kept_count, true));
-  mesh = std::move(work);
   on_faces = std::move(work_faces);
   return true;
 }
@@ -605,12 +629,14 @@ int collapse_short_boundary_edges(const ImplicitProblem& problem, TriangleMesh& 
       }
       // The moved-away vertex is left unreferenced until the final compaction; every other
       // defect rejects the collapse.
-      const MeshValidation validation = validate(TriangleMesh(mesh.points(), triangles));
-      if (validation.defects.size() !=
-          static_cast<std::size_t>(validation.unreferenced_vertex_count > 0 ? 1 : 0)) {
+      // (judged on the mesh itself with the new triangles: a copy of its points per candidate
+      // would cost more than the collapse at large n)
+      std::vector<Triangle> before = mesh.triangles();
+      mesh.set_triangles(std::move(triangles));
+      if (!is_valid_but_unreferenced(validate(mesh))) {
+        mesh.set_triangles(std::move(before));
         continue;
       }
-      mesh.set_triangles(std::move(triangles));
       ++collapsed;
       changed = true;
       break;  // the topology changed: rebuild it
@@ -642,25 +668,27 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
     bool done = false;
     std::string failure;
     for (const double snap : {options.snap_distance, 0.0}) {
-      // Room for the cut vertices (one per edge across the face: a few per hundred vertices).
-      const int room = mesh.vertex_count() / 8 + 64;
-      TriangleMesh attempt = mesh.copy_with_room(room, 2 * room);
+      // Each attempt works on the mesh itself and is undone if it fails.
+      ClipUndo undo(mesh);
       FaceSets attempt_faces = on_faces;
       ClipSummary attempt_summary;
-      if (!clip_to_face(problem, domain, k, snap, options.corrector, attempt, attempt_faces,
-                        attempt_summary)) {
+      if (!clip_to_face(problem, domain, k, snap, options.corrector, mesh, attempt_faces,
+                        attempt_summary, undo)) {
+        undo.undo(mesh);
         failure = attempt_summary.message;
         continue;
       }
-      const MeshValidation validation = validate(attempt);
-      if (validation.is_valid()) {
-        mesh = std::move(attempt);
+      // The vertices cut away are unreferenced until the compaction below.
+      const MeshValidation validation = validate(mesh);
+      if (is_valid_but_unreferenced(validation)) {
+        compact(mesh, attempt_faces, std::vector<bool>(mesh.triangle_count(), true));
         on_faces = std::move(attempt_faces);
         summary.snapped_vertices += attempt_summary.snapped_vertices;
         summary.cut_edges += attempt_summary.cut_edges;
         done = true;
         break;
       }
+      undo.undo(mesh);
       failure = "clipping to the face " + describe_face(domain, k) +
                 " would leave an invalid mesh: " + validation.report();
     }

@@ -688,7 +688,7 @@ CoveringResult triangulate_by_front(const ImplicitProblem& problem, const Eigen:
                       [&options](CoveringContext& context, CoveringResult& result) {
                         FrontBuilder builder(context.problem, context.domain, options);
                         builder.run(context.start.x, context.start.linearization, result.summary);
-                        result.mesh = builder.state().to_mesh();
+                        result.mesh = builder.state().take_mesh();
                         context.boundary_edge_length = result.summary.step;
                         context.boundary_snap_fraction = options.boundary_snap_fraction;
                       });

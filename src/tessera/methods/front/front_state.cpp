@@ -32,11 +32,13 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 }  // namespace
 
 FrontState::FrontState(int ambient_dimension, double grid_cell)
-    : dimension_(ambient_dimension), grid_(ambient_dimension, grid_cell) {}
+    : dimension_(ambient_dimension),
+      coordinates_(ambient_dimension),
+      grid_(ambient_dimension, grid_cell) {}
 
 int FrontState::add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexType type) {
   const int v = static_cast<int>(types_.size());
-  coordinates_.insert(coordinates_.end(), x.data(), x.data() + dimension_);
+  coordinates_.push_back(x);
   types_.push_back(type);
   incident_.emplace_back();
   grid_.insert(v, x);
@@ -313,8 +315,7 @@ void FrontState::identify(int a, int b, const Eigen::Ref<const Eigen::VectorXd>&
   incident_[b].clear();
   grid_.remove(b, point(b));
   grid_.remove(a, point(a));
-  std::copy(position.data(), position.data() + dimension_,
-            coordinates_.begin() + static_cast<std::ptrdiff_t>(a) * dimension_);
+  coordinates_.column(a) = position;
   grid_.insert(a, position);
   const bool either_frontal = types_[a] == VertexType::Frontal || types_[b] == VertexType::Frontal;
   set_type(b, VertexType::Removed);
@@ -474,9 +475,8 @@ int FrontState::drop_pinched_fans() {
   return removed;
 }
 
-TriangleMesh FrontState::to_mesh() const {
+TriangleMesh FrontState::take_mesh() {
   std::vector<int> new_index(types_.size(), -1);
-  TriangleMesh mesh(dimension_);
   for (const Triangle& t : triangles_) {
     if (t[0] < 0) {
       continue;  // removed
@@ -487,17 +487,23 @@ TriangleMesh FrontState::to_mesh() const {
       }
     }
   }
+  int kept = 0;
   for (std::size_t v = 0; v < types_.size(); ++v) {
     if (new_index[v] == 0 && types_[v] != VertexType::Removed) {
-      new_index[v] = mesh.add_vertex(point(static_cast<int>(v)));
+      coordinates_.move_column(static_cast<int>(v), kept);
+      new_index[v] = kept++;
+    } else {
+      new_index[v] = -1;
     }
   }
+  coordinates_.resize(kept);
+  std::vector<Triangle> triangles;
   for (const Triangle& t : triangles_) {
     if (t[0] >= 0) {
-      mesh.add_triangle(new_index[t[0]], new_index[t[1]], new_index[t[2]]);
+      triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
     }
   }
-  return mesh;
+  return TriangleMesh(std::move(coordinates_), std::move(triangles));
 }
 
 }  // namespace tessera

@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "tessera/core/point_storage.h"
 #include "tessera/geometry/triangle_mesh.h"
 #include "tessera/methods/common/point_grid.h"
 
@@ -31,9 +32,7 @@ class FrontState {
   int add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexType type);
   int add_triangle(int a, int b, int c);
 
-  Eigen::Map<const Eigen::VectorXd> point(int v) const {
-    return {coordinates_.data() + static_cast<std::ptrdiff_t>(v) * dimension_, dimension_};
-  }
+  Eigen::Map<const Eigen::VectorXd> point(int v) const { return coordinates_.column(v); }
   VertexType type(int v) const { return types_[v]; }
   void set_type(int v, VertexType type);
 
@@ -84,15 +83,16 @@ class FrontState {
   /// Only removes triangles, so no overlap can appear. Returns the number removed.
   int drop_pinched_fans();
 
-  /// The live part as a compact TriangleMesh (unreferenced vertices dropped).
-  TriangleMesh to_mesh() const;
+  /// The live part as a compact TriangleMesh (unreferenced vertices dropped). The points are
+  /// handed over, compacted in place, not copied: the state has none afterwards.
+  TriangleMesh take_mesh();
 
  private:
   int edge_triangle_count(int a, int b) const;
   bool has_directed_edge(int a, int b) const;
 
   int dimension_;
-  std::vector<double> coordinates_;
+  PointStorage coordinates_;
   std::vector<VertexType> types_;
   std::vector<std::vector<int>> incident_;  // vertex → triangles
   std::vector<Triangle> triangles_;
