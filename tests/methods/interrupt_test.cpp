@@ -151,6 +151,59 @@ TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
   EXPECT_GT(refined.summary.refined_edges, 0);
 }
 
+// A stop during clipping (at n = 10⁵ each projection onto a face costs a factorisation; the
+// clipping of bratu2d:N=316 took minutes): no more projections, the triangles outside the faces
+// not yet clipped are removed, and the mesh is valid, inside the domain and says why its
+// boundary is ragged.
+TEST(StopRequest, StopDuringClippingLeavesAValidMeshInsideTheDomain) {
+  const ProblemSetup setup = make_catalogue_problem("sphere_cut");
+  const CoveringMethod& atlas = find_covering_method("atlas");
+  MethodSettings settings;
+  int build_polls = 0;
+  settings.stop_requested = [&build_polls] {
+    ++build_polls;
+    return false;
+  };
+  settings.tolerance = 0;  // the tolerance check polls too; without it only build and clip do
+  const CoveringResult whole = cover(setup, atlas, settings);
+  ASSERT_TRUE(whole.summary.is_complete()) << whole.summary.message;
+  ASSERT_GT(whole.summary.clipped_half_spaces, 0);
+
+  // build_polls counts the polls of the build, the clipping and the swaps after it, in that
+  // order. A stop after k polls lands past the build exactly when k is at least the build's
+  // count: found by bisection.
+  const auto stop_after = [&](int k, int& polls) {
+    polls = 0;
+    settings.stop_requested = [&polls, k] { return ++polls > k; };
+    return cover(setup, atlas, settings);
+  };
+  const auto says = [](const CoveringResult& result, const char* where) {
+    return result.summary.message.find(where) != std::string::npos;
+  };
+  int polls = 0;
+  int low = 0;                 // stops in the build
+  int high = build_polls - 1;  // stops after it
+  ASSERT_FALSE(says(stop_after(low, polls), "clipping"));
+  while (high - low > 1) {
+    const int middle = (low + high) / 2;
+    const CoveringResult stopped = stop_after(middle, polls);
+    (says(stopped, "clipping") || says(stopped, "improving") ? high : low) = middle;
+  }
+  // The first poll after the build is the clipping's, before its first projection.
+  const int stop = high;
+  const CoveringResult stopped = stop_after(stop, polls);
+  EXPECT_EQ(stopped.summary.termination, CoveringTermination::Interrupted);
+  EXPECT_TRUE(says(stopped, "clipping")) << stopped.summary.message;
+  EXPECT_EQ(polls, stop + 1);  // not asked again after the first `true`
+  const MeshValidation validation = validate(stopped.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+  EXPECT_EQ(validation.vertex_outside_domain_count, 0);
+  EXPECT_FALSE(validation.is_closed());
+  // Only the band across the face is lost, not the cap.
+  EXPECT_GT(stopped.mesh.triangle_count(), whole.mesh.triangle_count() * 8 / 10);
+  EXPECT_LT(stopped.mesh.triangle_count(), whole.mesh.triangle_count());
+}
+
 // A hook that says stop at once still leaves a summary and a valid (possibly tiny) mesh.
 TEST(StopRequest, StopAtTheFirstPollIsAnOutcomeForEveryMethod) {
   const ProblemSetup setup = make_catalogue_problem("sphere");

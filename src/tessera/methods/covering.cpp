@@ -49,15 +49,28 @@ void fail(CoveringSummary& summary, CoveringTermination termination, const std::
 }
 
 // Step 5: the mesh clipped to S, snapping and collapsing at the build's boundary edge length.
-void clip(const CoveringContext& context, const CoveringOptions& options, CoveringResult& result,
+// \return false if a stop request ended it (the mesh is valid and inside S, its boundary
+// ragged where the clipping did not get to).
+bool clip(const CoveringContext& context, const CoveringOptions& options, CoveringResult& result,
           std::string& refusal) {
   ClipOptions clip;
   clip.snap_distance = context.boundary_snap_fraction * context.boundary_edge_length;
   clip.min_boundary_edge = 0.2 * context.boundary_edge_length;
   clip.corrector = options.corrector;
+  // After a stop in the build, no projection at all (and the request is not polled again).
+  clip.stop_requested = result.summary.termination == CoveringTermination::Interrupted
+                            ? StopRequest([] { return true; })
+                            : options.stop_requested;
   const ClipSummary clipped = clip_to_domain(context.problem, context.domain, result.mesh, clip);
   result.summary.clipped_half_spaces = clipped.half_spaces_crossed;
   refusal = clipped.message;
+  if (clipped.interrupted) {
+    fail(result.summary, CoveringTermination::Interrupted,
+         "interrupted while clipping to the domain: the triangles outside the faces not yet "
+         "clipped were removed, so the boundary there is ragged, not on M ∩ ∂S");
+    return false;
+  }
+  return true;
 }
 
 // Post-condition of a completed run, checked rather than assumed: on a closed surface the mesh
@@ -371,8 +384,8 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
     if (!domain.is_unbounded() && context.boundary_edge_length > 0 &&
         result.mesh.triangle_count() > 0) {
       std::string refusal;
-      clip(context, options, result, refusal);
-      if (!refusal.empty() && context.retry_if_clipping_fails) {
+      const bool clipped = clip(context, options, result, refusal);
+      if (clipped && !refusal.empty() && context.retry_if_clipping_fails) {
         context.attempt = 1;
         result = CoveringResult();
         result.mesh = TriangleMesh(n);
@@ -386,7 +399,8 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
       if (!refusal.empty()) {
         fail(summary, CoveringTermination::ProjectionFailed, refusal);
       }
-      if (context.swap_after_clipping && result.mesh.triangle_count() > 0) {
+      if (context.swap_after_clipping && result.mesh.triangle_count() > 0 &&
+          summary.termination != CoveringTermination::Interrupted) {
         // Clipping leaves poor angles at ∂S that swaps in the tangent planes repair. A stop
         // request ends them (the mesh is valid after every swap): they are an improvement.
         ImprovementOptions swaps;

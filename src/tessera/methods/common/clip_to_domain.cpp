@@ -242,8 +242,14 @@ struct ClipUndo {
 // caller once the result is accepted). Returns false (with `message` set) if a cut point cannot
 // be found or a triangle would fold; `undo` then restores the mesh.
 bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, double snap_distance,
-                  const CorrectorOptions& corrector, TriangleMesh& mesh, FaceSets& on_faces,
+                  const ClipOptions& options, TriangleMesh& mesh, FaceSets& on_faces,
                   ClipSummary& summary, ClipUndo& undo) {
+  const CorrectorOptions& corrector = options.corrector;
+  const auto is_stopped = [&] {
+    summary.interrupted = summary.interrupted ||
+                          (options.stop_requested && options.stop_requested());
+    return summary.interrupted;
+  };
   const int n = problem.ambient_dimension();
   const int m = problem.equation_count();
   OrientationGuard guard(problem, vertex_neighbours(mesh));
@@ -343,6 +349,10 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
         distance_along_mesh(v) >= 3 * snap_distance) {
       continue;
     }
+    if (is_stopped()) {
+      summary.message = "interrupted";
+      return false;
+    }
     std::vector<int> faces = work_faces[v];
     faces.push_back(k);
     std::sort(faces.begin(), faces.end());
@@ -393,6 +403,10 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       const auto key = std::minmax(u, w);
       if (cut_vertex.count(key)) {
         continue;
+      }
+      if (is_stopped()) {
+        summary.message = "interrupted";
+        return false;
       }
       const double s = d[u] / (d[u] - d[w]);
       Eigen::VectorXd x = (1 - s) * work.point(u) + s * work.point(w);
@@ -653,6 +667,11 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
   const int face_count = static_cast<int>(domain.half_spaces().size());
   FaceSets on_faces = faces_of_vertices(domain, mesh);
   for (int k = 0; k < face_count; ++k) {
+    if (summary.interrupted) {
+      // No more projections after a stop: the triangles outside the faces left are removed.
+      drop_outside(domain, k, mesh, on_faces);
+      continue;
+    }
     bool crosses = false;
     for (int v = 0; v < mesh.vertex_count() && !crosses; ++v) {
       crosses = !std::binary_search(on_faces[v].begin(), on_faces[v].end(), k) &&
@@ -672,9 +691,13 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
       ClipUndo undo(mesh);
       FaceSets attempt_faces = on_faces;
       ClipSummary attempt_summary;
-      if (!clip_to_face(problem, domain, k, snap, options.corrector, mesh, attempt_faces,
-                        attempt_summary, undo)) {
+      if (!clip_to_face(problem, domain, k, snap, options, mesh, attempt_faces, attempt_summary,
+                        undo)) {
         undo.undo(mesh);
+        if (attempt_summary.interrupted) {
+          summary.interrupted = true;
+          break;
+        }
         failure = attempt_summary.message;
         continue;
       }
@@ -694,14 +717,14 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
     }
     if (!done) {
       drop_outside(domain, k, mesh, on_faces);
-      if (summary.message.empty()) {
+      if (summary.message.empty() && !summary.interrupted) {
         summary.message = failure +
                           "; the triangles across that face were removed instead (try a smaller "
                           "step)";
       }
     }
   }
-  if (options.min_boundary_edge > 0 && summary.half_spaces_crossed > 0) {
+  if (options.min_boundary_edge > 0 && summary.half_spaces_crossed > 0 && !summary.interrupted) {
     summary.collapsed_edges =
         collapse_short_boundary_edges(problem, mesh, on_faces, options.min_boundary_edge);
     // Collapsing leaves the moved-away vertices unused: drop them.

@@ -2,6 +2,7 @@
 // Clipping a mesh of M to a polyhedral domain so that its boundary lies on M ∩ ∂S.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,11 @@ struct ClipOptions {
   /// cut can still leave a vertex a hair from a corner); 0 disables.
   double min_boundary_edge = 0.0;
   CorrectorOptions corrector;
+  /// Polled before every projection onto a face (at large n each costs a factorisation or a
+  /// few solves). A stop ends the clipping without more projections: the face being clipped
+  /// and those left are cut by removing the triangles outside them (as when a face cannot be
+  /// clipped), so the mesh stays valid and inside S; its boundary there is ragged.
+  std::function<bool()> stop_requested;
 };
 
 struct ClipSummary {
@@ -31,6 +37,7 @@ struct ClipSummary {
   /// Non-empty if a face could not be clipped: the triangles across it were removed instead
   /// (the mesh stays valid and inside S; its boundary there is not on M ∩ ∂S). Names the place.
   std::string message;
+  bool interrupted = false;  ///< stop_requested ended the clipping (see ClipOptions)
 };
 
 /// Clips `mesh` (vertices on M) to S = ∩ half-spaces, one face at a time ("snap, then cut"):
