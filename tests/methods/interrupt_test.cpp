@@ -31,6 +31,14 @@ std::string name_of(const ::testing::TestParamInfo<InterruptCase>& info) {
 
 class StopHook : public ::testing::TestWithParam<InterruptCase> {};
 
+// A hook that never says stop and counts how often it is asked.
+StopRequest counting_polls(int& polls) {
+  return [&polls] {
+    ++polls;
+    return false;
+  };
+}
+
 TEST_P(StopHook, StopsWithAValidPartialMesh) {
   const InterruptCase& param = GetParam();
   const ProblemSetup setup = make_catalogue_problem(param.problem);
@@ -39,10 +47,7 @@ TEST_P(StopHook, StopsWithAValidPartialMesh) {
   // The whole run, for comparison; a hook that never says stop changes nothing.
   MethodSettings settings;
   int polls_of_whole_run = 0;
-  settings.stop_requested = [&polls_of_whole_run] {
-    ++polls_of_whole_run;
-    return false;
-  };
+  settings.stop_requested = counting_polls(polls_of_whole_run);
   const CoveringResult whole = cover(setup, method, settings);
   ASSERT_TRUE(whole.summary.is_complete()) << whole.summary.message;
   // The hook is polled about once per vertex (or chart), so stopping after k polls leaves a
@@ -116,10 +121,7 @@ TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
   const CoveringMethod& front = find_covering_method("front");
   MethodSettings settings;
   int build_polls = 0;
-  settings.stop_requested = [&build_polls] {
-    ++build_polls;
-    return false;
-  };
+  settings.stop_requested = counting_polls(build_polls);
   const CoveringResult built = cover(setup, front, settings);
   ASSERT_TRUE(built.summary.is_complete()) << built.summary.message;
 
@@ -160,10 +162,7 @@ TEST(StopRequest, StopDuringClippingLeavesAValidMeshInsideTheDomain) {
   const CoveringMethod& atlas = find_covering_method("atlas");
   MethodSettings settings;
   int build_polls = 0;
-  settings.stop_requested = [&build_polls] {
-    ++build_polls;
-    return false;
-  };
+  settings.stop_requested = counting_polls(build_polls);
   settings.tolerance = 0;  // the tolerance check polls too; without it only build and clip do
   const CoveringResult whole = cover(setup, atlas, settings);
   ASSERT_TRUE(whole.summary.is_complete()) << whole.summary.message;

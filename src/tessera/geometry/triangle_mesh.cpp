@@ -29,17 +29,6 @@ int TriangleMesh::add_triangle(int a, int b, int c) {
   return triangle_count() - 1;
 }
 
-TriangleMesh TriangleMesh::copy_with_room(int extra_vertices, int extra_triangles) const {
-  TriangleMesh copy(ambient_dimension());
-  copy.reserve(vertex_count() + extra_vertices, triangle_count() + extra_triangles);
-  copy.points_.resize(vertex_count());
-  if (vertex_count() > 0) {
-    std::copy(points_.data(), points_.data() + points().size(), copy.points_.data());
-  }
-  copy.triangles_.assign(triangles_.begin(), triangles_.end());
-  return copy;
-}
-
 void TriangleMesh::reserve(int vertices, int triangles) {
   points_.reserve(vertices);
   triangles_.reserve(triangles);

@@ -45,9 +45,6 @@ class TriangleMesh {
   /// Replaces all triangles.
   void set_triangles(std::vector<Triangle> triangles) { triangles_ = std::move(triangles); }
   void reserve(int vertices, int triangles);
-  /// A copy with room for `extra_vertices` and `extra_triangles` more, so that growing it does
-  /// not copy it again (at large n the vertices are most of the memory).
-  TriangleMesh copy_with_room(int extra_vertices, int extra_triangles) const;
   /// Drops the vertices from index `count` on (the last ones added), e.g. to undo an attempt.
   /// \pre no triangle refers to them.
   void truncate_vertices(int count);

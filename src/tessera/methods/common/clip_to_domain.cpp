@@ -19,22 +19,22 @@
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/geometry/pinched_vertices.h"
+#include "tessera/methods/common/detail/orientation_guard.h"
 
 namespace tessera {
 
 namespace {
 
 using FaceSets = std::vector<std::vector<int>>;  // per vertex: sorted faces it lies on
-using Corners = std::array<Eigen::VectorXd, 3>;
+using detail::Corners;
+using detail::OrientationGuard;
+using detail::corners;
+using detail::vertex_neighbours;
 
 // A vertex within this distance (relative to 1 + |x|) of a bounding hyperplane lies on it: the
 // methods' own boundary snapping (the atlas's chart centres, refinement midpoints) leaves
 // vertices there to corrector tolerance, and they must count as on the face, not across it.
 constexpr double kOnFaceTolerance = 1e-9;
-// A triangle that clipping reshapes must keep twice its area, projected onto the tangent plane
-// of M, above this fraction of its longest edge squared: positively oriented, not degenerate.
-constexpr double kMinAreaRatio = 1e-6;
-
 // A vertex already at the corner point x of M ∩ (the faces), or −1. Two vertices snapped or cut
 // onto the same corner would make a zero-area triangle.
 int find_corner(const TriangleMesh& mesh, const FaceSets& vertex_faces,
@@ -51,126 +51,6 @@ std::vector<int> common_faces(const std::vector<int>& a, const std::vector<int>&
   std::vector<int> result;
   std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(result));
   return result;
-}
-
-Corners corners(const TriangleMesh& mesh, const Triangle& t) {
-  return {mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2])};
-}
-
-// Twice the signed area of the triangle projected onto span T (T: n×2).
-double projected_area(const Eigen::MatrixXd& T, const Corners& p) {
-  const Eigen::Vector2d a = T.transpose() * (p[1] - p[0]);
-  const Eigen::Vector2d b = T.transpose() * (p[2] - p[0]);
-  return a(0) * b(1) - a(1) * b(0);
-}
-
-// The orientation check of every change the clipping makes. All corners lie on M, within a
-// step or two of each other, so projecting onto the tangent plane at one of them preserves
-// orientation; the basis's own orientation does not matter, only that before and after agree.
-// Tangent planes are taken at mesh vertices and kept (n×2 each, for the few vertices near a
-// face): a factorisation per vertex, not per change, and the last one also serves the chord
-// projections onto the faces near that vertex.
-class OrientationGuard {
- public:
-  /// `neighbours[v]`: the vertices sharing a triangle with v when the clipping began.
-  OrientationGuard(const ImplicitProblem& problem, std::vector<std::vector<int>> neighbours)
-      : problem_(problem),
-        shares_factorisations_(problem.has_sparse_jacobian()),
-        neighbours_(std::move(neighbours)),
-        kept_(kMaxKept, kMaxKeptBytes) {}
-
-  /// A factorisation of DF at vertex v (at x, its point) or, for sparse problems, at one of its
-  /// neighbours (the chord from there converges as well, and one factorisation serves the
-  /// vertices around it); null where DF is rank deficient. Valid until the next call.
-  const Linearization* at_vertex(int v, const Eigen::VectorXd& x) {
-    if (const Linearization* own = cached(v)) {
-      return own;
-    }
-    if (shares_factorisations_ && v < static_cast<int>(neighbours_.size())) {
-      for (int u : neighbours_[v]) {
-        if (const Linearization* near = cached(u)) {
-          return near;
-        }
-      }
-    }
-    return factor_at(v, x);
-  }
-
-  /// True if `after` (a reshaped or cut part of `before`) has before's orientation in the
-  /// tangent plane of M at vertex v (point x, near the corners) and is not degenerate there.
-  /// Where DF is rank deficient there is no tangent plane: the change is refused.
-  bool keeps_orientation(int v, const Eigen::VectorXd& x, const Corners& before,
-                         const Corners& after) {
-    auto found = tangents_.find(v);
-    if (found == tangents_.end()) {
-      // A neighbour's factorisation gives the plane by tangent_basis_near (one DF, a few
-      // solves); the vertex's own where that does not converge.
-      const Linearization* near = at_vertex(v, x);
-      Eigen::MatrixXd T;
-      const bool is_own = near != nullptr && near->point() == x;
-      if (near == nullptr ||
-          (!is_own && !tangent_basis_near(problem_, *near, x, T, kNearTangentTolerance))) {
-        near = factor_at(v, x);
-        if (near == nullptr) {
-          return false;
-        }
-        T = near->tangent_basis();
-      } else if (is_own) {
-        T = near->tangent_basis();
-      }
-      found = tangents_.emplace(v, std::move(T)).first;
-    }
-    const Eigen::MatrixXd& T = found->second;
-    const double area_before = projected_area(T, before);
-    const double area_after = projected_area(T, after);
-    double longest = 0.0;
-    for (int r = 0; r < 3; ++r) {
-      longest = std::max(longest, (after[(r + 1) % 3] - after[r]).squaredNorm());
-    }
-    return area_before * area_after > 0 && std::abs(area_after) > kMinAreaRatio * longest;
-  }
-
- private:
-  // The orientation test needs the planes to a few digits only.
-  static constexpr double kNearTangentTolerance = 1e-6;
-  // Factorisations kept at once: the most recent, up to 64 and 256 MB (at n = 10⁵ on a 2-D grid
-  // one holds about 100 MB, so there only the last two are kept).
-  static constexpr std::size_t kMaxKept = 64;
-  static constexpr std::size_t kMaxKeptBytes = std::size_t{256} << 20;
-
-  const Linearization* cached(int v) const {
-    const Linearization* found = kept_.find(v);
-    return found != nullptr && found->is_factored() ? found : nullptr;
-  }
-  const Linearization* factor_at(int v, const Eigen::VectorXd& x) {
-    const Linearization* linearization = kept_.factor(v, problem_, x);
-    if (linearization != nullptr) {
-      tangents_.emplace(v, linearization->tangent_basis());
-    }
-    return linearization;
-  }
-
-  const ImplicitProblem& problem_;
-  const bool shares_factorisations_;
-  std::vector<std::vector<int>> neighbours_;
-  FactorisationCache kept_;
-  std::unordered_map<int, Eigen::MatrixXd> tangents_;
-};
-
-// The vertices that share a triangle with each vertex.
-std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& mesh) {
-  std::vector<std::vector<int>> neighbours(mesh.vertex_count());
-  for (const Triangle& t : mesh.triangles()) {
-    for (int r = 0; r < 3; ++r) {
-      neighbours[t[r]].push_back(t[(r + 1) % 3]);
-      neighbours[t[r]].push_back(t[(r + 2) % 3]);
-    }
-  }
-  for (auto& list : neighbours) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
-  return neighbours;
 }
 
 // Valid but for vertices no triangle uses (those cut or collapsed away, compacted later).
@@ -260,17 +140,16 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
                ? 0.0
                : domain.signed_distance(k, mesh.point(v));
   }
-  TriangleMesh& work = mesh;
   {
     // Room for the cut vertices (at most one per edge across the face, fewer than the
     // triangles across it), so that adding them does not double the mesh's storage.
     int across = 0;
-    for (const Triangle& t : work.triangles()) {
+    for (const Triangle& t : mesh.triangles()) {
       const double low = std::min({d[t[0]], d[t[1]], d[t[2]]});
       const double high = std::max({d[t[0]], d[t[1]], d[t[2]]});
       across += low < 0 && high > 0 ? 1 : 0;
     }
-    work.reserve(vertex_count + 2 * across + 16, work.triangle_count() + 2 * across + 16);
+    mesh.reserve(vertex_count + 2 * across + 16, mesh.triangle_count() + 2 * across + 16);
   }
   auto work_faces = on_faces;
   // After v moves onto the face, only triangles with another vertex strictly inside are kept;
@@ -289,14 +168,14 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   //    fold a triangle around the vertex (two neighbours snapped onto nearly the same point of
   //    M ∩ face, or a face meeting M at a shallow angle) is not made; the cut handles it.
   std::vector<std::vector<int>> vertex_triangles(vertex_count);
-  for (int t = 0; t < work.triangle_count(); ++t) {
-    for (int v : work.triangle(t)) {
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    for (int v : mesh.triangle(t)) {
       vertex_triangles[v].push_back(t);
     }
   }
   const auto are_adjacent = [&](int a, int b) {
     for (int t : vertex_triangles[a]) {
-      const Triangle& tri = work.triangle(t);
+      const Triangle& tri = mesh.triangle(t);
       if (tri[0] == b || tri[1] == b || tri[2] == b) {
         return true;
       }
@@ -307,19 +186,19 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   // kept triangle around v oriented.
   const auto star_keeps_orientation = [&](int v, const Eigen::VectorXd& x, int merged) {
     for (int t : vertex_triangles[v]) {
-      const Triangle& tri = work.triangle(t);
+      const Triangle& tri = mesh.triangle(t);
       if (!is_kept_without(tri, v) ||
           (merged >= 0 && (tri[0] == merged || tri[1] == merged || tri[2] == merged))) {
         continue;
       }
-      const Corners before = corners(work, tri);
+      const Corners before = corners(mesh, tri);
       Corners after = before;
       for (int r = 0; r < 3; ++r) {
         if (tri[r] == v) {
           after[r] = x;
         }
       }
-      if (!guard.keeps_orientation(v, work.point(v), before, after)) {
+      if (!guard.keeps_orientation(v, mesh.point(v), before, after)) {
         return false;
       }
     }
@@ -333,9 +212,9 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   const auto distance_along_mesh = [&](int v) {
     double rate = 0.0;
     for (int t : vertex_triangles[v]) {
-      for (int w : work.triangle(t)) {
+      for (int w : mesh.triangle(t)) {
         if (w != v) {
-          const double length = (work.point(w) - work.point(v)).norm();
+          const double length = (mesh.point(w) - mesh.point(v)).norm();
           if (length > 0) {
             rate = std::max(rate, std::abs(d[v] - d[w]) / length);
           }
@@ -356,19 +235,19 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     std::vector<int> faces = work_faces[v];
     faces.push_back(k);
     std::sort(faces.begin(), faces.end());
-    Eigen::VectorXd x = work.point(v);
+    Eigen::VectorXd x = mesh.point(v);
     const bool is_corner = static_cast<int>(faces.size()) + m == n;
     if (!project_onto_faces(problem, domain, faces, x, 3 * snap_distance, corrector, nullptr,
                             guard.at_vertex(v, x)) ||
         !domain.contains(x, 1e-9)) {
       continue;
     }
-    const int occupant = is_corner ? find_corner(work, work_faces, faces, x) : -1;
+    const int occupant = is_corner ? find_corner(mesh, work_faces, faces, x) : -1;
     if (occupant >= 0) {
       if (are_adjacent(v, occupant) && collapse_into[occupant] < 0 &&
-          star_keeps_orientation(v, work.point(occupant), occupant)) {
+          star_keeps_orientation(v, mesh.point(occupant), occupant)) {
         collapse_into[v] = occupant;
-        undo.move(work, v, work.point(occupant));  // later checks see where v went
+        undo.move(mesh, v, mesh.point(occupant));  // later checks see where v went
         d[v] = 0.0;
       }
       continue;
@@ -376,13 +255,13 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     if (!star_keeps_orientation(v, x, -1)) {
       continue;
     }
-    undo.move(work, v, x);
+    undo.move(mesh, v, x);
     work_faces[v] = faces;
     d[v] = 0.0;
     ++summary.snapped_vertices;
   }
   std::vector<Triangle> collapsed;
-  for (Triangle t : work.triangles()) {
+  for (Triangle t : mesh.triangles()) {
     for (int& v : t) {
       v = collapse_into[v] >= 0 ? collapse_into[v] : v;
     }
@@ -390,10 +269,10 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       collapsed.push_back(t);
     }
   }
-  work.set_triangles(std::move(collapsed));
+  mesh.set_triangles(std::move(collapsed));
   // 2. Cut points on the edges that still cross the face.
   std::map<std::pair<int, int>, int> cut_vertex;
-  for (const Triangle& t : work.triangles()) {
+  for (const Triangle& t : mesh.triangles()) {
     for (int r = 0; r < 3; ++r) {
       int u = t[r];
       int w = t[(r + 1) % 3];
@@ -409,18 +288,18 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
         return false;
       }
       const double s = d[u] / (d[u] - d[w]);
-      Eigen::VectorXd x = (1 - s) * work.point(u) + s * work.point(w);
+      Eigen::VectorXd x = (1 - s) * mesh.point(u) + s * mesh.point(w);
       std::vector<int> faces = common_faces(work_faces[u], work_faces[w]);
       faces.push_back(k);
       std::sort(faces.begin(), faces.end());
-      const double edge_length = (work.point(u) - work.point(w)).norm();
+      const double edge_length = (mesh.point(u) - mesh.point(w)).norm();
       const int inside = d[u] > 0 ? u : w;
-      const Linearization* near = guard.at_vertex(inside, work.point(inside));
+      const Linearization* near = guard.at_vertex(inside, mesh.point(inside));
       if (!project_onto_faces(problem, domain, faces, x, edge_length, corrector, nullptr, near)) {
         std::ostringstream message;
         message << "cannot clip the mesh to the face " << describe_face(domain, k)
                 << ": no point of M on the face near the edge from "
-                << describe_point(work.point(u)) << " to " << describe_point(work.point(w));
+                << describe_point(mesh.point(u)) << " to " << describe_point(mesh.point(w));
         summary.message = message.str();
         return false;
       }
@@ -459,12 +338,12 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       // Where the face meets an earlier face, M ∩ both is a point (a corner of the clipped
       // surface): reuse the corner vertex if one is already there, else the corner doubles.
       const int existing =
-          static_cast<int>(faces.size()) + m == n ? find_corner(work, work_faces, faces, x) : -1;
+          static_cast<int>(faces.size()) + m == n ? find_corner(mesh, work_faces, faces, x) : -1;
       if (existing >= 0) {
         cut_vertex[key] = existing;
         continue;
       }
-      cut_vertex[key] = work.add_vertex(x);
+      cut_vertex[key] = mesh.add_vertex(x);
       work_faces.push_back(faces);
       d.push_back(0.0);
       ++summary.cut_edges;
@@ -482,7 +361,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     while (polygon.size() > 1 && polygon.front() == polygon.back()) {
       polygon.pop_back();
     }
-    const Corners before = corners(work, parent);
+    const Corners before = corners(mesh, parent);
     int reference = parent[0];
     for (int r = 0; r < 3; ++r) {
       if (d[parent[r]] > 0) {
@@ -491,8 +370,8 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       }
     }
     const auto fits = [&](const Triangle& child) {
-      return guard.keeps_orientation(reference, work.point(reference), before,
-                                     corners(work, child));
+      return guard.keeps_orientation(reference, mesh.point(reference), before,
+                                     corners(mesh, child));
     };
     if (polygon.size() == 3) {
       const Triangle child{polygon[0], polygon[1], polygon[2]};
@@ -511,7 +390,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
         if (!fits(split[0]) || !fits(split[1])) {
           continue;
         }
-        const double angle = std::min(min_angle(work, split[0]), min_angle(work, split[1]));
+        const double angle = std::min(min_angle(mesh, split[0]), min_angle(mesh, split[1]));
         if (angle > best_angle) {
           best = i;
           best_angle = angle;
@@ -533,7 +412,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       fold = message.str();
     }
   };
-  for (const Triangle& t : work.triangles()) {
+  for (const Triangle& t : mesh.triangles()) {
     int outside = 0;
     int inside = 0;
     for (int v : t) {
@@ -567,7 +446,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     summary.message = fold;
     return false;
   }
-  work.set_triangles(std::move(kept));
+  mesh.set_triangles(std::move(kept));
   on_faces = std::move(work_faces);
   return true;
 }

@@ -32,8 +32,7 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 }  // namespace
 
 FrontState::FrontState(int ambient_dimension, double grid_cell)
-    : dimension_(ambient_dimension),
-      coordinates_(ambient_dimension),
+    : coordinates_(ambient_dimension),
       grid_(ambient_dimension, grid_cell) {}
 
 int FrontState::add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexType type) {

@@ -91,7 +91,6 @@ class FrontState {
   int edge_triangle_count(int a, int b) const;
   bool has_directed_edge(int a, int b) const;
 
-  int dimension_;
   PointStorage coordinates_;
   std::vector<VertexType> types_;
   std::vector<std::vector<int>> incident_;  // vertex → triangles

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: MIT
+#include "tessera/methods/common/detail/orientation_guard.h"
+
+#include <algorithm>
+#include <cmath>
+
+
+namespace tessera::detail {
+namespace {
+
+// Twice the signed area of the triangle projected onto span T (T: n×2).
+double projected_area(const Eigen::MatrixXd& T, const Corners& p) {
+  const Eigen::Vector2d a = T.transpose() * (p[1] - p[0]);
+  const Eigen::Vector2d b = T.transpose() * (p[2] - p[0]);
+  return a(0) * b(1) - a(1) * b(0);
+}
+
+}  // namespace
+
+Corners corners(const TriangleMesh& mesh, const Triangle& t) {
+  return {mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2])};
+}
+
+std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& mesh) {
+  std::vector<std::vector<int>> neighbours(mesh.vertex_count());
+  for (const Triangle& t : mesh.triangles()) {
+    for (int r = 0; r < 3; ++r) {
+      neighbours[t[r]].push_back(t[(r + 1) % 3]);
+      neighbours[t[r]].push_back(t[(r + 2) % 3]);
+    }
+  }
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return neighbours;
+}
+
+OrientationGuard::OrientationGuard(const ImplicitProblem& problem,
+                                   std::vector<std::vector<int>> neighbours)
+    : problem_(problem),
+      shares_factorisations_(problem.has_sparse_jacobian()),
+      neighbours_(std::move(neighbours)),
+      kept_(kMaxKept, kMaxKeptBytes) {}
+
+const Linearization* OrientationGuard::at_vertex(int v, const Eigen::VectorXd& x) {
+  if (const Linearization* own = cached(v)) {
+    return own;
+  }
+  if (shares_factorisations_ && v < static_cast<int>(neighbours_.size())) {
+    for (int u : neighbours_[v]) {
+      if (const Linearization* near = cached(u)) {
+        return near;
+      }
+    }
+  }
+  return factor_at(v, x);
+}
+
+bool OrientationGuard::keeps_orientation(int v, const Eigen::VectorXd& x, const Corners& before,
+                                         const Corners& after) {
+  auto found = tangents_.find(v);
+  if (found == tangents_.end()) {
+    // A neighbour's factorisation gives the plane by tangent_basis_near (one DF, a few
+    // solves); the vertex's own where that does not converge.
+    const Linearization* near = at_vertex(v, x);
+    Eigen::MatrixXd T;
+    const bool is_own = near != nullptr && near->point() == x;
+    if (near == nullptr ||
+        (!is_own && !tangent_basis_near(problem_, *near, x, T, kNearTangentTolerance))) {
+      near = factor_at(v, x);
+      if (near == nullptr) {
+        return false;
+      }
+      T = near->tangent_basis();
+    } else if (is_own) {
+      T = near->tangent_basis();
+    }
+    found = tangents_.emplace(v, std::move(T)).first;
+  }
+  const Eigen::MatrixXd& T = found->second;
+  const double area_before = projected_area(T, before);
+  const double area_after = projected_area(T, after);
+  double longest = 0.0;
+  for (int r = 0; r < 3; ++r) {
+    longest = std::max(longest, (after[(r + 1) % 3] - after[r]).squaredNorm());
+  }
+  return area_before * area_after > 0 && std::abs(area_after) > kMinAreaRatio * longest;
+}
+
+const Linearization* OrientationGuard::cached(int v) const {
+  const Linearization* found = kept_.find(v);
+  return found != nullptr && found->is_factored() ? found : nullptr;
+}
+
+const Linearization* OrientationGuard::factor_at(int v, const Eigen::VectorXd& x) {
+  const Linearization* linearization = kept_.factor(v, problem_, x);
+  if (linearization != nullptr) {
+    tangents_.emplace(v, linearization->tangent_basis());
+  }
+  return linearization;
+}
+
+}  // namespace tessera::detail
