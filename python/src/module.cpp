@@ -24,6 +24,8 @@
 #include "cli_support.h"
 #include "compare_command.h"
 #include "ddt.h"
+#include "handles.h"
+#include "interrupt_handler.h"
 #include "fold_output.h"
 #include "output_checks.h"
 #include "python_problem.h"
@@ -46,111 +48,6 @@ namespace tessera::python {
 namespace {
 
 static_assert(sizeof(Triangle) == 3 * sizeof(int), "triangles are viewed as a (T, 3) int array");
-
-// A problem ready to be meshed any number of times: what a ProblemSetup holds, with the problem
-// shared so that each run builds its own setup (start and box may differ per run).
-struct ProblemHandle {
-  std::shared_ptr<const ImplicitProblem> problem;
-  Eigen::VectorXd start;
-  Domain domain;
-  double suggested_step = 0.1;
-  std::string description;
-  std::optional<int> expected_euler_characteristic;
-  std::optional<double> exact_area;
-  std::optional<View> view;
-  std::string argument;  ///< as the user spelled it ("torus:R=2", a path): reports name it so
-
-  static std::shared_ptr<ProblemHandle> from_setup(ProblemSetup setup, std::string argument) {
-    auto handle = std::make_shared<ProblemHandle>();
-    handle->problem = std::shared_ptr<const ImplicitProblem>(std::move(setup.problem));
-    handle->start = std::move(setup.start);
-    handle->domain = std::move(setup.domain);
-    handle->suggested_step = setup.suggested_step;
-    handle->description = std::move(setup.description);
-    handle->expected_euler_characteristic = setup.expected_euler_characteristic;
-    handle->exact_area = setup.exact_area;
-    handle->view = std::move(setup.view);
-    handle->argument = std::move(argument);
-    return handle;
-  }
-
-  ProblemSetup setup() const {
-    ProblemSetup setup;
-    setup.problem = std::make_unique<SharedProblem>(problem);
-    setup.start = start;
-    setup.domain = domain;
-    setup.suggested_step = suggested_step;
-    setup.description = description;
-    setup.expected_euler_characteristic = expected_euler_characteristic;
-    setup.exact_area = exact_area;
-    setup.view = view;
-    return setup;
-  }
-};
-
-// A mesh and what was learnt making it. Never changed after it is made, so that the NumPy views
-// of its arrays stay valid for as long as they (and with them this object) live.
-struct MeshHandle {
-  TriangleMesh mesh;
-  std::shared_ptr<ProblemHandle> problem;  ///< null for a mesh made from arrays
-  std::vector<CubicBezierPatch> patches;
-  std::string summary_json;  ///< the report (docs/summary-json.md), or improve's / ddt's summary
-  std::string termination = "completed";
-  std::string failure;       ///< empty, or the CLI's message for a run that did not succeed
-  bool interrupted = false;  ///< Ctrl-C arrived during the run
-  int interrupt_count = 0;   ///< how many times (the second and later are handed to Python)
-  std::string comment;       ///< first comment line of the files written
-  std::vector<VertexScalars> vertex_scalars;  ///< ddt: the data values
-};
-
-// Ctrl-C during a run: while C++ works no Python code runs that could raise KeyboardInterrupt,
-// so a C handler sets a flag that the methods poll (MethodSettings::stop_requested) and the run
-// returns its valid partial mesh. Installed only where Python's own handler would raise
-// KeyboardInterrupt (the main thread, default handler), and restored afterwards. The handler
-// counts: a second Ctrl-C cannot cut the run shorter (after the first the run only finishes what
-// keeps the partial mesh valid: clipping, refinement, validation, the report), so the package
-// raises Interrupted and hands the second to Python as a pending KeyboardInterrupt
-// (raise_with_pending_interrupt), which a handler of Interrupted then meets.
-static_assert(std::atomic<int>::is_always_lock_free, "the signal handler's counter");
-std::atomic<int> interrupt_signals{0};
-
-extern "C" void request_interrupt(int) { interrupt_signals.fetch_add(1); }
-
-class InterruptHandler {
- public:
-  explicit InterruptHandler(bool wanted) {
-    interrupt_signals.store(0);
-    if (!wanted) {
-      return;
-    }
-    const py::module_ threading = py::module_::import("threading");
-    const py::module_ signal = py::module_::import("signal");
-    const bool is_main_thread =
-        threading.attr("current_thread")().is(threading.attr("main_thread")());
-    if (!is_main_thread ||
-        !signal.attr("getsignal")(signal.attr("SIGINT")).is(signal.attr("default_int_handler"))) {
-      return;
-    }
-    struct sigaction action {};
-    action.sa_handler = request_interrupt;
-    sigemptyset(&action.sa_mask);
-    installed_ = sigaction(SIGINT, &action, &previous_) == 0;
-  }
-  ~InterruptHandler() {
-    if (installed_) {
-      sigaction(SIGINT, &previous_, nullptr);
-    }
-  }
-  InterruptHandler(const InterruptHandler&) = delete;
-  InterruptHandler& operator=(const InterruptHandler&) = delete;
-
-  bool is_requested() const { return interrupt_signals.load() > 0; }
-  int count() const { return interrupt_signals.load(); }
-
- private:
-  bool installed_ = false;
-  struct sigaction previous_ {};
-};
 
 // The (N, n) view of the n×N column-major points: C-contiguous, strides (8n, 8), no copy.
 py::array vertices_view(const py::object& owner) {

@@ -8,6 +8,7 @@
 #include "tessera/methods/bezier/bezier_continuation.h"
 
 #include "tessera/methods/bezier/bezier_builder.h"
+#include "tessera/methods/bezier/bezier_plane_geometry.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -78,93 +79,6 @@ constexpr double kPi = std::numbers::pi;
 // An edge whose imaginary triangle could not be realised is retried after the other edges
 // (their triangles may resolve the conflict); after this many failures the run stops.
 constexpr int kMaxEdgeFailures = 3;
-// Triangles are shrunk by this fraction towards their centroids before the overlap test, so
-// that triangles sharing a vertex or an edge do not count as overlapping.
-constexpr double kOverlapShrink = 1e-4;
-
-// An orthonormal frame of the plane through three points (paper, section 5, "Projections and
-// barycentric coordinates"): e1 along p1 − p0, e2 by one Gram–Schmidt step.
-struct PlaneFrame {
-  Eigen::VectorXd origin, e1, e2;
-  bool valid = false;
-
-  PlaneFrame(const Eigen::VectorXd& p0, const Eigen::VectorXd& p1, const Eigen::VectorXd& p2)
-      : origin(p0) {
-    e1 = p1 - p0;
-    const double alpha = e1.norm();
-    if (!(alpha > 0)) {
-      return;
-    }
-    e1 /= alpha;
-    e2 = p2 - p0;
-    e2 -= e1.dot(e2) * e1;
-    const double gamma = e2.norm();
-    if (!(gamma > 1e-14 * alpha)) {
-      return;
-    }
-    e2 /= gamma;
-    valid = true;
-  }
-  Eigen::Vector2d project(const Eigen::VectorXd& y) const {
-    const Eigen::VectorXd d = y - origin;
-    return {d.dot(e1), d.dot(e2)};
-  }
-  // Distance of y from the plane.
-  double offset(const Eigen::VectorXd& y) const {
-    const Eigen::VectorXd d = y - origin;
-    return (d - d.dot(e1) * e1 - d.dot(e2) * e2).norm();
-  }
-};
-
-// Barycentric coordinates of p with respect to the 2-D triangle (A, B, C).
-Eigen::Vector3d barycentric(const Eigen::Vector2d& p, const Eigen::Vector2d& A,
-                            const Eigen::Vector2d& B, const Eigen::Vector2d& C) {
-  const double area = cross2(B - A, C - A);
-  if (std::abs(area) < 1e-300) {
-    return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  }
-  const double lb = cross2(p - A, C - A) / area;
-  const double lc = cross2(B - A, p - A) / area;
-  return {1.0 - lb - lc, lb, lc};
-}
-
-// True if the interiors of two 2-D triangles, each shrunk slightly towards its centroid,
-// intersect (separating-axis test over the six edge normals).
-bool triangles_overlap(std::array<Eigen::Vector2d, 3> P, std::array<Eigen::Vector2d, 3> Q) {
-  for (auto* T : {&P, &Q}) {
-    const Eigen::Vector2d c = ((*T)[0] + (*T)[1] + (*T)[2]) / 3.0;
-    for (auto& v : *T) {
-      v = c + (1.0 - kOverlapShrink) * (v - c);
-    }
-  }
-  for (const auto* T : {&P, &Q}) {
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector2d edge = (*T)[(i + 1) % 3] - (*T)[i];
-      const Eigen::Vector2d axis(-edge(1), edge(0));
-      double pmin = std::numeric_limits<double>::infinity(), pmax = -pmin;
-      double qmin = pmin, qmax = -pmin;
-      for (int k = 0; k < 3; ++k) {
-        pmin = std::min(pmin, axis.dot(P[k]));
-        pmax = std::max(pmax, axis.dot(P[k]));
-        qmin = std::min(qmin, axis.dot(Q[k]));
-        qmax = std::max(qmax, axis.dot(Q[k]));
-      }
-      if (pmax <= qmin || qmax <= pmin) {
-        return false;
-      }
-    }
-  }
-  return true;
-}
-
-// t_ij of eq. 3.4 ii: the normed projection of y_j − y_i onto the tangent plane at y_i.
-Eigen::VectorXd edge_tangent(const Eigen::MatrixXd& T_i, const Eigen::VectorXd& y_i,
-                             const Eigen::VectorXd& y_j) {
-  Eigen::VectorXd t = T_i * (T_i.transpose() * (y_j - y_i));
-  const double norm = t.norm();
-  return norm > 0 ? Eigen::VectorXd(t / norm) : t;
-}
-
 }  // namespace
 
 double BezierBuilder::predicted_step(int a, int b) const {
@@ -320,116 +234,6 @@ std::optional<NewPoint> BezierBuilder::compute_point(const Eigen::VectorXd& pred
   align_tangent_basis(point.vertex.T, reference);
   point.vertex.faces = faces_of(y);
   return point;
-}
-
-std::optional<double> BezierBuilder::worst_tangent_angle(int a, const NewPoint& point,
-                                                         int b) const {
-  // Section 4: |⟨t_ij, t_ji⟩| ≥ α_min on the two new real edges. Returns the largest angle
-  // arccos|⟨t_ij, t_ji⟩| if it is too large, nullopt if both edges pass.
-  double worst = 0.0;
-  for (int v : {a, b}) {
-    if (v < 0) {
-      continue;
-    }
-    const Eigen::VectorXd t_vy = edge_tangent(vertices_[v].T, vertices_[v].x, point.vertex.x);
-    const Eigen::VectorXd t_yv = edge_tangent(point.vertex.T, point.vertex.x, vertices_[v].x);
-    worst = std::max(worst, std::acos(std::min(1.0, std::abs(t_vy.dot(t_yv)))));
-  }
-  if (std::cos(worst) >= options_.min_tangent_cosine) {
-    return std::nullopt;
-  }
-  return worst;
-}
-
-bool BezierBuilder::overlaps_mesh(int a, int b, int v, const Eigen::VectorXd& y) const {
-  // Does the triangle (a, b, y) overlap a triangle of the mesh near it? The test is in the
-  // plane of the new triangle (the paper's local plane model), with triangles far from that
-  // plane (another sheet of M) left out.
-  const PlaneFrame plane(vertices_[a].x, vertices_[b].x, y);
-  if (!plane.valid) {
-    return true;
-  }
-  const std::array<Eigen::Vector2d, 3> P{plane.project(vertices_[a].x),
-                                         plane.project(vertices_[b].x), plane.project(y)};
-  const double size = std::max({(vertices_[a].x - vertices_[b].x).norm(),
-                                (vertices_[a].x - y).norm(), (vertices_[b].x - y).norm()});
-  const Eigen::VectorXd centroid = (vertices_[a].x + vertices_[b].x + y) / 3.0;
-  // Every triangle that overlaps the new one has a vertex within size + (longest edge) of its
-  // centroid, and one that overlaps it without crossing the front cannot exist.
-  std::vector<int> nearby = front_vertices_near(centroid, size + longest_edge_);
-  nearby.push_back(a);
-  nearby.push_back(b);
-  if (v >= 0) {
-    nearby.push_back(v);
-  }
-  std::vector<int> checked;
-  for (int w : nearby) {
-    for (int t : vertex_triangles_[w]) {
-      if (std::find(checked.begin(), checked.end(), t) != checked.end()) {
-        continue;
-      }
-      checked.push_back(t);
-      const Triangle& tri = triangles_[t];
-      const Eigen::VectorXd c =
-          (vertices_[tri[0]].x + vertices_[tri[1]].x + vertices_[tri[2]].x) / 3.0;
-      const double size_q = std::max({(vertices_[tri[0]].x - vertices_[tri[1]].x).norm(),
-                                      (vertices_[tri[1]].x - vertices_[tri[2]].x).norm(),
-                                      (vertices_[tri[2]].x - vertices_[tri[0]].x).norm()});
-      if (plane.offset(c) > 0.5 * std::max(size, size_q)) {
-        continue;
-      }
-      const std::array<Eigen::Vector2d, 3> Q{plane.project(vertices_[tri[0]].x),
-                                             plane.project(vertices_[tri[1]].x),
-                                             plane.project(vertices_[tri[2]].x)};
-      if (triangles_overlap(P, Q)) {
-        return true;
-      }
-    }
-  }
-  return false;
-}
-
-double BezierBuilder::new_edges_distance(int a, int b, int v) const {
-  // The distance to M of the midpoints of the edges (a, v) and (b, v) that do not exist yet,
-  // estimated by one Gauss–Newton step from the midpoint.
-  double distance = 0.0;
-  Eigen::VectorXd F(n_ - 2), dx(n_);
-  Linearization linearization;
-  for (int end : {a, b}) {
-    if (has_edge(end, v) || has_edge(v, end)) {
-      continue;
-    }
-    const Eigen::VectorXd mid = 0.5 * (vertices_[end].x + vertices_[v].x);
-    problem_.evaluate(mid, F);
-    if (!F.allFinite() || !linearization.factor(problem_, mid)) {
-      return std::numeric_limits<double>::infinity();
-    }
-    linearization.solve_minimum_norm(-F, dx);
-    distance = std::max(distance, dx.norm());
-  }
-  return distance;
-}
-
-bool BezierBuilder::is_admissible(int a, int b, int c, int v, const Eigen::VectorXd& y) const {
-  // Can triangle (b, a, v) be added at free edge a→b (whose triangle has third vertex c)?
-  // Combinatorially: the edges a→v and v→b must be new (or close free edges v→a, b→v), so
-  // every edge keeps at most two consistently oriented triangles.
-  if (v >= 0 && (v == a || v == b || v == c || has_edge(a, v) || has_edge(v, b))) {
-    return false;
-  }
-  // Geometrically: y lies on the unfilled side of a→b in the tangent planes at a and at b.
-  for (int end : {a, b}) {
-    const Eigen::MatrixXd& T = vertices_[end].T;
-    const Eigen::VectorXd& x = vertices_[end].x;
-    const int other = end == a ? b : a;
-    const Eigen::Vector2d pe = T.transpose() * (vertices_[other].x - x);
-    const Eigen::Vector2d pc = T.transpose() * (vertices_[c].x - x);
-    const Eigen::Vector2d py = T.transpose() * (y - x);
-    if (cross2(pe, pc) * cross2(pe, py) >= 0) {
-      return false;
-    }
-  }
-  return !overlaps_mesh(a, b, v, y);
 }
 
 bool BezierBuilder::realize(int a, int b, std::string& why) {
