@@ -123,57 +123,94 @@ CorrectorSummary project_chord(const ImplicitProblem& problem, const Linearizati
 double chord_distance_bound(const ImplicitProblem& problem, const Linearization& frozen,
                             const Eigen::Ref<const Eigen::VectorXd>& x, double accuracy,
                             const CorrectorOptions& options) {
+  return chord_distance_bounds(problem, frozen, x, accuracy, options).front();
+}
+
+std::vector<double> chord_distance_bounds(const ImplicitProblem& problem,
+                                          const Linearization& frozen,
+                                          const Eigen::Ref<const Eigen::MatrixXd>& points,
+                                          double accuracy, const CorrectorOptions& options) {
   // A bound needs the chord to contract, not to contract fast: a slow chord costs solves, a
   // refused one a factorisation or a Gauss–Newton projection (measured on bratu2d from an
   // anchor two edges away: θ = 0.5–0.62 for one sample in twenty).
   constexpr double kMaxBoundContraction = 0.8;
+  const double max_theta = std::max(options.max_contraction, kMaxBoundContraction);
   const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
   const AmbientSpace& space = *shared_space;
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  thread_local Eigen::VectorXd y;
-  thread_local Eigen::VectorXd F;
-  thread_local Eigen::VectorXd dx;
-  y = x;
-  F.resize(space.local_equations());
-  dx.resize(space.local_rows());
-  double previous = 0.0;
-  double theta = 0.0;
-  for (int k = 0; k < options.max_iterations; ++k) {
-    problem.evaluate(y, F);
-    if (!space.all_finite(F)) {
-      return kInfinity;
-    }
-    F = -F;
-    frozen.solve_minimum_norm(F, dx);
-    y += dx;
-    const double correction = space.norm(dx);
-    const double displacement = space.distance(y, x);
-    if (!std::isfinite(correction) || displacement > options.max_displacement) {
-      return kInfinity;
-    }
-    if (k > 0) {
-      // Converged to solver tolerance: the remainder is rounding.
-      if (correction <= options.tolerance * (1.0 + space.norm(y))) {
-        return displacement;
-      }
-      theta = std::max(theta, correction / previous);
-      if (theta > std::max(options.max_contraction, kMaxBoundContraction)) {
-        return kInfinity;
-      }
-      const double remainder = theta / (1.0 - theta) * correction;
-      // θ is trusted from two ratios (three steps), not one: a first step that overshoots
-      // along a curved M can make the first ratio small and the second exceed 1 (cstr, a
-      // chord from an edge's end: 0.018, 0.0016, 0.0037, ... landing 0.027 away, where one
-      // ratio promised 0.0199).
-      if (k >= 2 && remainder <= accuracy) {
-        return displacement + remainder;
-      }
-    } else if (correction == 0.0) {
-      return 0.0;  // x lies on M
-    }
-    previous = correction;
+  const auto count = static_cast<int>(points.cols());
+  std::vector<double> bound(static_cast<std::size_t>(count), kInfinity);
+  // The points still iterating, in lockstep: one solve with a column per point each step.
+  std::vector<int> active(static_cast<std::size_t>(count));
+  for (int j = 0; j < count; ++j) {
+    active[static_cast<std::size_t>(j)] = j;
   }
-  return kInfinity;
+  std::vector<double> previous(static_cast<std::size_t>(count), 0.0);
+  std::vector<double> theta(static_cast<std::size_t>(count), 0.0);
+  thread_local Eigen::MatrixXd Y;
+  thread_local Eigen::MatrixXd F;
+  thread_local Eigen::MatrixXd dx;
+  thread_local Eigen::VectorXd residual;
+  Y = points;
+  residual.resize(space.local_equations());
+  for (int k = 0; k < options.max_iterations && !active.empty(); ++k) {
+    // −F at the active points; a point where F is not finite is dropped (bound +∞).
+    F.resize(space.local_equations(), static_cast<Eigen::Index>(active.size()));
+    Eigen::Index width = 0;
+    std::vector<int> finite;
+    for (const int j : active) {
+      problem.evaluate(Y.col(j), residual);
+      if (space.all_finite(residual)) {
+        F.col(width++) = -residual;
+        finite.push_back(j);
+      }
+    }
+    active = std::move(finite);
+    if (width == 0) {
+      break;
+    }
+    dx.resize(space.local_rows(), width);
+    frozen.solve_minimum_norm_columns(F.leftCols(width), dx);
+    std::vector<int> still;
+    for (Eigen::Index a = 0; a < width; ++a) {
+      const int j = active[static_cast<std::size_t>(a)];
+      const auto s = static_cast<std::size_t>(j);
+      auto y = Y.col(j);
+      y += dx.col(a);
+      const double correction = space.norm(dx.col(a));
+      const double displacement = space.distance(y, points.col(j));
+      if (!std::isfinite(correction) || displacement > options.max_displacement) {
+        continue;  // +∞
+      }
+      if (k > 0) {
+        // Converged to solver tolerance: the remainder is rounding.
+        if (correction <= options.tolerance * (1.0 + space.norm(y))) {
+          bound[s] = displacement;
+          continue;
+        }
+        theta[s] = std::max(theta[s], correction / previous[s]);
+        if (theta[s] > max_theta) {
+          continue;  // +∞
+        }
+        const double remainder = theta[s] / (1.0 - theta[s]) * correction;
+        // θ is trusted from two ratios (three steps), not one: a first step that overshoots
+        // along a curved M can make the first ratio small and the second exceed 1 (cstr, a
+        // chord from an edge's end: 0.018, 0.0016, 0.0037, ... landing 0.027 away, where one
+        // ratio promised 0.0199).
+        if (k >= 2 && remainder <= accuracy) {
+          bound[s] = displacement + remainder;
+          continue;
+        }
+      } else if (correction == 0.0) {
+        bound[s] = 0.0;  // the point lies on M
+        continue;
+      }
+      previous[s] = correction;
+      still.push_back(j);
+    }
+    active = std::move(still);
+  }
+  return bound;
 }
 
 }  // namespace tessera

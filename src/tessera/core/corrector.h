@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/linearization.h"
@@ -75,5 +76,12 @@ CorrectorSummary project_chord(const ImplicitProblem& problem, const Linearizati
 double chord_distance_bound(const ImplicitProblem& problem, const Linearization& frozen,
                             const Eigen::Ref<const Eigen::VectorXd>& x, double accuracy,
                             const CorrectorOptions& options);
+/// chord_distance_bound for each column of `points` (n×k), the chords iterated in lockstep so
+/// that every step is one solve with a column per point still iterating (cheaper per point at
+/// large n than separate solves). The bounds are the same as one call per point would give.
+std::vector<double> chord_distance_bounds(const ImplicitProblem& problem,
+                                          const Linearization& frozen,
+                                          const Eigen::Ref<const Eigen::MatrixXd>& points,
+                                          double accuracy, const CorrectorOptions& options);
 
 }  // namespace tessera

@@ -152,13 +152,21 @@ class SparseBackend final : public LinearizationBackend {
 
   void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd& tangent,
              Eigen::Ref<Eigen::VectorXd> dx) const override {
-    const int n = static_cast<int>(dx.size());
-    Eigen::VectorXd solution = Eigen::VectorXd::Zero(n);
-    solution.head(n - 2) = rhs;
+    solve_columns(rhs, tangent, dx);
+  }
+
+  void solve_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs, const Eigen::MatrixXd& tangent,
+                     Eigen::Ref<Eigen::MatrixXd> dx) const override {
+    const Eigen::Index n = dx.rows();
+    // Scratch kept between calls: the chord iterations solve here at every step.
+    thread_local Eigen::MatrixXd solution;
+    solution.resize(n, rhs.cols());
+    solution.topRows(n - 2) = rhs;
+    solution.bottomRows(2).setZero();
     lu_->solve(solution, solution);
     // Remove the ker-J component: what remains is the minimum-norm solution.
-    solution -= tangent * (tangent.transpose() * solution);
-    dx = solution;
+    const Eigen::MatrixXd along = tangent.transpose() * solution;
+    dx.noalias() = solution - tangent * along;
   }
 
   std::size_t memory_bytes() const override {
@@ -297,6 +305,13 @@ void Linearization::solve_minimum_norm(const Eigen::Ref<const Eigen::VectorXd>& 
   backend_->solve(rhs, tangent_, dx);
 }
 
+void Linearization::solve_minimum_norm_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs,
+                                               Eigen::Ref<Eigen::MatrixXd> dx) const {
+  TESSERA_ASSERT(factored_);
+  TESSERA_ASSERT(rhs.cols() == dx.cols());
+  backend_->solve_columns(rhs, tangent_, dx);
+}
+
 bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& near,
                         const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::MatrixXd& T,
                         double tolerance, int max_iterations) {
@@ -326,7 +341,7 @@ bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& nea
                                          : Eigen::MatrixXd(dense * basis);
   };
   T = near.tangent_basis();
-  Eigen::VectorXd correction(n);
+  Eigen::MatrixXd correction(n, 2);
   for (int iteration = 0; iteration <= max_iterations; ++iteration) {
     const Eigen::MatrixXd JT = residual(T);
     if (JT.norm() <= tolerance * jacobian_norm) {
@@ -335,10 +350,8 @@ bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& nea
     if (iteration == max_iterations) {
       break;
     }
-    for (int j = 0; j < 2; ++j) {
-      near.solve_minimum_norm(JT.col(j), correction);
-      T.col(j) -= correction;
-    }
+    near.solve_minimum_norm_columns(JT, correction);
+    T -= correction;
     // Orthonormalise (modified Gram–Schmidt): ker J(y) is spanned either way.
     T.col(0).normalize();
     T.col(1) -= T.col(0).dot(T.col(1)) * T.col(0);

@@ -27,6 +27,16 @@ class LinearizationBackend {
   /// dx with DF·dx = rhs and dx ⟂ ker DF. rhs: the local rows of F; dx: the local rows of x.
   virtual void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd& tangent,
                      Eigen::Ref<Eigen::VectorXd> dx) const = 0;
+  /// The same for several right-hand sides at once (rhs: local rows of F × k, dx: local rows of
+  /// x × k). A sparse LU solves k columns in one sweep over its factors, which at large n is
+  /// cheaper per column than k sweeps (the triangular solves are latency-bound); this default
+  /// solves them one by one.
+  virtual void solve_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs,
+                             const Eigen::MatrixXd& tangent, Eigen::Ref<Eigen::MatrixXd> dx) const {
+    for (Eigen::Index j = 0; j < rhs.cols(); ++j) {
+      solve(rhs.col(j), tangent, dx.col(j));
+    }
+  }
   /// Numerical factorisations made so far (a sparse factor() may try more than one border).
   long factorisations() const { return factorisations_; }
   /// Evaluations of DF the backend made itself, not through ImplicitProblem::jacobian or

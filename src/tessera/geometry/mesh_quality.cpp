@@ -2,6 +2,7 @@
 #include "tessera/geometry/mesh_quality.h"
 
 #include <algorithm>
+#include <utility>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -71,9 +72,31 @@ double corner_angle(const Eigen::Ref<const Eigen::VectorXd>& apex,
 }
 
 double min_angle(const TriangleMesh& mesh, const Triangle& t) {
-  return std::min({corner_angle(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2])),
-                   corner_angle(mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[0])),
-                   corner_angle(mesh.point(t[2]), mesh.point(t[0]), mesh.point(t[1]))});
+  const auto p = mesh.point(t[0]);
+  const auto q = mesh.point(t[1]);
+  const auto r = mesh.point(t[2]);
+  return min_angle_of_sides((q - p).norm(), (r - q).norm(), (p - r).norm());
+}
+
+double min_angle_of_sides(double a, double b, double c) {
+  // Sorted a ≥ b ≥ c, the smallest angle is C, opposite c. Kahan ("Miscalculating area and
+  // angles of a needle-like triangle", 2014): C = 2·atan(√(((a − b) + c)·μ / ((a + (b + c))·
+  // ((a − c) + b)))) with μ = c − (a − b), every subtraction exact or benign.
+  if (a < b) {
+    std::swap(a, b);
+  }
+  if (b < c) {
+    std::swap(b, c);
+  }
+  if (a < b) {
+    std::swap(a, b);
+  }
+  const double mu = c - (a - b);
+  const double denominator = (a + (b + c)) * ((a - c) + b);
+  if (!(mu > 0) || !(denominator > 0)) {
+    return 0.0;  // a degenerate (or, by rounding, impossible) triangle
+  }
+  return 2.0 * std::atan(std::sqrt(((a - b) + c) * mu / denominator));
 }
 
 namespace {

@@ -73,6 +73,10 @@ double corner_angle(const Eigen::Ref<const Eigen::VectorXd>& apex,
 
 /// Smallest angle (radians) of triangle t of `mesh`.
 double min_angle(const TriangleMesh& mesh, const Triangle& t);
+/// Smallest angle (radians) of the triangle with side lengths a, b, c (opposite the shortest
+/// side), by Kahan's formula, accurate for needles and caps; 0 for a degenerate triangle. Three
+/// passes over R^n for the lengths instead of nine for three corner angles.
+double min_angle_of_sides(double a, double b, double c);
 
 /// Sum of the triangle areas in R^n.
 double surface_area(const TriangleMesh& mesh);

@@ -270,11 +270,51 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
   // plane's normal moves it by O(κ·e·h), a small fraction of the triangle; 1% allows for it.
   constexpr double barycentric_slack = 0.01;
   Linearization workspace;
-  // Scratch for the planar test, which runs for every candidate pair: no allocation in it.
-  Eigen::MatrixXd U(n, 2);
-  Eigen::VectorXd o(n);
+  // The planar test runs for every candidate pair, and at large n its cost is the passes over
+  // n-vectors: the reference triangle's frame (origin, orthonormal U, its own corners in U) is
+  // kept for the last two references (pairs come sorted by their first triangle, so one of the
+  // two recurs), and the other triangle's corners are projected in one fused pass each.
+  struct ReferenceFrame {
+    int triangle = -1;
+    Eigen::VectorXd origin;
+    Eigen::MatrixXd U;
+    Eigen::Matrix<double, 2, 3> corners;
+  };
+  std::array<ReferenceFrame, 2> frames;
+  int newest_frame = 0;
   Eigen::VectorXd d(n);
-  Eigen::Matrix<double, 2, 3> a;
+  const auto frame_of = [&](int reference) -> const ReferenceFrame& {
+    for (const ReferenceFrame& frame : frames) {
+      if (frame.triangle == reference) {
+        return frame;
+      }
+    }
+    newest_frame = 1 - newest_frame;
+    ReferenceFrame& frame = frames[static_cast<std::size_t>(newest_frame)];
+    frame.triangle = reference;
+    // Orthonormal basis of the reference plane from its longest edge and the apex's offset
+    // from that edge (accurate for thin triangles; see area_and_longest_squared).
+    const Triangle& r = triangles[reference];
+    int k = 0;
+    for (int j = 1; j < 3; ++j) {
+      if ((points.col(r[(j + 1) % 3]) - points.col(r[j])).squaredNorm() >
+          (points.col(r[(k + 1) % 3]) - points.col(r[k])).squaredNorm()) {
+        k = j;
+      }
+    }
+    frame.origin = points.col(r[k]);
+    frame.U.resize(n, 2);
+    d = points.col(r[(k + 1) % 3]) - frame.origin;
+    frame.U.col(0) = d / d.norm();
+    d = points.col(r[(k + 2) % 3]) - frame.origin;  // the apex
+    d -= d.dot(frame.U.col(0)) * frame.U.col(0);
+    frame.U.col(1) = d / d.norm();
+    for (int j = 0; j < 3; ++j) {
+      d = points.col(r[j]) - frame.origin;
+      frame.corners.col(j).noalias() = frame.U.transpose() * d;
+    }
+    return frame;
+  };
   Eigen::Matrix<double, 2, 3> b;
   for (const auto& [s, t] : pairs) {
     int shared = 0;
@@ -290,27 +330,14 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
     };
     const int reference = alignment(s) >= alignment(t) ? s : t;
     const int other = reference == s ? t : s;
-    // Orthonormal basis of the reference plane from its longest edge and the apex's offset
-    // from that edge (accurate for thin triangles; see area_and_longest_squared).
-    const Triangle& r = triangles[reference];
-    int k = 0;
-    for (int j = 1; j < 3; ++j) {
-      if ((points.col(r[(j + 1) % 3]) - points.col(r[j])).squaredNorm() >
-          (points.col(r[(k + 1) % 3]) - points.col(r[k])).squaredNorm()) {
-        k = j;
-      }
-    }
-    o = points.col(r[k]);
-    d = points.col(r[(k + 1) % 3]) - o;
-    U.col(0) = d / d.norm();
-    d = points.col(r[(k + 2) % 3]) - o;  // the apex
-    d -= d.dot(U.col(0)) * U.col(0);
-    U.col(1) = d / d.norm();
+    const ReferenceFrame& frame = frame_of(reference);
+    const Eigen::VectorXd& o = frame.origin;
+    const Eigen::MatrixXd& U = frame.U;
+    const Eigen::Matrix<double, 2, 3>& a = frame.corners;
     for (int j = 0; j < 3; ++j) {
-      d = points.col(r[j]) - o;
-      a.col(j).noalias() = U.transpose() * d;
-      d = points.col(triangles[other][j]) - o;
-      b.col(j).noalias() = U.transpose() * d;
+      const auto q = points.col(triangles[other][j]);
+      b(0, j) = (U.col(0).array() * (q - o).array()).sum();
+      b(1, j) = (U.col(1).array() * (q - o).array()).sum();
     }
     const PlanarOverlap overlap = triangle_intersection(a, b);
     const double smaller_area = std::min(shapes.area[s], shapes.area[t]);

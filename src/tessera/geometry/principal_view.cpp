@@ -60,6 +60,15 @@ Eigen::Vector3d PrincipalView::operator()(const Eigen::Ref<const Eigen::VectorXd
   return y;
 }
 
+Eigen::Matrix3Xd PrincipalView::project(const Eigen::Ref<const Eigen::MatrixXd>& points) const {
+  if (n_ > 3) {
+    return directions_.transpose() * points;
+  }
+  Eigen::Matrix3Xd y = Eigen::Matrix3Xd::Zero(3, points.cols());
+  y.topRows(n_) = points.topRows(n_);
+  return y;
+}
+
 // Gram–Schmidt, twice for stability; a column that vanishes is replaced by a unit vector.
 void PrincipalView::orthonormalise() {
   for (int pass = 0; pass < 2; ++pass) {

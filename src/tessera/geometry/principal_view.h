@@ -28,6 +28,8 @@ class PrincipalView {
   void fit_sample(int count, PointFunction point);
 
   Eigen::Vector3d operator()(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  /// The view of every column of `points` (n × N), in one product.
+  Eigen::Matrix3Xd project(const Eigen::Ref<const Eigen::MatrixXd>& points) const;
 
  private:
   void orthonormalise();

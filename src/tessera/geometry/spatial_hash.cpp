@@ -116,7 +116,11 @@ std::vector<std::pair<int, int>> nearby_triangle_pairs(
                 "nearby_triangle_pairs: " << margins.size() << " margins for " << triangles.size()
                                           << " triangles");
   const int triangle_count = static_cast<int>(triangles.size());
-  const PrincipalView view(static_cast<int>(points.rows()), points);
+  // The view is fitted to a sample of the points (the spread is what the grid needs) and every
+  // vertex is projected once: at large n these are the O(n) parts of the search.
+  PrincipalView view(static_cast<int>(points.rows()));
+  view.fit_sample(static_cast<int>(points.cols()), [&](int v) { return points.col(v); });
+  const Eigen::Matrix3Xd projected = view.project(points);
   std::vector<ViewBox> boxes(triangle_count);
   double smallest_extent = std::numeric_limits<double>::infinity();
   double largest_coordinate = 0.0;
@@ -128,8 +132,7 @@ std::vector<std::pair<int, int>> nearby_triangle_pairs(
     box.lower.fill(std::numeric_limits<double>::infinity());
     box.upper.fill(-std::numeric_limits<double>::infinity());
     for (int v : triangles[t]) {
-      const Eigen::Vector3d projected = view(points.col(v));
-      const ViewPoint y{projected(0), projected(1), projected(2)};
+      const ViewPoint y{projected(0, v), projected(1, v), projected(2, v)};
       for (int j = 0; j < view_dimension; ++j) {
         box.lower[j] = std::min(box.lower[j], y[j] - margins[t]);
         box.upper[j] = std::max(box.upper[j], y[j] + margins[t]);

@@ -151,7 +151,9 @@ class AtlasBuilder {
   Eigen::VectorXd predicted_;       // scratch
   Eigen::MatrixXd jacobian_;        // J at the last point checked for singularity
   Eigen::VectorXd probe_;           // scratch
-  Eigen::MatrixXd quadratic_;       // scratch: n×3, q_i of choose_radius
+  Eigen::MatrixXd quadratic_;       // scratch: n×12, the offsets a(θ_i) of choose_radius
+  Eigen::MatrixXd probe_residuals_; // scratch: (n−2)×6, −F at the first-step probes
+  Eigen::MatrixXd probe_steps_;     // scratch: n×6, their chord steps
   Eigen::MatrixXd parent_tangent_;  // scratch
   Linearization scratch_;           // workspace of full Gauss–Newton
   bool stopped_ = false;

@@ -207,9 +207,8 @@ bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>
         return -1.0;  // not counter-clockwise: would fold over its neighbours
       }
     }
-    const double smallest =
-        std::min({corner_angle(x[a], x[b], x[c]), corner_angle(x[b], x[c], x[a]),
-                  corner_angle(x[c], x[a], x[b])});
+    const double smallest = min_angle_of_sides((x[b] - x[a]).norm(), (x[c] - x[b]).norm(),
+                                               (x[a] - x[c]).norm());
     return smallest > 0 ? smallest : -1.0;
   };
   auto diagonal_allowed = [&](int a, int b) {

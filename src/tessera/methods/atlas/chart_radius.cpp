@@ -58,25 +58,38 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
   // where it matters, when a child is projected onto the disk's rim (run()), and the tolerance
   // is checked on every triangle afterwards.
   const int probes = first_step_probes_ ? 6 : 12;
-  Eigen::VectorXd F(n_ - 2);
+  Eigen::MatrixXd& F = probe_residuals_;
+  Eigen::MatrixXd& step = probe_steps_;
   while (r >= min_radius_) {
     bool is_graph = true;
-    for (int i = 0; i < probes && is_graph; ++i) {
+    if (first_step_probes_) {
+      // The six first steps share one multi-column solve.
+      F.resize(n_ - 2, 6);
+      step.resize(n_, 6);
+      for (int i = 0; i < 6 && is_graph; ++i) {
+        const double theta = i * std::numbers::pi / 3.0;
+        predicted = x + r * (T * Eigen::Vector2d(std::cos(theta), std::sin(theta)));
+        problem_.evaluate(predicted, F.col(i));
+        is_graph = F.col(i).allFinite();
+      }
+      if (is_graph) {
+        F = -F;
+        at_center.solve_minimum_norm_columns(F, step);
+      }
+      for (int i = 0; i < 6 && is_graph; ++i) {
+        // The offset: the chord's step is normal to the tangent plane.
+        const Eigen::Vector2d along = T.transpose() * step.col(i);
+        a.col(i) = step.col(i) - T * along;
+        // Slope above 1 across the disk: the probe found a far part of M, not a graph.
+        is_graph = a.col(i).norm() <= r;
+      }
+    }
+    for (int i = 0; i < probes && is_graph && !first_step_probes_; ++i) {
       const double theta = (i % 6) * std::numbers::pi / 3.0;
       const double distance = i < 6 ? r : kInnerProbe * r;
       predicted = x + distance * (T * Eigen::Vector2d(std::cos(theta), std::sin(theta)));
       y = predicted;
-      if (first_step_probes_) {
-        problem_.evaluate(y, F);
-        is_graph = F.allFinite();
-        if (is_graph) {
-          Eigen::VectorXd dy(n_);
-          at_center.solve_minimum_norm(-F, dy);
-          y += dy;
-        }
-      } else {
-        is_graph = project(at_center, distance, y);
-      }
+      is_graph = project(at_center, distance, y);
       y -= predicted;  // the offset; its tangential part is zero for the chord, not for GN
       const Eigen::Vector2d along = T.transpose() * y;
       a.col(i) = y - T * along;

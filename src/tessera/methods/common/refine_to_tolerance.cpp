@@ -2,6 +2,7 @@
 #include "tessera/methods/common/refine_to_tolerance.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <unordered_map>
 #include <unordered_set>
@@ -167,14 +168,9 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     }
     return corners.factor(tri[0], problem, mesh.point(tri[0]));
   };
-  auto distance_to_m = [&](const Eigen::VectorXd& point, const Triangle& tri) {
-    if (frozen_ok) {
-      const double bound =
-          chord_distance_bound(problem, frozen, point, accuracy, options.corrector);
-      if (std::isfinite(bound)) {
-        return bound;
-      }
-    }
+  // Where the anchor's chord does not contract at a point: a corner of the triangle, and last
+  // a (patient) Gauss–Newton projection.
+  auto distance_without_anchor = [&](const Eigen::VectorXd& point, const Triangle& tri) {
     if (frozen_at != tri[0] && frozen_at != tri[1] && frozen_at != tri[2]) {
       const Linearization* corner = corner_of(tri);
       const double bound =
@@ -196,6 +192,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   std::unordered_map<std::uint64_t, double> midpoint_distance;
   // The largest sampled distance of triangle t to M, and where it is.
   Eigen::VectorXd where;
+  Eigen::MatrixXd samples;
   auto sample = [&](int anchor, int t) {
     const Triangle tri = mesh.triangle(t);
     const Eigen::VectorXd a = mesh.point(tri[0]);
@@ -205,28 +202,22 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       frozen_ok = frozen.factor(problem, mesh.point(anchor));
       frozen_at = anchor;
     }
-    double worst = -1.0;
-    auto consider = [&](const Eigen::VectorXd& point, double d) {
-      if (!(d <= worst)) {
-        worst = d;
-        where = point;
+    // The samples: the centroid, the midpoints not measured before and, on a surface of
+    // constant curvature the farthest point, the circumcentre (when it lies inside the
+    // triangle), which makes the estimate nearly exact.
+    samples.resize(a.size(), 5);
+    Eigen::Index count = 0;
+    samples.col(count++) = (a + b + c) / 3.0;
+    std::array<std::uint64_t, 3> new_midpoints{};
+    int new_midpoint_count = 0;
+    for (int e = 0; e < 3; ++e) {
+      const int u = tri[e];
+      const int v = tri[(e + 1) % 3];
+      if (!midpoint_distance.contains(edge_key(u, v))) {
+        new_midpoints[new_midpoint_count++] = edge_key(u, v);
+        samples.col(count++) = 0.5 * (mesh.point(u) + mesh.point(v));
       }
-    };
-    auto consider_midpoint = [&](int u, int v) {
-      const Eigen::VectorXd point = 0.5 * (mesh.point(u) + mesh.point(v));
-      const auto [known, inserted] = midpoint_distance.emplace(edge_key(u, v), 0.0);
-      if (inserted) {
-        known->second = distance_to_m(point, tri);
-      }
-      consider(point, known->second);
-    };
-    const Eigen::VectorXd centroid = (a + b + c) / 3.0;
-    consider(centroid, distance_to_m(centroid, tri));
-    consider_midpoint(tri[0], tri[1]);
-    consider_midpoint(tri[1], tri[2]);
-    consider_midpoint(tri[2], tri[0]);
-    // On a surface of constant curvature the farthest point is the circumcentre (when it
-    // lies inside the triangle); sampling it makes the estimate nearly exact.
+    }
     const Eigen::VectorXd ab = b - a;
     const Eigen::VectorXd ac = c - a;
     const double uu = ab.squaredNorm(), ww = ac.squaredNorm(), uw = ab.dot(ac);
@@ -235,9 +226,41 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const double beta = ww * (uu - uw) / det;
       const double gamma = uu * (ww - uw) / det;
       if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) {
-        const Eigen::VectorXd circumcentre = a + beta * ab + gamma * ac;
-        consider(circumcentre, distance_to_m(circumcentre, tri));
+        samples.col(count++) = a + beta * ab + gamma * ac;
       }
+    }
+    // All samples are measured from the anchor in lockstep (one multi-column solve per chord
+    // step); those where its chord does not contract, another way.
+    const auto points = samples.leftCols(count);
+    std::vector<double> distance =
+        frozen_ok ? chord_distance_bounds(problem, frozen, points, accuracy, options.corrector)
+                  : std::vector<double>(static_cast<std::size_t>(count),
+                                        std::numeric_limits<double>::infinity());
+    for (Eigen::Index j = 0; j < count; ++j) {
+      auto& d = distance[static_cast<std::size_t>(j)];
+      if (!std::isfinite(d)) {
+        d = distance_without_anchor(points.col(j), tri);
+      }
+    }
+    for (int e = 0; e < new_midpoint_count; ++e) {
+      midpoint_distance.emplace(new_midpoints[e], distance[static_cast<std::size_t>(1 + e)]);
+    }
+    // The worst sample, the first of equals in the order centroid, midpoints, circumcentre.
+    double worst = -1.0;
+    auto consider = [&](const Eigen::VectorXd& point, double d) {
+      if (!(d <= worst)) {
+        worst = d;
+        where = point;
+      }
+    };
+    consider(points.col(0), distance[0]);
+    for (int e = 0; e < 3; ++e) {
+      const int u = tri[e];
+      const int v = tri[(e + 1) % 3];
+      consider(0.5 * (mesh.point(u) + mesh.point(v)), midpoint_distance.at(edge_key(u, v)));
+    }
+    if (count == 2 + new_midpoint_count) {
+      consider(points.col(count - 1), distance.back());
     }
     return worst;
   };

@@ -254,10 +254,12 @@ Verdict judge_swap(const TriangleMesh& mesh, const ImplicitProblem& problem, con
   const double tolerance = options.relative_tolerance;
   switch (options.criterion) {
     case ImprovementCriterion::MaxMinAngle: {
-      const double before =
-          std::min(min_angle(mesh, {q.a, q.b, q.c}), min_angle(mesh, {q.b, q.a, q.d}));
-      const double after =
-          std::min(min_angle(mesh, {q.c, q.a, q.d}), min_angle(mesh, {q.d, q.b, q.c}));
+      // The quad's five sides and two diagonals, each measured once in R^n.
+      const auto length = [&](int u, int v) { return (mesh.point(u) - mesh.point(v)).norm(); };
+      const double ab = length(q.a, q.b), bc = length(q.b, q.c), ca = length(q.c, q.a);
+      const double ad = length(q.a, q.d), db = length(q.d, q.b), cd = length(q.c, q.d);
+      const double before = std::min(min_angle_of_sides(ab, bc, ca), min_angle_of_sides(ab, ad, db));
+      const double after = std::min(min_angle_of_sides(ca, ad, cd), min_angle_of_sides(cd, db, bc));
       return after > before * (1.0 + tolerance) ? Verdict::Improves : Verdict::DoesNotImprove;
     }
     case ImprovementCriterion::NormalAngle: {
