@@ -109,6 +109,7 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
   // between neighbours (thin tubes) exact.
   const bool is_sparse = geometry.problem.has_sparse_jacobian();
   constexpr double kNearTangentTolerance = 1e-6;
+  constexpr int kSharedRings = 3;
   std::vector<std::uint8_t> is_done(vertex_count, 0);
   Linearization linearization;
   Eigen::MatrixXd near_tangent;
@@ -127,7 +128,7 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
       continue;
     }
     ring.assign(1, v);
-    for (int rings = 0; rings < 2; ++rings) {
+    for (int rings = 0; rings < kSharedRings; ++rings) {
       next_ring.clear();
       for (int u : ring) {
         for (int t : topology.vertex_triangles(u)) {
