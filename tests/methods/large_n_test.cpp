@@ -43,7 +43,7 @@ PerVertex per_vertex(const tessera::CoveringSummary& summary) {
 }
 
 // The target is 2 factorisations and 4 Jacobians per vertex of the final mesh. The atlas
-// meets it on bvp (1.95 and 2.9 measured), the front too (1.16 and 3.05: one factorisation per
+// meets it on bvp (1.61 and 2.8 measured), the front too (1.11 and 3.07: one factorisation per
 // processed vertex, the tangents of new vertices by the chord from their creator's); the bounds hold
 // that, so that a change that spends more fails here. Evaluations of F (the chord's steps)
 // are bounded too: 40 per vertex for the atlas (each distance bound takes at least three chord
@@ -53,7 +53,7 @@ TEST(LargeN, AtlasWorkPerVertexIsBounded) {
   const auto result = cover(setup, "atlas");
   ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
   const PerVertex work = per_vertex(result.summary);
-  EXPECT_LE(work.factorisations, 2.0);
+  EXPECT_LE(work.factorisations, 1.7);
   EXPECT_LE(work.jacobians, 3.0);
   EXPECT_LE(result.summary.function_evaluations, 42.0 * result.summary.vertex_count);
   // The summary splits the work by step, and the steps add up to the whole.
@@ -64,6 +64,17 @@ TEST(LargeN, AtlasWorkPerVertexIsBounded) {
   EXPECT_EQ(total.factorisations, result.summary.factorisations);
   EXPECT_EQ(total.jacobian_evaluations, result.summary.jacobian_evaluations);
   EXPECT_EQ(total.function_evaluations, result.summary.function_evaluations);
+}
+
+// The 2-D problem: a larger stencil and a surface that meets the box on more faces (more
+// clipping). Measured 1.78 factorisations and 3.56 Jacobians per vertex at N = 8.
+TEST(LargeN, AtlasWorkPerVertexIsBoundedOnTheSquare) {
+  const auto setup = tessera::make_catalogue_problem("bratu2d:N=8");
+  const auto result = cover(setup, "atlas");
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  const PerVertex work = per_vertex(result.summary);
+  EXPECT_LE(work.factorisations, 1.9);
+  EXPECT_LE(work.jacobians, 3.8);
 }
 
 TEST(LargeN, FrontWorkPerVertexIsBounded) {
