@@ -21,10 +21,13 @@ namespace {
 // with pivoting.
 constexpr double kRefactorConditionDrop = 1e-3;
 
-// The symbolic analysis (BTF, AMD ordering) depends on the pattern only, and every chart's or
-// vertex's bordered Jacobian has the same one: the analysis of the last pattern analysed on
-// this thread is kept and shared by every factorisation with that pattern (AMD alone was 28% of
-// a factorisation's time on bvp at n = 1002). KLU's factor, refactor and solve only read it.
+// The symbolic analysis (BTF, AMD ordering) depends on the pattern only, and the bordered
+// Jacobians have a few patterns: J's, with its two border rows at the coordinates the reference
+// tangent picks, which alternate between a few pairs as a covering moves. The analyses of the
+// last few patterns analysed on this thread are kept and shared by every factorisation with one
+// of them (AMD alone was 28% of a factorisation's time on bvp at n = 1002, and with one pattern
+// kept, re-analysis after a change of border was 3% of a covering at n = 10⁴). KLU's factor,
+// refactor and solve only read it.
 struct SymbolicDeleter {
   void operator()(klu_symbolic* symbolic) const {
     klu_common common;
@@ -48,9 +51,12 @@ struct AnalysedPattern {
   }
 };
 
-AnalysedPattern& last_analysed_pattern() {
-  thread_local AnalysedPattern pattern;
-  return pattern;
+constexpr std::size_t kKeptPatterns = 8;
+
+// Most recently used first.
+std::vector<AnalysedPattern>& analysed_patterns() {
+  thread_local std::vector<AnalysedPattern> patterns;
+  return patterns;
 }
 
 class KluSparseLu final : public SparseLu {
@@ -80,10 +86,14 @@ class KluSparseLu final : public SparseLu {
  protected:
   SparseLuStatus do_analyze(const Eigen::SparseMatrix<double>& A) override {
     release();
-    AnalysedPattern& last = last_analysed_pattern();
-    if (last.matches(A)) {
-      symbolic_ = last.symbolic;
-      return SparseLuStatus::Success;
+    std::vector<AnalysedPattern>& patterns = analysed_patterns();
+    for (std::size_t k = 0; k < patterns.size(); ++k) {
+      if (patterns[k].matches(A)) {
+        std::rotate(patterns.begin(), patterns.begin() + static_cast<std::ptrdiff_t>(k),
+                    patterns.begin() + static_cast<std::ptrdiff_t>(k) + 1);
+        symbolic_ = patterns.front().symbolic;
+        return SparseLuStatus::Success;
+      }
     }
     // klu_analyze takes non-const pointers but does not modify the pattern.
     klu_symbolic* symbolic = klu_analyze(static_cast<int>(A.rows()),
@@ -95,9 +105,14 @@ class KluSparseLu final : public SparseLu {
                                                  : SparseLuStatus::Failed;
     }
     symbolic_ = SharedSymbolic(symbolic, SymbolicDeleter());
-    last.outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1);
-    last.inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-    last.symbolic = symbolic_;
+    if (patterns.size() == kKeptPatterns) {
+      patterns.pop_back();
+    }
+    AnalysedPattern analysed;
+    analysed.outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1);
+    analysed.inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+    analysed.symbolic = symbolic_;
+    patterns.insert(patterns.begin(), std::move(analysed));
     return SparseLuStatus::Success;
   }
 
