@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -311,3 +312,42 @@ TEST(MeshValidation, CountsAMillionTriangleTorus) {
 
 }  // namespace
 }  // namespace tessera
+
+// validate_around judges coordinates and shapes only at the vertices it is told changed, and the
+// whole topology: a degenerate triangle elsewhere is not judged again, one at a changed vertex
+// is, and a topological defect anywhere is.
+TEST(MeshValidation, AroundChangedVerticesJudgesTheirShapesAndAllTopology) {
+  using tessera::TriangleMesh;
+  TriangleMesh mesh = tessera::examples::square_grid(4);
+  ASSERT_TRUE(tessera::validate(mesh).is_valid());
+  const std::vector<tessera::Triangle>& triangles = mesh.triangles();
+  // Flatten the first triangle: its third corner onto the midpoint of the other two.
+  const tessera::Triangle flat = triangles.front();
+  mesh.mutable_point(flat[2]) = 0.5 * (mesh.point(flat[0]) + mesh.point(flat[1]));
+  const int degenerate = tessera::validate(mesh).degenerate_triangle_count;
+  EXPECT_GE(degenerate, 1);
+  // Far from it (a vertex of no triangle that touches flat[2]'s triangles): not judged.
+  int far = -1;
+  for (int v = 0; v < mesh.vertex_count() && far < 0; ++v) {
+    bool touches = false;
+    for (const tessera::Triangle& t : triangles) {
+      const bool has_v = t[0] == v || t[1] == v || t[2] == v;
+      const bool has_moved = t[0] == flat[2] || t[1] == flat[2] || t[2] == flat[2];
+      touches = touches || (has_v && has_moved);
+    }
+    far = touches ? -1 : v;
+  }
+  ASSERT_GE(far, 0);
+  const std::array<int, 1> elsewhere{far};
+  EXPECT_TRUE(tessera::validate_around(mesh, elsewhere).is_valid());
+  const std::array<int, 1> moved{flat[2]};
+  const tessera::MeshValidation around = tessera::validate_around(mesh, moved);
+  EXPECT_EQ(around.degenerate_triangle_count, degenerate);
+  // A triangle repeated far from the changed vertex is still a topological defect.
+  std::vector<tessera::Triangle> doubled = triangles;
+  doubled.push_back(triangles.back());
+  mesh.set_triangles(std::move(doubled));
+  EXPECT_EQ(tessera::validate_around(mesh, elsewhere).duplicate_triangle_count, 1);
+  const std::array<int, 1> outside{mesh.vertex_count()};
+  EXPECT_THROW(tessera::validate_around(mesh, outside), tessera::InvalidArgument);
+}

@@ -214,8 +214,12 @@ void check_options(const ValidationOptions& options) {
 }
 
 // The combinatorial checks, then the geometric ones if `geometry` is given.
+// `measured` (null: all): the vertices whose coordinates, and the triangles around them whose
+// shapes, are checked (validate_around); the others are taken as finite and well shaped.
 MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& options,
-                             const GeometricInput* geometry) {
+                             const GeometricInput* geometry,
+                             const std::vector<std::uint8_t>* measured = nullptr) {
+  TESSERA_ASSERT(measured == nullptr || geometry == nullptr);
   using Kind = MeshDefectKind;
   DefectRecorder recorder(options.max_examples);
   MeshValidation result;
@@ -307,9 +311,10 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
   result.component_count = topology.component_count();
   result.euler_characteristic = topology.euler_characteristic();
 
+  const auto is_measured = [&](int v) { return measured == nullptr || (*measured)[v] != 0; };
   std::vector<std::uint8_t> is_finite(vertex_count, 1);
   for (int v = 0; v < vertex_count; ++v) {
-    if (!points.col(v).allFinite()) {
+    if (is_measured(v) && !points.col(v).allFinite()) {
       is_finite[v] = 0;
       recorder.record(Kind::NonFiniteCoordinate, [&] {
         std::ostringstream out;
@@ -441,6 +446,9 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
       continue;  // reported as a non-finite coordinate
     }
     shapes.is_finite[t] = 1;
+    if (!is_measured(tri[0]) && !is_measured(tri[1]) && !is_measured(tri[2])) {
+      continue;  // unchanged since it was found well shaped
+    }
     const auto [area, longest_squared] = area_and_longest_squared(points, tri);
     shapes.area[t] = area;
     shapes.longest_edge[t] = std::sqrt(longest_squared);
@@ -493,6 +501,19 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
 MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& options) {
   check_options(options);
   return validate_mesh(mesh, options, nullptr);
+}
+
+MeshValidation validate_around(const TriangleMesh& mesh, std::span<const int> changed,
+                               const ValidationOptions& options) {
+  check_options(options);
+  std::vector<std::uint8_t> measured(static_cast<std::size_t>(mesh.vertex_count()), 0);
+  for (int v : changed) {
+    TESSERA_CHECK(v >= 0 && v < mesh.vertex_count(),
+                  "validate_around: vertex " << v << " is not in the mesh of "
+                                             << mesh.vertex_count() << " vertices");
+    measured[static_cast<std::size_t>(v)] = 1;
+  }
+  return validate_mesh(mesh, options, nullptr, &measured);
 }
 
 MeshValidation validate(const TriangleMesh& mesh, const ImplicitProblem& problem,

@@ -5,6 +5,7 @@
 // S (docs/validation.md).
 #pragma once
 
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -145,6 +146,15 @@ struct MeshValidation {
 /// degree plus O(n) per vertex and triangle for the areas in R^n.
 /// \throw InvalidArgument if options.degenerate_area_ratio < 0 or options.max_examples < 0.
 MeshValidation validate(const TriangleMesh& mesh, const ValidationOptions& options = {});
+
+/// validate(mesh, options) for a mesh edited only at the vertices `changed` since it was last
+/// found valid (vertices moved or created, triangles around them replaced; triangles may be
+/// removed anywhere): the whole topology is checked (integers only, O(N)), the coordinates and
+/// shapes only at those vertices and their triangles. What an edit of a large-n mesh needs,
+/// where validate() costs O(n) per vertex and triangle; unchanged parts are not judged again.
+/// \throw InvalidArgument as validate(), or if a changed index is out of range.
+MeshValidation validate_around(const TriangleMesh& mesh, std::span<const int> changed,
+                               const ValidationOptions& options = {});
 
 /// validate(mesh, options) and the geometric validity of `mesh` as a mesh of M ∩ S, M = {F = 0}
 /// of `problem` and S = `domain` (docs/validation.md):

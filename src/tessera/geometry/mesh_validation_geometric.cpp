@@ -271,21 +271,29 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
   // plane's normal moves it by O(κ·e·h), a small fraction of the triangle; 1% allows for it.
   constexpr double barycentric_slack = 0.01;
   Linearization workspace;
-  // The planar test runs for every candidate pair, and at large n its cost is the passes over
-  // n-vectors: the reference triangle's frame (origin, orthonormal U, its own corners in U) is
-  // kept for the last two references (pairs come sorted by their first triangle, so one of the
-  // two recurs), and the other triangle's corners are projected in one fused pass each.
+  // The planar test runs for every candidate pair (about ten per triangle), and at large n its
+  // cost is the passes over n-vectors: the reference triangle's frame (origin, orthonormal U,
+  // its own corners in U) is kept for the last two references (pairs come sorted by their first
+  // triangle, which is preferred as the reference, so one of the two recurs), and so are the
+  // coordinates in it of every vertex projected so far (the other triangles of a fan share
+  // vertices).
   struct ReferenceFrame {
     int triangle = -1;
     Eigen::VectorXd origin;
     Eigen::MatrixXd U;
     Eigen::Matrix<double, 2, 3> corners;
+    std::vector<int> projected_for;  // per vertex: the triangle whose frame `projected` is in
+    std::vector<Eigen::Vector2d> projected;
   };
   std::array<ReferenceFrame, 2> frames;
+  for (ReferenceFrame& frame : frames) {
+    frame.projected_for.assign(static_cast<std::size_t>(view.mesh.vertex_count()), -1);
+    frame.projected.resize(static_cast<std::size_t>(view.mesh.vertex_count()));
+  }
   int newest_frame = 0;
   Eigen::VectorXd d(n);
-  const auto frame_of = [&](int reference) -> const ReferenceFrame& {
-    for (const ReferenceFrame& frame : frames) {
+  const auto frame_of = [&](int reference) -> ReferenceFrame& {
+    for (ReferenceFrame& frame : frames) {
       if (frame.triangle == reference) {
         return frame;
       }
@@ -329,16 +337,24 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
       const double c = shapes.oriented_cosine[r];
       return std::isnan(c) ? -1.0 : std::abs(c);
     };
-    const int reference = alignment(s) >= alignment(t) ? s : t;
+    // The better aligned of the two planes is the reference; s by a margin of 10 %, so that
+    // its frame and projections serve its next pairs too.
+    const int reference = alignment(s) >= 0.9 * alignment(t) ? s : t;
     const int other = reference == s ? t : s;
-    const ReferenceFrame& frame = frame_of(reference);
+    ReferenceFrame& frame = frame_of(reference);
     const Eigen::VectorXd& o = frame.origin;
     const Eigen::MatrixXd& U = frame.U;
     const Eigen::Matrix<double, 2, 3>& a = frame.corners;
     for (int j = 0; j < 3; ++j) {
-      const auto q = points.col(triangles[other][j]);
-      b(0, j) = (U.col(0).array() * (q - o).array()).sum();
-      b(1, j) = (U.col(1).array() * (q - o).array()).sum();
+      const int v = triangles[other][j];
+      const auto k = static_cast<std::size_t>(v);
+      if (frame.projected_for[k] != reference) {
+        const auto q = points.col(v);
+        frame.projected[k] = {(U.col(0).array() * (q - o).array()).sum(),
+                              (U.col(1).array() * (q - o).array()).sum()};
+        frame.projected_for[k] = reference;
+      }
+      b.col(j) = frame.projected[k];
     }
     const PlanarOverlap overlap = triangle_intersection(a, b);
     const double smaller_area = std::min(shapes.area[s], shapes.area[t]);

@@ -102,6 +102,7 @@ struct ClipUndo {
   int vertex_count = 0;
   std::vector<Triangle> triangles;
   std::vector<std::pair<int, Eigen::VectorXd>> moved;
+  std::vector<int> merged_into;  // vertices that took over a collapsed vertex's triangles
 
   explicit ClipUndo(const TriangleMesh& mesh)
       : vertex_count(mesh.vertex_count()), triangles(mesh.triangles()) {}
@@ -248,6 +249,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
           star_keeps_orientation(v, mesh.point(occupant), occupant)) {
         collapse_into[v] = occupant;
         undo.move(mesh, v, mesh.point(occupant));  // later checks see where v went
+        undo.merged_into.push_back(occupant);
         d[v] = 0.0;
       }
       continue;
@@ -526,7 +528,8 @@ int collapse_short_boundary_edges(const ImplicitProblem& problem, TriangleMesh& 
       // would cost more than the collapse at large n)
       std::vector<Triangle> before = mesh.triangles();
       mesh.set_triangles(std::move(triangles));
-      if (!is_valid_but_unreferenced(validate(mesh))) {
+      const std::array<int, 1> around{a};  // b's triangles are a's now
+      if (!is_valid_but_unreferenced(validate_around(mesh, around))) {
         mesh.set_triangles(std::move(before));
         continue;
       }
@@ -580,8 +583,18 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
         failure = attempt_summary.message;
         continue;
       }
-      // The vertices cut away are unreferenced until the compaction below.
-      const MeshValidation validation = validate(mesh);
+      // The vertices cut away are unreferenced until the compaction below. Judged where the
+      // attempt moved or added vertices (every new triangle has one): a whole validation per
+      // face costs O(n) per triangle at large n.
+      std::vector<int> changed;
+      for (const auto& [v, old_place] : undo.moved) {
+        changed.push_back(v);
+      }
+      changed.insert(changed.end(), undo.merged_into.begin(), undo.merged_into.end());
+      for (int v = undo.vertex_count; v < mesh.vertex_count(); ++v) {
+        changed.push_back(v);
+      }
+      const MeshValidation validation = validate_around(mesh, changed);
       if (is_valid_but_unreferenced(validation)) {
         compact(mesh, attempt_faces, std::vector<bool>(mesh.triangle_count(), true));
         on_faces = std::move(attempt_faces);
