@@ -40,6 +40,7 @@ class FactorisationCache {
     entries_.emplace_back(key, Linearization());
     Linearization& linearization = entries_.back().second;
     const bool is_factored = linearization.factor(problem, x);
+    linearization.release_assembly();  // kept for its solves only
     bytes_ += linearization.memory_bytes();
     return is_factored ? &linearization : nullptr;
   }

@@ -105,17 +105,26 @@ class SparseBackend final : public LinearizationBackend {
                     : std::make_unique<SparseBackend>();
     copy->bordered_ = bordered_;
     copy->last_tangent_ = last_tangent_;
-    if (lu_ && lu_->is_factored() &&
+    if (lu_ && lu_->is_factored() && !assembly_released_ &&
         copy->lu_->analyze(copy->bordered_) == SparseLuStatus::Success) {
       copy->lu_->factorize(copy->bordered_);
     }
     return copy;
   }
 
+  void release_assembly() override {
+    jacobian_ = Eigen::SparseMatrix<double>();
+    bordered_ = Eigen::SparseMatrix<double>();
+    assembly_released_ = true;
+  }
+
+  bool clones_factorisation() const override { return !assembly_released_; }
+
   bool factor(const ImplicitProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& x,
               const Eigen::MatrixXd* reference, Eigen::MatrixXd& tangent,
               double& reciprocal_condition) override {
     const int n = problem.ambient_dimension();
+    assembly_released_ = false;
     problem.sparse_jacobian(x, jacobian_);
     for (int k = 0; k < jacobian_.nonZeros(); ++k) {
       if (!std::isfinite(jacobian_.valuePtr()[k])) {
@@ -223,6 +232,7 @@ class SparseBackend final : public LinearizationBackend {
   Eigen::SparseMatrix<double> bordered_;
   std::unique_ptr<SparseLu> lu_;
   Eigen::MatrixXd last_tangent_;  // guides the border of the next factorisation
+  bool assembly_released_ = false;  // jacobian_ and bordered_ freed after factoring
 };
 
 }  // namespace
@@ -236,7 +246,7 @@ Linearization::Linearization(const Linearization& other)
       point_(other.point_),
       tangent_(other.tangent_),
       reciprocal_condition_(other.reciprocal_condition_),
-      factored_(other.factored_) {}
+      factored_(other.factored_ && other.backend_ && other.backend_->clones_factorisation()) {}
 Linearization& Linearization::operator=(const Linearization& other) {
   if (this != &other) {
     Linearization copy(other);
@@ -248,6 +258,12 @@ Linearization& Linearization::operator=(const Linearization& other) {
 std::size_t Linearization::memory_bytes() const {
   return (backend_ ? backend_->memory_bytes() : 0) +
          sizeof(double) * static_cast<std::size_t>(point_.size() + tangent_.size());
+}
+
+void Linearization::release_assembly() {
+  if (backend_) {
+    backend_->release_assembly();
+  }
 }
 
 bool Linearization::factor(const ImplicitProblem& problem,

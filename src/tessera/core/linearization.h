@@ -56,6 +56,10 @@ class Linearization {
   /// Heap bytes this factorisation holds (factors, Jacobian, point, basis), approximately: what
   /// a covering weighs when it decides how many factorisations to keep.
   std::size_t memory_bytes() const;
+  /// Frees what only factoring needed (for sparse problems DF and the bordered matrix, about
+  /// half of the bytes at large n); solves and the tangent basis are unchanged. A copy made
+  /// afterwards is not factored. For factorisations kept for their solves.
+  void release_assembly();
   /// Estimate of the reciprocal condition number of J (smallest/largest |R_ii|), in (0, 1].
   double reciprocal_condition() const { return reciprocal_condition_; }
 

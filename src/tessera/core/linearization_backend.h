@@ -44,6 +44,12 @@ class LinearizationBackend {
   long own_jacobian_evaluations() const { return own_jacobian_evaluations_; }
   /// Heap bytes held (the factors, the Jacobian), approximately, on this rank.
   virtual std::size_t memory_bytes() const = 0;
+  /// Drops what only factoring needed (the Jacobian, the assembled matrix): solves still work,
+  /// a clone is not factored. For factorisations kept for later solves at large n.
+  virtual void release_assembly() {}
+  /// Whether clone() is factored too (false after release_assembly of a backend that refactors
+  /// to copy).
+  virtual bool clones_factorisation() const { return true; }
 
  protected:
   long factorisations_ = 0;

@@ -271,6 +271,7 @@ void AtlasBuilder::rebuild_polygon(int k) {
 void AtlasBuilder::shrink_radius(int c, double radius) {
   const double old_radius = charts_[c].radius;
   charts_[c].radius = radius;
+  charts_[c].eligible = -1;  // the margin is measured in radii
   ++shrunk_charts_;
   rebuild_polygon(c);
   std::vector<int> neighbours;
@@ -295,16 +296,21 @@ bool AtlasBuilder::is_eligible(int c) const {
   if (domain_.is_unbounded()) {
     return true;
   }
+  if (charts_[c].eligible >= 0) {
+    return charts_[c].eligible != 0;
+  }
+  charts_[c].eligible = 0;
   const double margin = options_.domain_margin * charts_[c].radius;
   const auto x = center(c);
-  const Eigen::MatrixXd& T = tangent(c);
   for (int k = 0; k < static_cast<int>(domain_.half_spaces().size()); ++k) {
     const double d = domain_.signed_distance(k, x);
+    // (The tangent plane only where it matters: a retired chart's is recomputed.)
     if (d < -margin ||
-        (d < 0 && d < -margin * (T.transpose() * domain_.half_spaces()[k].normal).norm())) {
+        (d < 0 && d < -margin * (tangent(c).transpose() * domain_.half_spaces()[k].normal).norm())) {
       return false;
     }
   }
+  charts_[c].eligible = 1;
   return true;
 }
 
@@ -448,6 +454,7 @@ void AtlasBuilder::retire_finished_charts(int c) {
 // The queue is first in, first out: the newest chart is processed last, so it is the one whose
 // factorisation is dropped when the budget is spent (the older ones are used sooner).
 void AtlasBuilder::keep_factorisation(int c, Linearization&& linearization) {
+  linearization.release_assembly();  // it waits for its solves: DF and the bordered matrix go
   const std::size_t bytes = linearization.memory_bytes();
   if (!factored_.empty() &&
       static_cast<double>(kept_bytes_ + bytes) > options_.max_factorisation_bytes) {

@@ -41,6 +41,9 @@ struct Chart {
   signed char orientation = 0;  // sign of det([J; Tᵀ]) at the centre; 0: not watched
   float jacobian_scale = 0.0f;  // σ_min(J) at the centre (only where crossings are watched)
   bool queued = false;
+  // is_eligible, once known (−1: not yet): it depends on the centre, tangent plane and radius
+  // only, and costs O(n) per face of the domain, for every corner the chart is asked about.
+  mutable signed char eligible = -1;
 };
 
 class AtlasBuilder {
