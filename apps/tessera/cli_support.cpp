@@ -3,6 +3,7 @@
 
 #include <cctype>
 #include <nlohmann/json.hpp>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -86,10 +87,13 @@ void apply_start_and_box(ProblemSetup& setup, const std::string& start, const st
 // percentile with probability 95 %); below it at every one.
 constexpr int kSampledReportDimension = 500;
 constexpr int kReportSamples = 300;
+constexpr double kMinReportSeconds = 10.0;
+constexpr double kReportTimeFraction = 0.1;
 
 MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
                        const std::string& problem_argument, const MeshValidation* known,
-                       int samples, bool measure_distances) {
+                       int samples, bool measure_distances, double run_seconds,
+                       const std::function<bool()>& stop_requested) {
   MeshReport report;
   report.problem = problem_argument;  // as the user spelled it, e.g. "torus:R=2"
   report.ambient_dimension = setup.problem->ambient_dimension();
@@ -104,6 +108,12 @@ MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
   quality.max_samples = samples >= 0                                         ? samples
                         : report.ambient_dimension >= kSampledReportDimension ? kReportSamples
                                                                               : 0;
+  if (samples < 0) {
+    // The report is a check of the run, not a second run (bratu2d:N=316: 900 samples took
+    // longer than the covering): a tenth of its time, at least kMinReportSeconds.
+    quality.max_seconds = std::max(kMinReportSeconds, kReportTimeFraction * run_seconds);
+  }
+  quality.stop_requested = stop_requested;
   if (measure_distances) {
     report.quality = measure_quality(mesh, *setup.problem, quality);
   } else {

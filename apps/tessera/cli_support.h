@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json_fwd.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,10 +37,15 @@ void apply_start_and_box(ProblemSetup& setup, const std::string& start, const st
 /// `measure_distances`: false leaves the distances to M unmeasured (their counts 0 of their
 /// populations): the summary `tessera mesh` writes before the measurement, which at large n
 /// takes minutes, so that a run killed during it still leaves one.
+/// `run_seconds`: how long the covering took. With the default `samples`, the distances get a
+/// tenth of that, at least 10 s, and then stop (at least 30 samples of each kind; the report
+/// says how many it measured): at n = 10⁵ a sample costs a factorisation.
+/// `stop_requested`: polled before every distance sample (Ctrl-C ends the measurement).
 MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
                        const std::string& problem_argument,
                        const MeshValidation* known = nullptr, int samples = -1,
-                       bool measure_distances = true);
+                       bool measure_distances = true, double run_seconds = 0.0,
+                       const std::function<bool()>& stop_requested = {});
 
 /// A method's own options given to another method would be ignored silently: refuses them
 /// (InvalidArgument naming them), as the command line spells them (`--max-step`) or, with

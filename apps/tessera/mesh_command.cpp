@@ -297,7 +297,8 @@ int run_mesh(const MeshCommand& command) {
   }
   // Ctrl-C or a kill (SIGTERM, e.g. a batch system's time limit) stops the method at its next
   // vertex; the valid partial mesh and the summary are still written and the exit is 1. A
-  // second signal while the run finishes (clip, refine, validate) ends the process at once.
+  // second signal while the run finishes (clip, refine, validate) ends the process at once. A
+  // signal during the report's distances ends them with what they measured.
   const InterruptGuard interrupt;
   settings.stop_requested = [] { return InterruptGuard::requested(); };
   CoveringResult result = cover(setup, method, settings);
@@ -357,8 +358,14 @@ int run_mesh(const MeshCommand& command) {
     before.view = view_report;
     write_summary_json(command.summary, before);
   }
+  const bool stopped_before = InterruptGuard::requested();
   MeshReport report = make_report(result.mesh, setup, command.problem, &before.validation,
-                                  command.report_samples);
+                                  command.report_samples, /*measure_distances=*/true,
+                                  result.summary.wall_seconds, [stopped_before] {
+                                    // After a stop in the covering, a second signal ends the
+                                    // process (the summary above is written).
+                                    return !stopped_before && InterruptGuard::requested();
+                                  });
   report.run = result.summary;
   report.view = view_report;
   std::vector<Polyline> fold_curves;

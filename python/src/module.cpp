@@ -180,7 +180,8 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
     }
     MeshReport report = app::make_report(result.mesh, setup, problem->argument,
                                          result.validation ? &*result.validation : nullptr,
-                                         request.report_samples);
+                                         request.report_samples, /*measure_distances=*/true,
+                                         result.summary.wall_seconds);
     report.run = result.summary;
     report.view = ViewReport{view.specification(),
                              view.is_all_coordinates() ? std::vector<std::string>() : view.names(),

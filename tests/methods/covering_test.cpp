@@ -171,3 +171,35 @@ TEST(Covering, VerticesOutsideTheDomainAreRemovedAndReported) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// The report's distances within a time budget: a spent budget still measures kMinDistanceSamples
+// of each kind (a uniform sample: the counts say how many), and a stop request ends them.
+TEST(MeasureQuality, ATimeBudgetKeepsAUniformSampleOfEachKind) {
+  const ProblemSetup setup = make_catalogue_problem("sphere");
+  const CoveringResult result = cover(setup, find_covering_method("atlas"), MethodSettings{});
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+  ASSERT_GT(result.mesh.vertex_count(), 2 * kMinDistanceSamples);
+  QualityOptions spent;
+  spent.max_seconds = 0.0;
+  const MeshQuality sampled = measure_quality(result.mesh, *setup.problem, spent);
+  EXPECT_EQ(sampled.vertex_distance.count, kMinDistanceSamples);
+  EXPECT_EQ(sampled.centroid_distance.count, kMinDistanceSamples);
+  EXPECT_EQ(sampled.midpoint_distance.count, kMinDistanceSamples);
+  EXPECT_EQ(sampled.centroid_distance.population, result.mesh.triangle_count());
+  EXPECT_EQ(sampled.vertex_residual.count, result.mesh.vertex_count());  // always all
+  const MeshQuality all = measure_quality(result.mesh, *setup.problem);
+  EXPECT_EQ(all.centroid_distance.count, result.mesh.triangle_count());
+  EXPECT_LE(sampled.centroid_distance.max, all.centroid_distance.max);
+  EXPECT_GT(sampled.centroid_distance.max, 0.0);
+  QualityOptions stopped;
+  int polls = 0;
+  stopped.stop_requested = [&polls] { return ++polls > 5; };
+  const MeshQuality cut_short = measure_quality(result.mesh, *setup.problem, stopped);
+  EXPECT_EQ(cut_short.centroid_distance.count, 5);
+}
+
+}  // namespace
+}  // namespace tessera

@@ -2,6 +2,7 @@
 #include "tessera/geometry/mesh_quality.h"
 
 #include <algorithm>
+#include <chrono>
 #include <utility>
 #include <array>
 #include <cmath>
@@ -52,8 +53,7 @@ std::vector<int> sample_indices(int population, int limit) {
     std::swap(indices[i], indices[pick(generator)]);
   }
   indices.resize(limit);
-  std::sort(indices.begin(), indices.end());
-  return indices;
+  return indices;  // in random order: every prefix is a uniform sample
 }
 
 }  // namespace
@@ -243,23 +243,40 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
     accumulate(quality.vertex_residual, F.norm());
   }
   quality.vertex_residual.population = mesh.vertex_count();
-  for (int v : sample_indices(mesh.vertex_count(), options.max_samples)) {
-    distance(point(v), -1, quality.vertex_distance);
-  }
-  quality.vertex_distance.population = mesh.vertex_count();
-  for (int t : sample_indices(mesh.triangle_count(), options.max_samples)) {
-    const Triangle& tri = mesh.triangle(t);
-    distance((point(tri[0]) + point(tri[1]) + point(tri[2])) / 3.0, tri[0],
-             quality.centroid_distance);
-  }
-  quality.centroid_distance.population = mesh.triangle_count();
   const MeshTopology topology(mesh);
   const auto& edges = topology.edges();
-  for (int e : sample_indices(static_cast<int>(edges.size()), options.max_samples)) {
-    distance(0.5 * (point(edges[e][0]) + point(edges[e][1])), edges[e][0],
-             quality.midpoint_distance);
-  }
+  const std::vector<int> vertices = sample_indices(mesh.vertex_count(), options.max_samples);
+  const std::vector<int> triangles = sample_indices(mesh.triangle_count(), options.max_samples);
+  const std::vector<int> midpoints = sample_indices(static_cast<int>(edges.size()), options.max_samples);
+  quality.vertex_distance.population = mesh.vertex_count();
+  quality.centroid_distance.population = mesh.triangle_count();
   quality.midpoint_distance.population = static_cast<int>(edges.size());
+  // The three kinds in turn, so that a spent time budget leaves a uniform sample of each.
+  const auto started = std::chrono::steady_clock::now();
+  const auto has_time = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() <
+           options.max_seconds;
+  };
+  const std::size_t rounds = std::max({vertices.size(), triangles.size(), midpoints.size()});
+  for (std::size_t i = 0; i < rounds; ++i) {
+    if ((i >= static_cast<std::size_t>(kMinDistanceSamples) && !has_time()) ||
+        (options.stop_requested && options.stop_requested())) {
+      break;
+    }
+    if (i < vertices.size()) {
+      // The vertex's own factorisation: the chord from it lands in a step or two.
+      distance(point(vertices[i]), is_sparse ? vertices[i] : -1, quality.vertex_distance);
+    }
+    if (i < triangles.size()) {
+      const Triangle& tri = mesh.triangle(triangles[i]);
+      distance((point(tri[0]) + point(tri[1]) + point(tri[2])) / 3.0, tri[0],
+               quality.centroid_distance);
+    }
+    if (i < midpoints.size()) {
+      const auto& edge = edges[midpoints[i]];
+      distance(0.5 * (point(edge[0]) + point(edge[1])), edge[0], quality.midpoint_distance);
+    }
+  }
   return quality;
 }
 
