@@ -264,7 +264,8 @@ TEST(CliView, ReportSamplesBoundTheDistanceMeasurement) {
                               quoted(folder + "/bvp.ply") + " --report-samples 7 --summary " +
                               quoted(folder + "/bvp.json"));
   ASSERT_TRUE(result.exit_code == 0 || result.exit_code == 1) << result.output;
-  EXPECT_TRUE(contains(result.output, "(largest of 7 uniform samples of each)")) << result.output;
+  EXPECT_TRUE(contains(result.output, "(largest of 7 uniform samples of each: with 95% confidence it bounds 65.2% of the points)"))
+      << result.output;
   std::ifstream in(folder + "/bvp.json");
   const auto summary = nlohmann::json::parse(in);
   const auto& centroids = summary["distance_to_manifold"]["centroids"];
