@@ -2,14 +2,14 @@
 #include "tessera/geometry/mesh_quality.h"
 
 #include <algorithm>
-#include <chrono>
-#include <utility>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <numeric>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "tessera/core/corrector.h"

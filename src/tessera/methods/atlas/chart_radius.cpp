@@ -84,7 +84,7 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
         is_graph = a.col(i).norm() <= r;
       }
     }
-    for (int i = 0; i < probes && is_graph && !first_step_probes_; ++i) {
+    for (int i = 0; i < probes && is_graph && !first_step_probes_; ++i) {  // full projections
       const double theta = (i % 6) * std::numbers::pi / 3.0;
       const double distance = i < 6 ? r : kInnerProbe * r;
       predicted = x + distance * (T * Eigen::Vector2d(std::cos(theta), std::sin(theta)));

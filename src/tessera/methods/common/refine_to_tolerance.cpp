@@ -218,6 +218,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
         samples.col(count++) = 0.5 * (mesh.point(u) + mesh.point(v));
       }
     }
+    bool has_circumcentre = false;
     const Eigen::VectorXd ab = b - a;
     const Eigen::VectorXd ac = c - a;
     const double uu = ab.squaredNorm(), ww = ac.squaredNorm(), uw = ab.dot(ac);
@@ -227,6 +228,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const double gamma = uu * (ww - uw) / det;
       if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) {
         samples.col(count++) = a + beta * ab + gamma * ac;
+        has_circumcentre = true;
       }
     }
     // All samples are measured from the anchor in lockstep (one multi-column solve per chord
@@ -245,22 +247,28 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     for (int e = 0; e < new_midpoint_count; ++e) {
       midpoint_distance.emplace(new_midpoints[e], distance[static_cast<std::size_t>(1 + e)]);
     }
-    // The worst sample, the first of equals in the order centroid, midpoints, circumcentre.
+    // The worst sample, the first of equals in the order centroid, midpoints, circumcentre;
+    // its point is formed once, for the worst triangle's report.
     double worst = -1.0;
-    auto consider = [&](const Eigen::VectorXd& point, double d) {
+    int worst_sample = -1;  // 0: the centroid, 1 + e: the midpoint of edge e, 4: circumcentre
+    const auto consider = [&](int which, double d) {
       if (!(d <= worst)) {
         worst = d;
-        where = point;
+        worst_sample = which;
       }
     };
-    consider(points.col(0), distance[0]);
+    consider(0, distance[0]);
     for (int e = 0; e < 3; ++e) {
-      const int u = tri[e];
-      const int v = tri[(e + 1) % 3];
-      consider(0.5 * (mesh.point(u) + mesh.point(v)), midpoint_distance.at(edge_key(u, v)));
+      consider(1 + e, midpoint_distance.at(edge_key(tri[e], tri[(e + 1) % 3])));
     }
-    if (count == 2 + new_midpoint_count) {
-      consider(points.col(count - 1), distance.back());
+    if (has_circumcentre) {
+      consider(4, distance.back());
+    }
+    if (worst_sample == 0 || worst_sample == 4) {
+      where = points.col(worst_sample == 0 ? 0 : count - 1);
+    } else {
+      const int e = worst_sample - 1;
+      where = 0.5 * (mesh.point(tri[e]) + mesh.point(tri[(e + 1) % 3]));
     }
     return worst;
   };
