@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/core/bordered_jacobian.h"
 
+#include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 #include <random>
+#include <utility>
 
 #include "tessera/core/error.h"
 
@@ -24,6 +27,37 @@ JacobianBorder coordinate_border(const Eigen::MatrixXd& T) {
     }
   }
   return {{n - 2, i, 1.0}, {n - 1, j, 1.0}};
+}
+
+bool coordinate_tangent_basis(Eigen::MatrixXd& kernel, const Eigen::MatrixXd* guide) {
+  const int n = static_cast<int>(kernel.rows());
+  int i = n - 2;
+  int j = n - 1;
+  if (guide != nullptr) {
+    const JacobianBorder border = coordinate_border(*guide);
+    i = border[0].col();
+    j = border[1].col();
+  }
+  Eigen::Matrix2d rows;
+  rows << kernel.row(i), kernel.row(j);
+  // Singular to working precision relative to the basis: the sparse backend's LU would fail too.
+  if (!(std::abs(rows.determinant()) > 1e-12 * kernel.squaredNorm())) {
+    return false;
+  }
+  Eigen::MatrixXd basis = kernel * rows.inverse();
+  basis.row(i) = Eigen::RowVector2d(1.0, 0.0);
+  basis.row(j) = Eigen::RowVector2d(0.0, 1.0);
+  // Modified Gram–Schmidt, twice, as the sparse backend orthonormalises A⁻¹ [e_{n−2}, e_{n−1}].
+  for (int pass = 0; pass < 2; ++pass) {
+    basis.col(0).normalize();
+    basis.col(1) -= basis.col(0).dot(basis.col(1)) * basis.col(0);
+    basis.col(1).normalize();
+  }
+  if (!basis.allFinite()) {
+    return false;
+  }
+  kernel = std::move(basis);
+  return true;
 }
 
 JacobianBorder random_border(int n) {

@@ -18,6 +18,15 @@ using JacobianBorder = std::vector<Eigen::Triplet<double>>;
 /// allows. \pre T is n×2, n ≥ 2.
 JacobianBorder coordinate_border(const Eigen::MatrixXd& T);
 
+/// The tangent basis that the coordinate border of `guide` gives (coordinate_border(guide), or
+/// the last two coordinates without a guide), whatever basis `kernel` (n×2, orthonormal or not)
+/// the kernel came in: K = kernel · kernel([i, j], :)⁻¹ has rows i, j equal to the identity, as
+/// A⁻¹ [e_{n−2}, e_{n−1}] has; then Gram–Schmidt as the sparse backend does. Backends that
+/// factor otherwise (the PETSc backend, its MUMPS border) return this basis, so that the
+/// covering, whose charts and polygons are drawn in tangent coordinates, makes the serial
+/// backend's mesh. \return false (kernel unchanged) if rows i, j of the kernel are singular.
+bool coordinate_tangent_basis(Eigen::MatrixXd& kernel, const Eigen::MatrixXd* guide);
+
 /// Two dense pseudo-random rows (fixed seed): transversal to ker J with probability one, the
 /// last resort when no tangent guides the border. They fill the LU (bench/RESULTS.md, section 6).
 JacobianBorder random_border(int n);

@@ -2,9 +2,13 @@
 #include "tessera/core/scaled_problem.h"
 
 #include <cmath>
+#include <memory>
+#include <utility>
 
 #include "tessera/core/ambient_space.h"
+#include "tessera/core/bordered_jacobian.h"
 #include "tessera/core/error.h"
+#include "tessera/core/linearization_backend.h"
 
 namespace tessera {
 
@@ -62,6 +66,81 @@ std::vector<CoordinateBlock> ScaledProblem::coordinate_blocks() const {
     block.weight = 1.0;
   }
   return blocks;
+}
+
+namespace {
+
+// The factorisation of DF̃(y) = DF(W⁻¹y) W⁻¹ from one of DF at x = W⁻¹y. ker DF̃ = W ker DF,
+// orthonormalised in y. A solution dx of DF dx = r gives DF̃ (W dx) = r; removing its component
+// in ker DF̃ leaves the minimum-norm one.
+class ScaledBackend final : public LinearizationBackend {
+ public:
+  ScaledBackend(const ImplicitProblem& inner, const Eigen::VectorXd& weights,
+                std::unique_ptr<LinearizationBackend> backend)
+      : inner_(inner), weights_(weights), backend_(std::move(backend)) {}
+
+  std::unique_ptr<LinearizationBackend> clone() const override {
+    auto copy = std::make_unique<ScaledBackend>(inner_, weights_, backend_->clone());
+    copy->inner_tangent_ = inner_tangent_;
+    copy->last_tangent_ = last_tangent_;
+    return copy;
+  }
+  bool clones_factorisation() const override { return backend_->clones_factorisation(); }
+
+  bool factor(const ImplicitProblem& /*scaled*/, const Eigen::Ref<const Eigen::VectorXd>& y,
+              const Eigen::MatrixXd* reference, Eigen::MatrixXd& tangent,
+              double& reciprocal_condition) override {
+    const Eigen::VectorXd x = y.cwiseQuotient(weights_);
+    Eigen::MatrixXd guide;  // W⁻¹ T̃ spans ker DF when T̃ spans ker DF̃: it guides the border
+    if (reference != nullptr) {
+      guide = weights_.cwiseInverse().asDiagonal() * (*reference);
+    }
+    const long factorisations_before = backend_->factorisations();
+    const long jacobians_before = backend_->own_jacobian_evaluations();
+    const bool is_factored = backend_->factor(inner_, x, reference != nullptr ? &guide : nullptr,
+                                              inner_tangent_, reciprocal_condition);
+    factorisations_ += backend_->factorisations() - factorisations_before;
+    own_jacobian_evaluations_ += backend_->own_jacobian_evaluations() - jacobians_before;
+    if (!is_factored) {
+      return false;
+    }
+    // W T spans ker DF̃; its basis is the one tessera's sparse backend would give on DF̃.
+    tangent = weights_.asDiagonal() * inner_tangent_;
+    const Eigen::MatrixXd* guide_y =
+        reference != nullptr ? reference : last_tangent_.rows() == y.size() ? &last_tangent_ : nullptr;
+    if (!coordinate_tangent_basis(tangent, guide_y) && !coordinate_tangent_basis(tangent, nullptr)) {
+      return false;
+    }
+    last_tangent_ = tangent;
+    return true;
+  }
+
+  void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd& tangent,
+             Eigen::Ref<Eigen::VectorXd> dy) const override {
+    backend_->solve(rhs, inner_tangent_, dy);
+    dy.array() *= weights_.array();
+    dy -= tangent * (tangent.transpose() * dy);
+  }
+
+  std::size_t memory_bytes() const override { return backend_->memory_bytes(); }
+  void release_assembly() override { backend_->release_assembly(); }
+
+ private:
+  const ImplicitProblem& inner_;
+  const Eigen::VectorXd& weights_;  // the ScaledProblem's, which outlives its linearisations
+  std::unique_ptr<LinearizationBackend> backend_;
+  Eigen::MatrixXd inner_tangent_;  // the inner backend's basis of ker DF
+  Eigen::MatrixXd last_tangent_;   // guides the basis of the next factorisation, as in SparseBackend
+};
+
+}  // namespace
+
+std::unique_ptr<LinearizationBackend> ScaledProblem::make_linearization_backend() const {
+  std::unique_ptr<LinearizationBackend> inner = inner_.make_linearization_backend();
+  if (!inner) {
+    return nullptr;
+  }
+  return std::make_unique<ScaledBackend>(inner_, weights_, std::move(inner));
 }
 
 Domain scale_domain(const Domain& domain, const Eigen::VectorXd& weights) {

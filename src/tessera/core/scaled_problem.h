@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
@@ -35,6 +36,9 @@ class ScaledProblem final : public ImplicitProblem {
   std::vector<std::string> coordinate_names() const override { return inner_.coordinate_names(); }
   /// The inner blocks with weight 1: in y the metric is already Euclidean.
   std::vector<CoordinateBlock> coordinate_blocks() const override;
+  /// The inner problem's own factorisation (a distributed one), wrapped to factor DF̃ = DF W⁻¹;
+  /// null (tessera's sparse or dense backend on DF̃) when the inner problem has none.
+  std::unique_ptr<LinearizationBackend> make_linearization_backend() const override;
 
   const Eigen::VectorXd& weights() const { return weights_; }
   /// y = W x and x = W⁻¹ y.

@@ -36,28 +36,6 @@ double DistributedSpace::maximum(double value) const {
 
 namespace {
 
-// Wraps Eigen's memory in a PETSc vector for one call, without copying.
-class PlacedArray {
- public:
-  PlacedArray(Vec v, const double* data) : v_(v) {
-    check(VecPlaceArray(v_, const_cast<double*>(data)), "VecPlaceArray");
-  }
-  ~PlacedArray() { VecResetArray(v_); }
-  PlacedArray(const PlacedArray&) = delete;
-  PlacedArray& operator=(const PlacedArray&) = delete;
-
- private:
-  Vec v_;
-};
-
-Owned<Vec> array_wrapper(const PetscProblem& problem, int local_rows) {
-  Owned<Vec> v;
-  check(VecCreateMPIWithArray(problem.communicator(), 1, local_rows, problem.ambient_dimension(),
-                              nullptr, v.out()),
-        "VecCreateMPIWithArray");
-  return v;
-}
-
 // Linearization's backend for a DistributedProblem: DistributedLinearization on the placed
 // local rows; the tangent basis is copied back into Eigen's local rows × 2.
 class DistributedBackend final : public LinearizationBackend {
@@ -68,9 +46,9 @@ class DistributedBackend final : public LinearizationBackend {
     Owned<Vec> layout = problem.create_vector();
     check(VecGetLocalSize(layout, &rows), "VecGetLocalSize");
     local_rows_ = static_cast<int>(rows);
-    x_ = array_wrapper(problem, local_rows_);
-    rhs_ = array_wrapper(problem, local_rows_);
-    dx_ = array_wrapper(problem, local_rows_);
+    x_ = array_vector(problem.communicator(), local_rows_, problem.ambient_dimension());
+    rhs_ = array_vector(problem.communicator(), local_rows_, problem.ambient_dimension());
+    dx_ = array_vector(problem.communicator(), local_rows_, problem.ambient_dimension());
   }
 
   std::unique_ptr<LinearizationBackend> clone() const override {
@@ -150,8 +128,8 @@ DistributedProblem::DistributedProblem(const PetscProblem& problem) : problem_(p
   space_ = std::make_shared<DistributedSpace>(problem.communicator(),
                                               static_cast<int>(problem.ambient_dimension()),
                                               static_cast<int>(first), static_cast<int>(end - first));
-  x_ = array_wrapper(problem, space_->local_rows());
-  F_ = array_wrapper(problem, space_->local_rows());
+  x_ = array_vector(problem.communicator(), space_->local_rows(), problem.ambient_dimension());
+  F_ = array_vector(problem.communicator(), space_->local_rows(), problem.ambient_dimension());
 }
 
 void DistributedProblem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,

@@ -2,6 +2,7 @@
 #include "tessera/petsc/petsc_linearization.h"
 
 #include <cmath>
+#include <string>
 
 #include "tessera/core/error.h"
 
@@ -50,6 +51,36 @@ void zero_border_entries(Vec v) {
 DistributedLinearization::DistributedLinearization(const PetscProblem& problem)
     : problem_(problem), n_(problem.ambient_dimension()) {
   TESSERA_CHECK(n_ >= 3, "DistributedLinearization: n = " << n_ << " must be >= 3");
+}
+
+DistributedLinearization::DistributedLinearization(const DistributedLinearization& other)
+    : problem_(other.problem_), n_(other.n_) {
+  if (!other.point_) {
+    return;
+  }
+  const auto copy = [](Vec from, Owned<Vec>& to) {
+    check(VecDuplicate(from, to.out()), "VecDuplicate");
+    check(VecCopy(from, to), "VecCopy");
+  };
+  copy(other.point_, point_);
+  copy(other.tangent_[0], tangent_[0]);
+  copy(other.tangent_[1], tangent_[1]);
+  check(VecDuplicate(other.unit_, unit_.out()), "VecDuplicate");
+  check(VecDuplicate(other.rhs_, rhs_.out()), "VecDuplicate");
+  has_basis_ = other.has_basis_;
+  if (!other.bordered_) {
+    return;
+  }
+  check(MatDuplicate(other.bordered_, MAT_COPY_VALUES, bordered_.out()), "MatDuplicate");
+  border_i_ = other.border_i_;
+  border_j_ = other.border_j_;
+  border_changes_ = other.border_changes_;
+  if (other.is_factored_) {
+    make_solver();
+    check(KSPSetOperators(solver_, bordered_, bordered_), "KSPSetOperators");
+    check(KSPSetUp(solver_), "KSPSetUp");
+    is_factored_ = true;
+  }
 }
 
 void DistributedLinearization::make_solver() {
@@ -269,6 +300,43 @@ bool DistributedLinearization::factor_with_border(PetscInt i, PetscInt j) {
     return false;
   }
   return true;
+}
+
+std::size_t DistributedLinearization::memory_bytes() const {
+  if (!bordered_) {
+    return 0;
+  }
+  int ranks = 1;
+  MPI_Comm_size(problem_.communicator(), &ranks);
+  MatInfo info{};
+  check(MatGetInfo(bordered_, MAT_GLOBAL_SUM, &info), "MatGetInfo");
+  // A CSR entry: its value and its column index.
+  double bytes = info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt));
+#if defined(PETSC_HAVE_MUMPS)
+  if (solver_ && is_factored_) {
+    PC preconditioner = nullptr;
+    check(KSPGetPC(solver_, &preconditioner), "KSPGetPC");
+    PCType type = nullptr;
+    check(PCGetType(preconditioner, &type), "PCGetType");
+    MatSolverType package = nullptr;
+    if (type != nullptr && std::string(type) == PCLU) {
+      check(PCFactorGetMatSolverType(preconditioner, &package), "PCFactorGetMatSolverType");
+    }
+    if (package != nullptr && std::string(package) == MATSOLVERMUMPS) {
+      Mat factors = nullptr;
+      check(PCFactorGetMatrix(preconditioner, &factors), "PCFactorGetMatrix");
+      // INFOG(9), INFOG(10): real and integer entries of the factors over all ranks; a negative
+      // value counts millions.
+      const auto entries = [&](PetscInt index) {
+        PetscInt value = 0;
+        check(MatMumpsGetInfog(factors, index, &value), "MatMumpsGetInfog");
+        return value < 0 ? -1e6 * static_cast<double>(value) : static_cast<double>(value);
+      };
+      bytes += entries(9) * sizeof(PetscScalar) + entries(10) * sizeof(PetscInt);
+    }
+  }
+#endif
+  return static_cast<std::size_t>(bytes / ranks);
 }
 
 void DistributedLinearization::solve_minimum_norm(Vec rhs, Vec dx) const {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 
 #include "tessera/petsc/petsc_problem.h"
 
@@ -31,6 +32,10 @@ using TangentPair = std::array<Owned<Vec>, 2>;
 class DistributedLinearization {
  public:
   explicit DistributedLinearization(const PetscProblem& problem);
+  /// A copy factors its own copy of the bordered matrix (a numerical factorisation, no
+  /// evaluation of DF; not counted in factorisations()). Collective.
+  DistributedLinearization(const DistributedLinearization& other);
+  DistributedLinearization& operator=(const DistributedLinearization&) = delete;
 
   /// Evaluates DF at x and factors the bordered matrix. The returned basis is oriented like
   /// `reference` (det(Tᵀ Tᵣ) > 0) when one is given. Reuses the symbolic analysis while the
@@ -48,6 +53,10 @@ class DistributedLinearization {
   /// are ignored). `rhs` and `dx` may not be the same vector. \pre is_factored().
   void solve_minimum_norm(Vec rhs, Vec dx) const;
 
+  /// Bytes of the factors and the bordered matrix, averaged over the ranks: the same number on
+  /// every rank, so that budgets built on it decide alike (MUMPS's INFOG(9), INFOG(10); 0 before
+  /// the first factorisation). Collective.
+  std::size_t memory_bytes() const;
   /// Numerical factorisations so far (each a PCSetUp of the bordered matrix).
   long factorisations() const { return factorisations_; }
   /// Symbolic analyses so far (a new border column pattern).

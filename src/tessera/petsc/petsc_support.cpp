@@ -41,6 +41,19 @@ void Owned<VecScatter>::reset() {
   }
 }
 
+PlacedArray::PlacedArray(Vec v, const double* data) : v_(v) {
+  check(VecPlaceArray(v_, const_cast<double*>(data)), "VecPlaceArray");
+}
+
+PlacedArray::~PlacedArray() { VecResetArray(v_); }
+
+Owned<Vec> array_vector(MPI_Comm communicator, PetscInt local_rows, PetscInt global_size) {
+  Owned<Vec> v;
+  check(VecCreateMPIWithArray(communicator, 1, local_rows, global_size, nullptr, v.out()),
+        "VecCreateMPIWithArray");
+  return v;
+}
+
 Session::Session(int* argc, char*** argv) {
   check(PetscInitialize(argc, argv, nullptr, nullptr), "PetscInitialize");
   // Errors come back as codes, which `check` turns into exceptions with PETSc's message.

@@ -48,6 +48,23 @@ class Owned {
   Handle handle_ = nullptr;
 };
 
+/// Lends an array (Eigen's memory) to a vector made by `array_vector` for the object's lifetime,
+/// without copying (VecPlaceArray … VecResetArray).
+class PlacedArray {
+ public:
+  PlacedArray(Vec v, const double* data);
+  ~PlacedArray();
+  PlacedArray(const PlacedArray&) = delete;
+  PlacedArray& operator=(const PlacedArray&) = delete;
+
+ private:
+  Vec v_;
+};
+
+/// A distributed vector of `global_size` entries, `local_rows` of them here, with no memory of
+/// its own: PlacedArray lends it an array for a call.
+Owned<Vec> array_vector(MPI_Comm communicator, PetscInt local_rows, PetscInt global_size);
+
 /// Starts PETSc (and MPI, if nobody did) for the object's lifetime and makes PETSc return its
 /// errors instead of printing them. One per process, before any other PETSc call: the CLI's
 /// main and the tests' main make it. `argc`/`argv` carry PETSc's options (-ksp_type, -pc_type,
