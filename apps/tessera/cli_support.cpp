@@ -93,7 +93,8 @@ constexpr double kReportTimeFraction = 0.1;
 MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
                        const std::string& problem_argument, const MeshValidation* known,
                        int samples, bool measure_distances, double run_seconds,
-                       const std::function<bool()>& stop_requested) {
+                       const std::function<bool()>& stop_requested,
+                       const std::function<bool(bool)>& decide_together) {
   MeshReport report;
   report.problem = problem_argument;  // as the user spelled it, e.g. "torus:R=2"
   report.ambient_dimension = setup.problem->ambient_dimension();
@@ -114,6 +115,7 @@ MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
     quality.max_seconds = std::max(kMinReportSeconds, kReportTimeFraction * run_seconds);
   }
   quality.stop_requested = stop_requested;
+  quality.decide_together = decide_together;
   if (measure_distances) {
     report.quality = measure_quality(mesh, *setup.problem, quality);
   } else {

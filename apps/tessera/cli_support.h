@@ -45,7 +45,8 @@ MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
                        const std::string& problem_argument,
                        const MeshValidation* known = nullptr, int samples = -1,
                        bool measure_distances = true, double run_seconds = 0.0,
-                       const std::function<bool()>& stop_requested = {});
+                       const std::function<bool()>& stop_requested = {},
+                       const std::function<bool(bool)>& decide_together = {});
 
 /// A method's own options given to another method would be ignored silently: refuses them
 /// (InvalidArgument naming them), as the command line spells them (`--max-step`) or, with

@@ -11,6 +11,7 @@
 #include "improve_command.h"
 #include "picture_command.h"
 #include "mesh_command.h"
+#include "solver_backend.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
@@ -119,11 +120,18 @@ int main(int argc, char** argv) {
       ->required();
   check_app->add_flag("--json", check_json, "print the report as JSON");
 
+  // PETSc's own options (-ksp_type gmres, -log_view, …) are PETSc's to parse (--backend petsc).
+  mesh.petsc_options = tessera::app::take_petsc_options(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : kUsageError;
+  }
+  if (!mesh.petsc_options.empty() && !app.got_subcommand("mesh")) {
+    std::cerr << "tessera: error: " << mesh.petsc_options.front()
+              << " is an option of PETSc, which only `tessera mesh --backend petsc` uses\n";
+    return kUsageError;
   }
   try {
     if (app.got_subcommand("mesh")) {

@@ -27,6 +27,7 @@
 #include "tessera/io/view_mesh.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/problems/catalogue.h"
+#include "solver_backend.h"
 #include "tessera/problems/view.h"
 
 namespace tessera::app {
@@ -170,6 +171,13 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
                    "bezier: write the cubic surface evaluated on a K x K subdivision of "
                    "every triangle instead of the flat triangles")
       ->check(CLI::Range(1, 64));
+  mesh_app
+      ->add_option("--backend", mesh.backend,
+                   "where F, DF and the factorisations run: 'serial' (this process, default) or "
+                   "'petsc' (PETSc's distributed objects and MUMPS on the ranks of mpirun, for "
+                   "bvp and bratu2d; PETSc's own options such as -ksp_view go last; "
+                   "docs/cluster.md)")
+      ->check(CLI::IsMember({"serial", "petsc"}));
   mesh_app->add_option("--patches", mesh.patches,
                        "bezier: write the Bezier control points of every triangle to this file "
                        "(docs/bezier-patches.md)");
@@ -241,12 +249,36 @@ void check_states_output(const std::string& path) {
                             << ")");
 }
 
+int mesh_on(SolverBackend& backend, const MeshCommand& command);
+
 }  // namespace
 
 int run_mesh(const MeshCommand& command) {
+  SolverBackend backend(command.backend, command.petsc_options);
+  if (backend.ranks() == 1) {
+    return mesh_on(backend, command);
+  }
+  try {
+    return mesh_on(backend, command);
+  } catch (const std::exception& error) {
+    // The other ranks may wait in a collective call for this one: end them all.
+    const bool is_usage = dynamic_cast<const InvalidArgument*>(&error) != nullptr;
+    std::cerr << "tessera: " << (is_usage ? "error" : "failed") << " (rank " << backend.rank()
+              << " of " << backend.ranks() << "): " << error.what() << "\n";
+    backend.abort(is_usage ? kUsageError : kComputationFailed);
+  }
+}
+
+namespace {
+
+int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   ProblemSetup setup = resolve_problem(command.problem);
   const int n = setup.problem->ambient_dimension();
   apply_start_and_box(setup, command.start, command.box);
+  backend.adopt(setup);
+  // Every rank computes; the root prints and writes.
+  const bool is_root = backend.is_root();
+  const bool quiet = command.quiet || !is_root;
   const CoveringMethod& method =
       command.method.empty() ? covering_methods().front() : find_covering_method(command.method);
   // A method's own options given to another method would be ignored silently: refuse them.
@@ -288,7 +320,7 @@ int run_mesh(const MeshCommand& command) {
   }
   MeshFileOptions file_options;
   MethodSettings settings = command.settings;
-  const bool show_progress = !command.quiet && isatty(STDERR_FILENO);
+  const bool show_progress = !quiet && isatty(STDERR_FILENO);
   if (show_progress) {
     settings.progress = [](const CoveringProgress& p) {
       std::fprintf(stderr, "\r  %d vertices, %d triangles, front %d   ", p.vertex_count,
@@ -300,7 +332,8 @@ int run_mesh(const MeshCommand& command) {
   // second signal while the run finishes (clip, refine, validate) ends the process at once. A
   // signal during the report's distances ends them with what they measured.
   const InterruptGuard interrupt;
-  settings.stop_requested = [] { return InterruptGuard::requested(); };
+  // Collective on the PETSc backend: every rank stops at the same vertex.
+  settings.stop_requested = [&backend] { return backend.any_rank(InterruptGuard::requested()); };
   CoveringResult result = cover(setup, method, settings);
   if (show_progress) {
     std::fprintf(stderr, "\r%60s\r", "");
@@ -310,7 +343,7 @@ int run_mesh(const MeshCommand& command) {
     // swaps again (docs/algorithms/improvement.md): validity and boundary are kept.
     improve_mesh(result.mesh, *setup.problem, ImprovementOptions{}, 3);
   }
-  if (!command.patches.empty()) {
+  if (!command.patches.empty() && is_root) {
     write_bezier_patches(command.patches,
                          {result.mesh, result.patches, setup.problem->coordinate_names()});
   }
@@ -325,7 +358,9 @@ int run_mesh(const MeshCommand& command) {
   // An empty mesh (the start failed) is not written: it would replace a good file with nothing.
   const bool has_mesh = result.mesh.triangle_count() > 0;
   std::vector<std::string> written;
-  if (has_mesh && view.is_all_coordinates()) {
+  if (has_mesh && !is_root) {
+    // The other ranks write nothing.
+  } else if (has_mesh && view.is_all_coordinates()) {
     // PLY keeps the standard names (x, y, z, x3, …) that readers look for; the problem's own
     // names go into a comment, and into the arrays of VTK files.
     const bool is_ply = std::filesystem::path(command.output).extension() == ".ply";
@@ -353,42 +388,47 @@ int run_mesh(const MeshCommand& command) {
   MeshReport before = make_report(result.mesh, setup, command.problem,
                                   result.validation ? &*result.validation : nullptr,
                                   command.report_samples, /*measure_distances=*/false);
-  if (!command.summary.empty()) {
+  if (!command.summary.empty() && is_root) {
     before.run = result.summary;
     before.view = view_report;
+    before.backend = BackendReport{backend.name(), backend.ranks()};
     write_summary_json(command.summary, before);
   }
-  const bool stopped_before = InterruptGuard::requested();
+  const bool stopped_before = backend.any_rank(InterruptGuard::requested());
   MeshReport report = make_report(result.mesh, setup, command.problem, &before.validation,
                                   command.report_samples, /*measure_distances=*/true,
-                                  result.summary.wall_seconds, [stopped_before] {
+                                  result.summary.wall_seconds,
+                                  [stopped_before] {
                                     // After a stop in the covering, a second signal ends the
                                     // process (the summary above is written).
                                     return !stopped_before && InterruptGuard::requested();
-                                  });
+                                  },
+                                  [&backend](bool stop) { return backend.any_rank(stop); });
   report.run = result.summary;
   report.view = view_report;
+  report.backend = BackendReport{backend.name(), backend.ranks()};
   std::vector<Polyline> fold_curves;
   if (has_mesh && fold_plane) {
     // On the finished mesh, in its view; a partial mesh has the folds of what it covers.
     const FoldOutput folds =
-        compute_folds(setup, result.mesh, *fold_plane, view, fold_file, file_options.comments);
+        compute_folds(setup, result.mesh, *fold_plane, view, is_root ? fold_file : std::string(),
+                      file_options.comments);
     fold_curves = folds.curves_in_view;
     report.folds = folds.report;
     written.push_back(fold_file);
-    if (folds.report.unrefined_count > 0) {
+    if (folds.report.unrefined_count > 0 && is_root) {
       std::cerr << "tessera: " << folds.report.unrefined_count
                 << " fold point(s) did not converge onto the fold curve and are kept at the "
                    "mesh's linear estimate (summary: folds.unrefined_points)\n";
     }
-    if (folds.report.singular_triangle_count > 0) {
+    if (folds.report.singular_triangle_count > 0 && is_root) {
       std::cerr << "tessera: det(Dpi T) vanishes on " << folds.report.singular_triangle_count
                 << " triangle(s): there (" << folds.report.plane
                 << ") is singular on M's tangent planes over a region, not along a fold curve; "
                    "those triangles are left out (summary: folds.singular_triangles)\n";
     }
   }
-  if (has_mesh && !command.states.empty()) {
+  if (has_mesh && !command.states.empty() && is_root) {
     write_states_npy(command.states, result.mesh);
     report.states = StatesReport{command.states,
                                  triangles_npy_path(command.states),
@@ -399,7 +439,7 @@ int run_mesh(const MeshCommand& command) {
     written.push_back(report.states->states_file);
     written.push_back(report.states->triangles_file);
   }
-  if (has_mesh && !command.picture.empty()) {
+  if (has_mesh && !command.picture.empty() && is_root) {
     PictureOptions picture;
     picture.edges = result.mesh.triangle_count() <= 20000;
     picture.title = command.problem + " (" + method.name + ")";
@@ -431,11 +471,11 @@ int run_mesh(const MeshCommand& command) {
                        &setup);
     written.push_back(command.picture);
   }
-  if (!command.summary.empty()) {
+  if (!command.summary.empty() && is_root) {
     write_summary_json(command.summary, report);
     written.push_back(command.summary);
   }
-  if (!command.quiet && !written.empty()) {
+  if (!quiet && !written.empty()) {
     std::cout << to_text(report) << "wrote          ";
     for (std::size_t i = 0; i < written.size(); ++i) {
       std::cout << (i == 0 ? "" : i + 1 == written.size() ? " and " : ", ") << written[i];
@@ -443,6 +483,9 @@ int run_mesh(const MeshCommand& command) {
     std::cout << "\n";
   }
   if (!result.summary.is_complete()) {
+    if (!is_root) {
+      return kComputationFailed;
+    }
     std::cerr << "tessera: the " << method.name << " method stopped early ("
               << to_string(result.summary.termination) << "): " << result.summary.message << "\n";
     if (has_mesh) {
@@ -453,10 +496,14 @@ int run_mesh(const MeshCommand& command) {
     return kComputationFailed;
   }
   if (!report.validation.is_valid()) {
-    std::cerr << "tessera: the mesh is not valid:\n" << report.validation.report();
+    if (is_root) {
+      std::cerr << "tessera: the mesh is not valid:\n" << report.validation.report();
+    }
     return kComputationFailed;
   }
   return 0;
 }
+
+}  // namespace
 
 }  // namespace tessera::app

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "tessera/methods/covering_methods.h"
 
@@ -29,6 +30,8 @@ struct MeshCommand {
   bool improve = false;
   int refine = 0;       ///< bezier: evaluate the cubic patches on a K×K subdivision (0: off)
   std::string patches;  ///< bezier: write the Bézier control points to this file
+  std::string backend = "serial";          ///< --backend: serial or petsc (solver_backend.h)
+  std::vector<std::string> petsc_options;  ///< PETSc's own options from the command line
 };
 
 CLI::App* add_mesh_command(CLI::App& app, MeshCommand& command);

@@ -259,8 +259,12 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
   };
   const std::size_t rounds = std::max({vertices.size(), triangles.size(), midpoints.size()});
   for (std::size_t i = 0; i < rounds; ++i) {
-    if ((i >= static_cast<std::size_t>(kMinDistanceSamples) && !has_time()) ||
-        (options.stop_requested && options.stop_requested())) {
+    bool stop = (i >= static_cast<std::size_t>(kMinDistanceSamples) && !has_time()) ||
+                (options.stop_requested && options.stop_requested());
+    if (options.decide_together) {
+      stop = options.decide_together(stop);
+    }
+    if (stop) {
       break;
     }
     if (i < vertices.size()) {

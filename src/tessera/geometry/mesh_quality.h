@@ -37,6 +37,10 @@ struct QualityOptions {
   /// Polled before every distance sample; true ends the measurement with what was measured
   /// (the counts say how much). Ctrl-C during the report at large n.
   std::function<bool()> stop_requested;
+  /// In a distributed run (every rank measuring the same samples, each a collective
+  /// projection): this rank's wish to stop, spent budget or stop request, in; the decision
+  /// every rank takes, out (true if any rank wants to stop). Empty: this process decides.
+  std::function<bool(bool)> decide_together;
 };
 
 /// Samples of each kind measured whatever QualityOptions::max_seconds says (the largest of 30

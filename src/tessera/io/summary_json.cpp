@@ -169,6 +169,9 @@ std::string to_json(const MeshReport& report) {
     }
     j["run"]["notes"] = r.notes;
   }
+  if (report.backend) {
+    j["backend"] = {{"name", report.backend->name}, {"ranks", report.backend->ranks}};
+  }
   if (report.view) {
     j["view"] = {{"specification", report.view->specification}, {"origin", report.view->origin}};
     if (!report.view->columns.empty()) {
@@ -288,6 +291,10 @@ std::string to_text(const MeshReport& report) {
       }
       out << " DF/factorisations per vertex\n";
     }
+  }
+  if (report.backend && report.backend->name != "serial") {
+    out << "backend        " << report.backend->name << " on " << report.backend->ranks
+        << (report.backend->ranks == 1 ? " rank" : " ranks") << "\n";
   }
   if (report.view && !(report.view->specification == "all" && report.view->origin == "default")) {
     out << "view           " << report.view->specification << " (";

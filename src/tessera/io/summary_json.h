@@ -24,6 +24,13 @@ struct ViewReport {
   std::string origin;
 };
 
+/// Where the linear algebra ran (`tessera mesh --backend`): "serial", or "petsc" on `ranks`
+/// MPI ranks.
+struct BackendReport {
+  std::string name;
+  int ranks = 1;
+};
+
 /// The states written as NumPy arrays (`tessera mesh --states`, io/npy.h).
 struct StatesReport {
   std::string states_file;     ///< shape (vertices, n), '<f8'
@@ -70,6 +77,7 @@ struct MeshReport {
   std::string problem;
   int ambient_dimension = 0;
   std::optional<ViewReport> view;      ///< absent for `tessera check`
+  std::optional<BackendReport> backend;  ///< absent for `tessera check`
   std::optional<StatesReport> states;  ///< present when the states were written
   std::optional<FoldReport> folds;     ///< present when fold curves were asked for
   std::optional<CoveringSummary> run;

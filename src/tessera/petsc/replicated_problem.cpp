@@ -69,6 +69,11 @@ class ReplicatedBackend final : public LinearizationBackend {
     // Like the serial sparse backend's copy: the bordered matrix is copied and factored again.
     return std::make_unique<ReplicatedBackend>(*this);
   }
+  // As the serial sparse backend: a kept factorisation (release_assembly) is not copied. The
+  // factors stay in MUMPS either way; what matters is that the covering takes the same steps
+  // (a copy that is not factored is factored again by its user) as with the serial backend.
+  bool clones_factorisation() const override { return !released_; }
+  void release_assembly() override { released_ = true; }
 
   bool factor(const ImplicitProblem& /*problem*/, const Eigen::Ref<const Eigen::VectorXd>& x,
               const Eigen::MatrixXd* reference, Eigen::MatrixXd& tangent,
@@ -87,6 +92,7 @@ class ReplicatedBackend final : public LinearizationBackend {
         check(VecRestoreArray(column, &values), "VecRestoreArray");
       }
     }
+    released_ = false;
     const long before = linearization_.factorisations();
     bool is_factored = false;
     {
@@ -149,6 +155,7 @@ class ReplicatedBackend final : public LinearizationBackend {
   Owned<Vec> rhs_;
   Owned<Vec> dx_;
   Eigen::MatrixXd last_tangent_;      // guides the basis of the next factorisation
+  bool released_ = false;             // release_assembly since the last factor
   mutable Eigen::VectorXd right_;     // scratch: this rank's rows of a right-hand side
   mutable Eigen::VectorXd solution_;  // and of its solution
 };

@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: MIT
+#include "solver_backend.h"
+
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+
+#include "tessera/core/error.h"
+#include "tessera/problems/examples.h"
+
+#if defined(TESSERA_CLI_HAS_PETSC)
+#include "tessera/petsc/petsc_bratu.h"
+#include "tessera/petsc/petsc_support.h"
+#include "tessera/petsc/replicated_problem.h"
+#endif
+
+namespace tessera::app {
+
+namespace {
+
+bool is_petsc_option(const char* argument) {
+  const std::size_t length = std::strlen(argument);
+  return length > 2 && argument[0] == '-' && std::isalpha(static_cast<unsigned char>(argument[1])) &&
+         std::strchr(argument, '_') != nullptr;
+}
+
+bool is_number(const char* text) {
+  char* end = nullptr;
+  std::strtod(text, &end);
+  return end != text && *end == '\0';
+}
+
+}  // namespace
+
+std::vector<std::string> take_petsc_options(int& argc, char** argv) {
+  std::vector<std::string> options;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    if (!is_petsc_option(argv[i])) {
+      argv[kept++] = argv[i];
+      continue;
+    }
+    options.emplace_back(argv[i]);
+    if (i + 1 < argc && (argv[i + 1][0] != '-' || is_number(argv[i + 1]))) {
+      options.emplace_back(argv[++i]);
+    }
+  }
+  argc = kept;
+  argv[argc] = nullptr;
+  return options;
+}
+
+#if defined(TESSERA_CLI_HAS_PETSC)
+
+struct SolverBackend::Petsc {
+  explicit Petsc(const std::vector<std::string>& options) : arguments{"tessera"} {
+    arguments.insert(arguments.end(), options.begin(), options.end());
+    for (std::string& argument : arguments) {
+      pointers.push_back(argument.data());
+    }
+    pointers.push_back(nullptr);
+    argc = static_cast<int>(arguments.size());
+    argv = pointers.data();
+    session = std::make_unique<petsc::Session>(&argc, &argv);
+  }
+  ~Petsc() {
+    problem.reset();  // before PETSc ends
+    session.reset();
+  }
+
+  std::vector<std::string> arguments;  // PetscInitialize keeps pointers into these
+  std::vector<char*> pointers;
+  int argc = 0;
+  char** argv = nullptr;
+  std::unique_ptr<petsc::Session> session;
+  std::unique_ptr<petsc::PetscArrheniusBratu> problem;
+};
+
+SolverBackend::SolverBackend(const std::string& name, const std::vector<std::string>& petsc_options)
+    : name_(name) {
+  TESSERA_CHECK(name == "serial" || name == "petsc",
+                "--backend " << name << ": unknown backend (serial or petsc)");
+  TESSERA_CHECK(petsc_options.empty() || name == "petsc",
+                "PETSc's options (" << petsc_options.front()
+                                    << " …) need --backend petsc; the serial backend has none");
+  if (name == "petsc") {
+    petsc_ = std::make_unique<Petsc>(petsc_options);
+  }
+}
+
+int SolverBackend::rank() const { return petsc_ ? petsc_->session->rank() : 0; }
+
+int SolverBackend::ranks() const { return petsc_ ? petsc_->session->size() : 1; }
+
+bool SolverBackend::any_rank(bool value) const {
+  return petsc_ ? petsc::any_rank(value, petsc_->session->communicator()) : value;
+}
+
+void SolverBackend::adopt(ProblemSetup& setup) {
+  if (!petsc_) {
+    return;
+  }
+  const ImplicitProblem& serial = *setup.problem;
+  int spatial_dimension = 0;
+  int grid_size = 0;
+  if (const auto* bvp = dynamic_cast<const ArrheniusBratu*>(&serial)) {
+    spatial_dimension = 1;
+    grid_size = bvp->point_count();
+  } else if (const auto* square = dynamic_cast<const ArrheniusBratu2D*>(&serial)) {
+    spatial_dimension = 2;
+    grid_size = square->grid_size();
+  }
+  TESSERA_CHECK(spatial_dimension > 0,
+                "--backend petsc: problem '"
+                    << serial.name()
+                    << "' has no PETSc implementation; the PETSc backend has the catalogue's bvp "
+                       "and bratu2d (a problem of your own implements petsc::PetscProblem, "
+                       "docs/cluster.md)");
+  petsc_->problem = std::make_unique<petsc::PetscArrheniusBratu>(
+      petsc_->session->communicator(), spatial_dimension, grid_size);
+  auto distributed =
+      std::make_unique<petsc::ReplicatedProblem>(*petsc_->problem, serial.coordinate_names());
+  // The two implementations must describe the same M: compare F at the start.
+  const int n = serial.ambient_dimension();
+  Eigen::VectorXd F_serial(n - 2);
+  Eigen::VectorXd F_petsc(n - 2);
+  serial.evaluate(setup.start, F_serial);
+  distributed->evaluate(setup.start, F_petsc);
+  if (!((F_serial - F_petsc).norm() <= 1e-10 * (1.0 + F_serial.norm()))) {
+    throw ComputationFailed("--backend petsc: the PETSc implementation of '" + serial.name() +
+                            "' disagrees with the serial one at the start point (|ΔF| = " +
+                            std::to_string((F_serial - F_petsc).norm()) + "); please report this");
+  }
+  setup.problem = std::move(distributed);
+}
+
+void SolverBackend::abort(int code) const {
+  if (petsc_) {
+    MPI_Abort(petsc_->session->communicator(), code);
+  }
+  std::exit(code);
+}
+
+#else
+
+struct SolverBackend::Petsc {};
+
+SolverBackend::SolverBackend(const std::string& name, const std::vector<std::string>& petsc_options)
+    : name_(name) {
+  TESSERA_CHECK(name == "serial" || name == "petsc",
+                "--backend " << name << ": unknown backend (serial or petsc)");
+  TESSERA_CHECK(name != "petsc",
+                "--backend petsc: this tessera was built without PETSc (install Debian's "
+                "petsc-dev, e.g. with scripts/install-dependencies.sh, and build again)");
+  TESSERA_CHECK(petsc_options.empty(),
+                "PETSc's options (" << petsc_options.front()
+                                    << " …) need --backend petsc; the serial backend has none");
+}
+
+int SolverBackend::rank() const { return 0; }
+
+int SolverBackend::ranks() const { return 1; }
+
+bool SolverBackend::any_rank(bool value) const { return value; }
+
+void SolverBackend::adopt(ProblemSetup& /*setup*/) {}
+
+void SolverBackend::abort(int code) const { std::exit(code); }
+
+#endif
+
+SolverBackend::~SolverBackend() = default;
+
+}  // namespace tessera::app

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+// `tessera mesh --backend`: where the linear algebra runs. "serial": tessera's own sparse LU or
+// dense QR in this process. "petsc": F, DF and the factorisations of the bordered Jacobian on
+// PETSc's distributed objects (MUMPS by default) over the ranks of mpirun, every rank running
+// the same covering (petsc::ReplicatedProblem, docs/cluster.md).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tessera/problems/problem_setup.h"
+
+namespace tessera::app {
+
+/// Moves PETSc's own options out of argv (so that the command line parser does not see them):
+/// an argument of one dash, a letter and an underscore somewhere (-ksp_type, -pc_type,
+/// -mat_mumps_icntl_14, -log_view), with the argument after it when that is its value (does not
+/// start with '-', or is a number). PETSc's options therefore go last on the command line.
+std::vector<std::string> take_petsc_options(int& argc, char** argv);
+
+class SolverBackend {
+ public:
+  /// Starts the backend: for "petsc", PETSc (and MPI, when mpirun did not) with `petsc_options`.
+  /// \throw InvalidArgument for an unknown name, for "petsc" in a tessera built without PETSc,
+  ///        or for PETSc options given to the serial backend.
+  SolverBackend(const std::string& name, const std::vector<std::string>& petsc_options);
+  ~SolverBackend();
+  SolverBackend(const SolverBackend&) = delete;
+  SolverBackend& operator=(const SolverBackend&) = delete;
+
+  const std::string& name() const { return name_; }
+  /// This process's rank and the number of ranks (0 and 1 for the serial backend).
+  int rank() const;
+  int ranks() const;
+  /// The rank that prints and writes files; the others compute alongside it.
+  bool is_root() const { return rank() == 0; }
+  /// True on every rank if `value` is true on any (collective on the PETSc backend): what one
+  /// process notices (a signal, a spent time budget) becomes every rank's decision, so that
+  /// the ranks keep making the same collective calls.
+  bool any_rank(bool value) const;
+  /// Puts setup's problem on this backend (PETSc: the catalogue's bvp and bratu2d), with the
+  /// same start, domain and coordinate names. The backend must outlive the setup's problem.
+  /// \throw InvalidArgument if the problem has no implementation on the backend.
+  void adopt(ProblemSetup& setup);
+  /// Ends every rank with `code` (MPI_Abort): after an error on some ranks, the others may wait
+  /// in a collective call forever. The serial backend exits.
+  [[noreturn]] void abort(int code) const;
+
+ private:
+  struct Petsc;
+  std::string name_;
+  std::unique_ptr<Petsc> petsc_;
+};
+
+}  // namespace tessera::app
