@@ -122,6 +122,13 @@ class ScaledBackend final : public LinearizationBackend {
     dy -= tangent * (tangent.transpose() * dy);
   }
 
+  void solve_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs, const Eigen::MatrixXd& tangent,
+                     Eigen::Ref<Eigen::MatrixXd> dy) const override {
+    backend_->solve_columns(rhs, inner_tangent_, dy);
+    dy = weights_.asDiagonal() * dy;
+    dy -= tangent * (tangent.transpose() * dy);
+  }
+
   std::size_t memory_bytes() const override { return backend_->memory_bytes(); }
   void release_assembly() override { backend_->release_assembly(); }
 

@@ -57,6 +57,11 @@ class DistributedLinearization {
   /// every rank, so that budgets built on it decide alike (MUMPS's INFOG(9), INFOG(10); 0 before
   /// the first factorisation). Collective.
   std::size_t memory_bytes() const;
+  /// X = A⁻¹ B for the bordered matrix A and the k columns of B (dense matrices with the
+  /// problem's row layout): one multi-column solve, which MUMPS does in one sweep over its
+  /// factors. With B's entries n−2, n−1 zero, X's columns solve DF·x = b; they are not
+  /// projected (the caller removes their ker-DF components). \pre is_factored().
+  void solve_bordered_columns(Mat B, Mat X) const;
   /// Numerical factorisations so far (each a PCSetUp of the bordered matrix).
   long factorisations() const { return factorisations_; }
   /// Symbolic analyses so far (a new border column pattern).

@@ -53,10 +53,11 @@ namespace {
 class ReplicatedBackend final : public LinearizationBackend {
  public:
   explicit ReplicatedBackend(const ReplicatedProblem& owner)
-      : owner_(owner), linearization_(owner.petsc_problem()) {
+      : owner_(owner), linearization_(owner.take_linearization()) {
     make_array_vectors();
   }
 
+  // A copy shares the factorisation (solves do not change it) until either factors again.
   ReplicatedBackend(const ReplicatedBackend& other)
       : LinearizationBackend(other),
         owner_(other.owner_),
@@ -65,8 +66,14 @@ class ReplicatedBackend final : public LinearizationBackend {
     make_array_vectors();
   }
 
+  ~ReplicatedBackend() override {
+    if (linearization_.use_count() == 1) {
+      owner_.give_back(std::move(linearization_));
+    }
+  }
+  ReplicatedBackend& operator=(const ReplicatedBackend&) = delete;
+
   std::unique_ptr<LinearizationBackend> clone() const override {
-    // Like the serial sparse backend's copy: the bordered matrix is copied and factored again.
     return std::make_unique<ReplicatedBackend>(*this);
   }
   // As the serial sparse backend: a kept factorisation (release_assembly) is not copied. The
@@ -93,20 +100,23 @@ class ReplicatedBackend final : public LinearizationBackend {
       }
     }
     released_ = false;
-    const long before = linearization_.factorisations();
+    if (linearization_.use_count() > 1) {
+      linearization_ = owner_.take_linearization();  // the copies keep the shared one
+    }
+    const long before = linearization_->factorisations();
     bool is_factored = false;
     {
       const PlacedArray placed(x_, x.data() + rows.first());
-      is_factored = linearization_.factor(x_, reference != nullptr ? &guide : nullptr);
+      is_factored = linearization_->factor(x_, reference != nullptr ? &guide : nullptr);
     }
-    factorisations_ += linearization_.factorisations() - before;
+    factorisations_ += linearization_->factorisations() - before;
     ++own_jacobian_evaluations_;
     if (!is_factored) {
       return false;
     }
     tangent.resize(problem.ambient_dimension(), 2);
     for (int c = 0; c < 2; ++c) {
-      rows.gather(linearization_.tangent_basis()[static_cast<std::size_t>(c)], tangent.col(c).data());
+      rows.gather(linearization_->tangent_basis()[static_cast<std::size_t>(c)], tangent.col(c).data());
     }
     // The basis tessera's sparse backend would give (its border's), whatever border MUMPS
     // factored with: the covering draws in tangent coordinates.
@@ -133,12 +143,44 @@ class ReplicatedBackend final : public LinearizationBackend {
     {
       const PlacedArray placed_rhs(rhs_, right_.data());
       const PlacedArray placed_dx(dx_, solution_.data());
-      linearization_.solve_minimum_norm(rhs_, dx_);
+      linearization_->solve_minimum_norm(rhs_, dx_);
     }
     rows.gather(solution_.data(), dx.data());
   }
 
-  std::size_t memory_bytes() const override { return linearization_.memory_bytes(); }
+  void solve_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs, const Eigen::MatrixXd& tangent,
+                     Eigen::Ref<Eigen::MatrixXd> dx) const override {
+    const Eigen::Index k = rhs.cols();
+    if (k == 1) {
+      solve(rhs.col(0), tangent, dx.col(0));
+      return;
+    }
+    const RowSplit& rows = owner_.rows();
+    const PetscProblem& problem = owner_.petsc_problem();
+    const PetscInt equations = problem.ambient_dimension() - 2;
+    right_columns_.setZero(rows.local_rows(), k);
+    const PetscInt shared = std::max<PetscInt>(0, std::min(rows.local_rows(), equations - rows.first()));
+    right_columns_.topRows(shared) = rhs.middleRows(rows.first(), shared);
+    solution_columns_.resize(rows.local_rows(), k);
+    Owned<Mat> B;
+    Owned<Mat> X;
+    check(MatCreateDense(problem.communicator(), rows.local_rows(), PETSC_DECIDE,
+                         problem.ambient_dimension(), static_cast<PetscInt>(k),
+                         right_columns_.data(), B.out()),
+          "MatCreateDense");
+    check(MatCreateDense(problem.communicator(), rows.local_rows(), PETSC_DECIDE,
+                         problem.ambient_dimension(), static_cast<PetscInt>(k),
+                         solution_columns_.data(), X.out()),
+          "MatCreateDense");
+    linearization_->solve_bordered_columns(B, X);
+    for (Eigen::Index j = 0; j < k; ++j) {
+      rows.gather(solution_columns_.col(j).data(), dx.col(j).data());
+    }
+    // Remove the ker-DF components: what remains are the minimum-norm solutions.
+    dx -= tangent * (tangent.transpose() * dx);
+  }
+
+  std::size_t memory_bytes() const override { return linearization_->memory_bytes(); }
 
  private:
   void make_array_vectors() {
@@ -150,7 +192,7 @@ class ReplicatedBackend final : public LinearizationBackend {
   }
 
   const ReplicatedProblem& owner_;
-  DistributedLinearization linearization_;
+  std::shared_ptr<DistributedLinearization> linearization_;
   Owned<Vec> x_;
   Owned<Vec> rhs_;
   Owned<Vec> dx_;
@@ -158,6 +200,8 @@ class ReplicatedBackend final : public LinearizationBackend {
   bool released_ = false;             // release_assembly since the last factor
   mutable Eigen::VectorXd right_;     // scratch: this rank's rows of a right-hand side
   mutable Eigen::VectorXd solution_;  // and of its solution
+  mutable Eigen::MatrixXd right_columns_;     // the same for several right-hand sides
+  mutable Eigen::MatrixXd solution_columns_;
 };
 
 }  // namespace
@@ -259,6 +303,21 @@ void ReplicatedProblem::sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>&
   }
   J.resize(n - 2, n);
   J.setFromTriplets(triplets.begin(), triplets.end());
+}
+
+std::shared_ptr<DistributedLinearization> ReplicatedProblem::take_linearization() const {
+  if (idle_.empty()) {
+    return std::make_shared<DistributedLinearization>(problem_);
+  }
+  std::shared_ptr<DistributedLinearization> linearization = std::move(idle_.back());
+  idle_.pop_back();
+  return linearization;
+}
+
+void ReplicatedProblem::give_back(std::shared_ptr<DistributedLinearization> linearization) const {
+  if (linearization && idle_.size() < kIdleLinearizations) {
+    idle_.push_back(std::move(linearization));
+  }
 }
 
 std::unique_ptr<LinearizationBackend> ReplicatedProblem::make_linearization_backend() const {

@@ -14,6 +14,8 @@
 
 namespace tessera::petsc {
 
+class DistributedLinearization;
+
 /// How the rows of a PETSc vector are split over the ranks, for gathering a distributed vector
 /// into a whole one on every rank (MPI_Allgatherv: every rank gets the same bits).
 class RowSplit {
@@ -82,6 +84,15 @@ class ReplicatedProblem final : public ImplicitProblem {
   const PetscProblem& petsc_problem() const { return problem_; }
   const RowSplit& rows() const { return rows_; }
 
+  /// For this problem's linearisation backends: a linearisation left by a backend that is gone
+  /// (its solver's symbolic analysis is reused while the border stays: MUMPS's analysis costs
+  /// 7–60 numerical factorisations), else a new one.
+  std::shared_ptr<DistributedLinearization> take_linearization() const;
+  /// Keeps a backend's linearisation for the next one (up to kIdleLinearizations; each holds
+  /// its factors). \pre no other backend shares it.
+  void give_back(std::shared_ptr<DistributedLinearization> linearization) const;
+  static constexpr std::size_t kIdleLinearizations = 64;
+
  private:
   const PetscProblem& problem_;
   std::vector<std::string> coordinate_names_;
@@ -89,6 +100,7 @@ class ReplicatedProblem final : public ImplicitProblem {
   Owned<Vec> x_;  // array vectors: the local rows of the caller's x, lent for a call
   Owned<Vec> F_;
   mutable Owned<Mat> jacobian_;  // for sparse_jacobian, made at its first call
+  mutable std::vector<std::shared_ptr<DistributedLinearization>> idle_;
 };
 
 /// Whether `value` is true on any rank of `communicator` (collective): stops and time budgets
