@@ -17,6 +17,7 @@
 #include "fold_output.h"
 #include "picture_command.h"
 #include "output_checks.h"
+#include "solver_backend.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/bezier_surface.h"
 #include "tessera/geometry/mesh_validation.h"
@@ -27,7 +28,6 @@
 #include "tessera/io/view_mesh.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/problems/catalogue.h"
-#include "solver_backend.h"
 #include "tessera/problems/view.h"
 
 namespace tessera::app {
@@ -174,9 +174,9 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app
       ->add_option("--backend", mesh.backend,
                    "where F, DF and the factorisations run: 'serial' (this process, default) or "
-                   "'petsc' (PETSc's distributed objects and MUMPS on the ranks of mpirun, for "
-                   "bvp and bratu2d; PETSc's own options such as -ksp_view go last; "
-                   "docs/cluster.md)")
+                   "'petsc' (PETSc's distributed objects on the ranks of mpirun, factored by "
+                   "MUMPS, or KLU on one rank; for bvp and bratu2d; PETSc's own options such as "
+                   "-ksp_view go last; docs/cluster.md)")
       ->check(CLI::IsMember({"serial", "petsc"}));
   mesh_app->add_option("--patches", mesh.patches,
                        "bezier: write the Bezier control points of every triangle to this file "
@@ -358,9 +358,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   // An empty mesh (the start failed) is not written: it would replace a good file with nothing.
   const bool has_mesh = result.mesh.triangle_count() > 0;
   std::vector<std::string> written;
-  if (has_mesh && !is_root) {
-    // The other ranks write nothing.
-  } else if (has_mesh && view.is_all_coordinates()) {
+  if (has_mesh && is_root && view.is_all_coordinates()) {
     // PLY keeps the standard names (x, y, z, x3, …) that readers look for; the problem's own
     // names go into a comment, and into the arrays of VTK files.
     const bool is_ply = std::filesystem::path(command.output).extension() == ".ply";
@@ -374,7 +372,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     file_options.comments.push_back("coordinates:" + names);
     write_mesh(command.output, result.mesh, file_options);
     written.push_back(command.output);
-  } else if (has_mesh) {
+  } else if (has_mesh && is_root) {
     file_options.comments.push_back("a view of the states in R^" + std::to_string(n) + ": " +
                                     describe_coordinates(*setup.problem));
     write_mesh_in_view(command.output, result.mesh, view, file_options);

@@ -366,16 +366,8 @@ TEST(CliInterrupt, TermSignalKeepsTheValidPartialMeshAndItsSummary) {
   // The torus at 1e-5 takes minutes; the signal comes after a second, once the run has begun.
   const std::string command = "sh -c '" + std::string(TESSERA_CLI) + " mesh torus --tolerance 1e-5 -q -o " +
                               mesh + " --summary " + summary +
-                              " & pid=$!; sleep 1.5; kill -TERM $pid; wait $pid; echo exit=$?' 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[4096];
-  std::size_t count = 0;
-  while ((count = fread(buffer, 1, sizeof buffer, pipe)) > 0) {
-    output.append(buffer, count);
-  }
-  pclose(pipe);
+                              " & pid=$!; sleep 1.5; kill -TERM $pid; wait $pid; echo exit=$?'";
+  const std::string output = tessera::testing::run_shell(command).output;
   EXPECT_NE(output.find("exit=1"), std::string::npos) << output;
   EXPECT_NE(output.find("interrupted"), std::string::npos) << output;
   std::ifstream in(summary);

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using npy_test::read_npy;
 using testing::run_cli;
+using testing::run_shell;
 
 constexpr int kUsageError = 2;
 
@@ -60,20 +60,11 @@ TEST(PetscCli, TwoRanksWriteTheSerialBackendsMeshOnce) {
   const auto serial = run_cli(run + " -o " + folder + "/serial.ply --states " + folder +
                               "/serial.npy --summary " + folder + "/serial.json -q");
   ASSERT_EQ(serial.exit_code, 0) << serial.output;
-  // run_cli runs the built binary; mpiexec starts it on two ranks.
-  const std::string command = mpiexec(2) + TESSERA_CLI + " " + run + " --backend petsc -o " +
-                              folder + "/petsc.ply --states " + folder + "/petsc.npy --summary " +
-                              folder + "/petsc.json 2>&1 </dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[4096];
-  std::size_t count = 0;
-  while ((count = fread(buffer, 1, sizeof buffer, pipe)) > 0) {
-    output.append(buffer, count);
-  }
-  const int status = pclose(pipe);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << output;
+    const auto petsc = run_shell(mpiexec(2) + TESSERA_CLI + " " + run + " --backend petsc -o " +
+                               folder + "/petsc.ply --states " + folder + "/petsc.npy --summary " +
+                               folder + "/petsc.json");
+  ASSERT_EQ(petsc.exit_code, 0) << petsc.output;
+  const std::string& output = petsc.output;
   // One report (rank 0 prints, the other rank computes alongside).
   EXPECT_EQ(output.find("wrote "), output.rfind("wrote ")) << output;
   EXPECT_TRUE(contains(output, "backend        petsc on 2 ranks")) << output;
@@ -107,19 +98,11 @@ TEST(PetscCli, TwoRanksWriteTheSerialBackendsMeshOnce) {
 
 TEST(PetscCli, AProblemWithoutAPetscImplementationIsAUsageErrorOnEveryRank) {
   const std::string folder = testing::temporary_directory("petsc_cli_misuse");
-  const std::string command = mpiexec(2) + TESSERA_CLI + " mesh torus --backend petsc -o " +
-                              folder + "/t.ply 2>&1 </dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[4096];
-  std::size_t count = 0;
-  while ((count = fread(buffer, 1, sizeof buffer, pipe)) > 0) {
-    output.append(buffer, count);
-  }
-  const int status = pclose(pipe);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0) << output;
-  EXPECT_TRUE(contains(output, "problem 'torus' has no PETSc implementation")) << output;
+  const auto result =
+      run_shell(mpiexec(2) + TESSERA_CLI + " mesh torus --backend petsc -o " + folder + "/t.ply");
+  EXPECT_EQ(result.exit_code, kUsageError) << result.output;
+  EXPECT_TRUE(contains(result.output, "problem 'torus' has no PETSc implementation"))
+      << result.output;
   EXPECT_FALSE(fs::exists(folder + "/t.ply"));
 }
 

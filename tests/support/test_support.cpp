@@ -15,7 +15,11 @@
 namespace tessera::testing {
 
 CommandResult run_cli(const std::string& arguments) {
-  const std::string command = std::string(TESSERA_CLI) + " " + arguments + " 2>&1 </dev/null";
+  return run_shell(std::string(TESSERA_CLI) + " " + arguments);
+}
+
+CommandResult run_shell(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1 </dev/null";
   CommandResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) {

@@ -16,6 +16,10 @@ struct CommandResult {
 /// Runs the built `tessera` binary with `arguments` (a shell-quoted string) and captures output.
 CommandResult run_cli(const std::string& arguments);
 
+/// Runs a shell command line (e.g. `mpiexec -n 2 tessera …`, a kill script) and captures its
+/// stdout and stderr; stdin is /dev/null.
+CommandResult run_shell(const std::string& command);
+
 /// A fresh temporary directory for one test; removed at process exit is not guaranteed.
 std::string temporary_directory(const std::string& name);
 
