@@ -183,6 +183,7 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
                                          request.report_samples, /*measure_distances=*/true,
                                          result.summary.wall_seconds);
     report.run = result.summary;
+    report.backend = BackendReport{"serial", 1};  // the bindings solve in this process
     report.view = ViewReport{view.specification(),
                              view.is_all_coordinates() ? std::vector<std::string>() : view.names(),
                              request.view.empty() ? (problem->view ? "problem file" : "default")
