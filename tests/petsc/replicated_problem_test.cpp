@@ -6,12 +6,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "tessera/core/linearization.h"
 #include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/methods/covering_methods.h"
 #include "tessera/petsc/petsc_bratu.h"
+#include "tessera/petsc/petsc_support.h"
 #include "tessera/petsc/replicated_problem.h"
 #include "tessera/problems/catalogue.h"
 
@@ -106,7 +110,8 @@ void shrink_domain(ProblemSetup& setup, double half_width) {
 }
 
 void expect_same_mesh(const std::string& specification, int spatial_dimension, int grid_size,
-                      const std::string& method_name, double step, double half_width) {
+                      const std::string& method_name, double step, double half_width,
+                      bool same_factorisations = true) {
   BothBackends both = make_both(specification, spatial_dimension, grid_size);
   shrink_domain(both.serial, half_width);
   shrink_domain(both.replicated, half_width);
@@ -132,7 +137,9 @@ void expect_same_mesh(const std::string& specification, int spatial_dimension, i
   ASSERT_TRUE(replicated.validation.has_value());
   EXPECT_TRUE(replicated.validation->is_valid()) << replicated.validation->report();
   // The work is counted as for a serial problem: factorisations by the distributed backend.
-  EXPECT_EQ(replicated.summary.factorisations, serial.summary.factorisations);
+  if (same_factorisations) {
+    EXPECT_EQ(replicated.summary.factorisations, serial.summary.factorisations);
+  }
   EXPECT_EQ(replicated.summary.jacobian_evaluations, serial.summary.jacobian_evaluations);
 }
 
@@ -142,6 +149,40 @@ TEST(ReplicatedCovering, TheAtlasOnTheSquareIsTheSerialMesh) {
 
 TEST(ReplicatedCovering, TheFrontOnTheLineIsTheSerialMesh) {
   expect_same_mesh("bvp:points=30", 1, 30, "front", 0.2, 0.1);
+}
+
+// PETSc's options for the tests below, removed again at the end of the scope.
+class PetscOptions {
+ public:
+  explicit PetscOptions(std::vector<std::pair<std::string, std::string>> options)
+      : options_(std::move(options)) {
+    for (const auto& [name, value] : options_) {
+      check(PetscOptionsSetValue(nullptr, name.c_str(), value.c_str()), "PetscOptionsSetValue");
+    }
+  }
+  ~PetscOptions() {
+    for (const auto& option : options_) {
+      PetscOptionsClearValue(nullptr, option.first.c_str());
+    }
+  }
+  PetscOptions(const PetscOptions&) = delete;
+  PetscOptions& operator=(const PetscOptions&) = delete;
+
+ private:
+  std::vector<std::pair<std::string, std::string>> options_;
+};
+
+TEST(ReplicatedCovering, AnIterativeSolverWithBlockJacobiGivesTheSerialMesh) {
+  // GMRES preconditioned by ILU(0) on each rank's block: the border rows' zero diagonal is in
+  // the pattern and shifted, and the tight tolerance makes the solves as good as a direct one's.
+  const PetscOptions iterative({{"-ksp_type", "gmres"},
+                                {"-pc_type", "bjacobi"},
+                                {"-sub_pc_factor_shift_type", "nonzero"},
+                                {"-ksp_rtol", "1e-13"},
+                                {"-ksp_max_it", "500"}});
+  // An incomplete factorisation's tangent can miss the 1e-8 accuracy check where the direct
+  // one does not; the retry with another border is a factorisation more.
+  expect_same_mesh("bratu2d:N=6", 2, 6, "atlas", 0.2, 0.1, /*same_factorisations=*/false);
 }
 
 }  // namespace

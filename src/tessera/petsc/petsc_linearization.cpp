@@ -236,6 +236,11 @@ bool DistributedLinearization::factor_with_border(PetscInt i, PetscInt j) {
     set_entry(row_i, border_i_, 0.0);  // the old border column stays as an explicit zero
     set_entry(row_j, border_j_, 0.0);
   }
+  // The border rows' diagonal entries are in the pattern (explicit zeros unless the border is
+  // there): incomplete factorisations (-pc_type ilu, bjacobi) need every diagonal entry, and
+  // -pc_factor_shift_type nonzero then shifts these zero pivots.
+  set_entry(row_i, row_i, 0.0);
+  set_entry(row_j, row_j, 0.0);
   set_entry(row_i, i, 1.0);
   set_entry(row_j, j, 1.0);
   check(MatAssemblyBegin(bordered_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");

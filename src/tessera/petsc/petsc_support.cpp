@@ -10,10 +10,14 @@ void check(PetscErrorCode code, const char* what) {
     return;
   }
   const char* text = nullptr;
-  PetscErrorMessage(code, &text, nullptr);
-  throw ComputationFailed(std::string("PETSc: ") + what + " failed: " +
-                          (text != nullptr ? text : "unknown error") + " (error " +
-                          std::to_string(static_cast<int>(code)) + ")");
+  char* specific = nullptr;  // the message of the error's origin, e.g. which pivot was zero
+  PetscErrorMessage(code, &text, &specific);
+  std::string message = std::string("PETSc: ") + what + " failed: " +
+                        (text != nullptr ? text : "unknown error");
+  if (specific != nullptr && specific[0] != '\0') {
+    message += std::string(": ") + specific;
+  }
+  throw ComputationFailed(message + " (error " + std::to_string(static_cast<int>(code)) + ")");
 }
 
 template <>
