@@ -60,6 +60,17 @@ bool coordinate_tangent_basis(Eigen::MatrixXd& kernel, const Eigen::MatrixXd* gu
   return true;
 }
 
+bool coordinate_tangent_basis(Eigen::MatrixXd& kernel, const Eigen::MatrixXd* reference,
+                              Eigen::MatrixXd& last) {
+  const Eigen::MatrixXd* guide =
+      reference != nullptr ? reference : last.rows() == kernel.rows() ? &last : nullptr;
+  if (!coordinate_tangent_basis(kernel, guide) && !coordinate_tangent_basis(kernel, nullptr)) {
+    return false;
+  }
+  last = kernel;
+  return true;
+}
+
 JacobianBorder random_border(int n) {
   // A fixed seed keeps runs deterministic.
   std::mt19937_64 generator(20261121);

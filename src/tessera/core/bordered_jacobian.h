@@ -27,6 +27,12 @@ JacobianBorder coordinate_border(const Eigen::MatrixXd& T);
 /// backend's mesh. \return false (kernel unchanged) if rows i, j of the kernel are singular.
 bool coordinate_tangent_basis(Eigen::MatrixXd& kernel, const Eigen::MatrixXd* guide);
 
+/// The same with the sparse backend's choice of guide: `reference` if given, else `last` (the
+/// backend's previous basis, when it has n rows), else the last two coordinates if that guide's
+/// rows are singular. On success `last` becomes the new basis.
+bool coordinate_tangent_basis(Eigen::MatrixXd& kernel, const Eigen::MatrixXd* reference,
+                              Eigen::MatrixXd& last);
+
 /// Two dense pseudo-random rows (fixed seed): transversal to ker J with probability one, the
 /// last resort when no tangent guides the border. They fill the LU (bench/RESULTS.md, section 6).
 JacobianBorder random_border(int n);

@@ -106,20 +106,12 @@ class ScaledBackend final : public LinearizationBackend {
     }
     // W T spans ker DF̃; its basis is the one tessera's sparse backend would give on DF̃.
     tangent = weights_.asDiagonal() * inner_tangent_;
-    const Eigen::MatrixXd* guide_y =
-        reference != nullptr ? reference : last_tangent_.rows() == y.size() ? &last_tangent_ : nullptr;
-    if (!coordinate_tangent_basis(tangent, guide_y) && !coordinate_tangent_basis(tangent, nullptr)) {
-      return false;
-    }
-    last_tangent_ = tangent;
-    return true;
+    return coordinate_tangent_basis(tangent, reference, last_tangent_);
   }
 
   void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd& tangent,
              Eigen::Ref<Eigen::VectorXd> dy) const override {
-    backend_->solve(rhs, inner_tangent_, dy);
-    dy.array() *= weights_.array();
-    dy -= tangent * (tangent.transpose() * dy);
+    solve_columns(rhs, tangent, dy);
   }
 
   void solve_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs, const Eigen::MatrixXd& tangent,

@@ -120,13 +120,9 @@ class ReplicatedBackend final : public LinearizationBackend {
     }
     // The basis tessera's sparse backend would give (its border's), whatever border MUMPS
     // factored with: the covering draws in tangent coordinates.
-    const Eigen::MatrixXd* basis_guide =
-        reference != nullptr ? reference : last_tangent_.rows() == x.size() ? &last_tangent_ : nullptr;
-    if (!coordinate_tangent_basis(tangent, basis_guide) &&
-        !coordinate_tangent_basis(tangent, nullptr)) {
+    if (!coordinate_tangent_basis(tangent, reference, last_tangent_)) {
       return false;
     }
-    last_tangent_ = tangent;
     reciprocal_condition = 1.0;  // the tangent's accuracy was checked against ‖DF‖ instead
     return true;
   }
