@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/core/domain.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -81,6 +82,34 @@ BoundaryDistance Domain::boundary_distance(const Eigen::Ref<const Eigen::VectorX
 bool Domain::contains(const Eigen::Ref<const Eigen::VectorXd>& x, double tolerance) const {
   for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
     if (signed_distance(k, x) < -tolerance) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool Domain::segment_meets_interior(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                    const Eigen::Ref<const Eigen::VectorXd>& y,
+                                    double margin) const {
+  // The signed distances are affine along the segment, d_k(t) = d_k(x) + t (d_k(y) − d_k(x)):
+  // each face keeps the part of t ∈ [0, 1] where d_k(t) > margin.
+  double lower = 0.0;
+  double upper = 1.0;
+  for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
+    const double at_x = signed_distance(k, x) - margin;
+    const double at_y = signed_distance(k, y) - margin;
+    if (at_x <= 0 && at_y <= 0) {
+      return false;
+    }
+    if (at_x < 0 || at_y < 0) {
+      const double crossing = at_x / (at_x - at_y);
+      if (at_x < 0) {
+        lower = std::max(lower, crossing);
+      } else {
+        upper = std::min(upper, crossing);
+      }
+    }
+    if (lower >= upper) {
       return false;
     }
   }

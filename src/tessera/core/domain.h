@@ -46,6 +46,12 @@ class Domain {
   double signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const;
   /// x ∈ S (closed), with a tolerance on the signed distances.
   bool contains(const Eigen::Ref<const Eigen::VectorXd>& x, double tolerance = 0.0) const;
+  /// Whether the segment from x to y passes through the interior of S, by more than
+  /// `margin` from every face (clipping of the parameter interval by each half-space).
+  /// Always true for the unbounded domain.
+  bool segment_meets_interior(const Eigen::Ref<const Eigen::VectorXd>& x,
+                              const Eigen::Ref<const Eigen::VectorXd>& y,
+                              double margin = 0.0) const;
 
   /// Intersection of two domains. \pre same ambient dimension.
   void intersect_with(const Domain& other);

@@ -53,6 +53,9 @@ constexpr double kMaxEdgeRatio = 1.5;
 // Radians added to a frontal vertex's priority key per layer (generation) it is away from the
 // start; see FrontBuilder::priority.
 constexpr double kLayerWeight = 0.05;
+// An open edge between two exterior vertices that runs deeper than this fraction of h inside S
+// reopens them (FrontBuilder::reopen_bridges).
+constexpr double kBridgeDepth = 0.05;
 
 // Thrown inside the builder to stop the run; caught in triangulate_by_front, which keeps the
 // mesh built so far (it is valid: every step leaves a consistent partial mesh).
@@ -97,6 +100,14 @@ class FrontBuilder {
   Eigen::VectorXd new_point(int center, const Linearization& frame, const Eigen::MatrixXd& U,
                             double angle);
   int add_point(const Eigen::VectorXd& x);
+  /// Adds the triangle, then reopens the bridges its corners now have.
+  void add_triangle(int a, int b, int c);
+  /// Makes v and an exterior neighbour frontal again where the open edge between them runs
+  /// through S: M ∩ S beyond that edge is not covered yet (see the definition).
+  void reopen_bridges(int v);
+  /// Closes a gap below α_min at an exterior vertex z by one triangle, as if z were frontal;
+  /// leaves it if the triangle does not fit. U: the tangent frame of a vertex near z.
+  void close_small_gap_outside(int z, const Eigen::MatrixXd& U);
   /// Caches the tangent basis at a new frontal vertex v from its creator's factorisation.
   void remember_tangent(int v, const Linearization& frame);
   bool close_small_loop(int center, const Eigen::MatrixXd& U);
@@ -327,11 +338,11 @@ void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,
     if (i == 0) {
       first_vertex = v;
     } else {
-      state_.add_triangle(c, previous, v);
+      add_triangle(c, previous, v);
     }
     previous = v;
   }
-  state_.add_triangle(c, previous, first_vertex);
+  add_triangle(c, previous, first_vertex);
   if (options_.order == FrontOrder::SmallestGapFirst) {
     for (int v : state_.ring(c, 1)) {
       refresh_priority(v);
@@ -345,6 +356,71 @@ int FrontBuilder::add_point(const Eigen::VectorXd& x) {
   layer_.resize(v + 1, new_vertex_layer_);
   layer_[v] = new_vertex_layer_;
   return v;
+}
+
+void FrontBuilder::add_triangle(int a, int b, int c) {
+  state_.add_triangle(a, b, c);
+  for (int v : {a, b, c}) {
+    reopen_bridges(v);
+  }
+}
+
+// Vertices outside S are not advanced: the front stops one triangle beyond the boundary and the
+// clipping cuts the rest. That assumes the triangles the front stops with cover S up to the
+// boundary. Where M ∩ S is a band narrower than the step (bratu2d near u = 0, ε ∈ [0, 0.3], at
+// steps of 0.3 and more), a triangle can have two exterior corners on opposite sides of the
+// band, and its open edge between them spans the band: nothing beyond that edge would ever be
+// covered, and the run ended with a hole. The same happens at a corner of S that an open edge
+// cuts. Such an edge's ends are therefore advanced like frontal vertices: the front goes on
+// along the band as a strip of triangles straddling it, until the band ends. An edge that cuts
+// S by less than kBridgeDepth·h is left: the corner it cuts off is below the mesh's resolution
+// (the clipping snaps vertices within boundary_snap_fraction·h anyway).
+void FrontBuilder::reopen_bridges(int v) {
+  if (state_.type(v) != VertexType::Exterior) {
+    return;
+  }
+  for (const FanChain& chain : state_.fan_chains(v)) {
+    if (chain.is_closed) {
+      continue;
+    }
+    for (int w : {chain.vertices.front(), chain.vertices.back()}) {
+      if (state_.type(w) != VertexType::Exterior ||
+          !domain_.segment_meets_interior(state_.point(v), state_.point(w), kBridgeDepth * step_)) {
+        continue;
+      }
+      for (int u : {v, w}) {
+        state_.set_type(u, VertexType::Frontal);
+        if (options_.order == FrontOrder::SmallestGapFirst) {
+          refresh_priority(u);
+        }
+      }
+    }
+  }
+}
+
+// A frontal vertex next to an exterior one z whose gap is below α_min: were z frontal, it would
+// close that gap first (a merge or one triangle). Exterior vertices are never processed, so a
+// triangle of the frontal vertex could overlap the triangles at z instead; seen where the front
+// runs along a band narrower than h and meets the part of itself that stopped at the band's
+// face. The triangle is added from the centre's frame (z lies within h of it): no merge,
+// because that would move the centre.
+void FrontBuilder::close_small_gap_outside(int z, const Eigen::MatrixXd& U) {
+  if (state_.type(z) != VertexType::Exterior) {
+    return;
+  }
+  const auto chains = state_.fan_chains(z);
+  if (chains.size() != 1 || chains[0].is_closed) {
+    return;
+  }
+  const Gap gap = find_gaps(z, chains, U).front();
+  if (gap.angle <= 0 || gap.angle >= options_.min_gap_angle || gap.first == gap.last ||
+      state_.are_adjacent(gap.first, gap.last)) {
+    return;
+  }
+  if (state_.can_add_edge(gap.last, gap.first) &&
+      state_.triangle_fits({z, gap.last, gap.first}, U)) {
+    add_triangle(z, gap.last, gap.first);
+  }
 }
 
 Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
@@ -402,7 +478,14 @@ void FrontBuilder::process(int center) {
   Linearization& frame = center_frame_;
   // A nearby tangent basis lets a sparse factorisation border J with coordinate rows.
   const Eigen::MatrixXd* reference = cached_tangent_near(center);
+  // Only a vertex reopened by reopen_bridges lies outside S.
+  const bool outside = !domain_.is_unbounded() &&
+                       domain_.boundary_distance(state_.point(center)).signed_distance <= 0;
   if (!frame.factor(problem_, state_.point(center), reference)) {
+    if (outside) {
+      state_.set_type(center, VertexType::Exterior);
+      return;
+    }
     std::ostringstream message;
     message << "the Jacobian is rank deficient at frontal vertex " << center << " "
             << describe_point(state_.point(center)) << " (a singular point of M)";
@@ -429,13 +512,41 @@ void FrontBuilder::process(int center) {
     // each gap is then the counterclockwise angle from an open edge to the next (this replaces
     // the paper's average-direction test in Agap; see docs/algorithms/front.md).
     const Eigen::MatrixXd U = oriented_frame(center, frame.tangent_basis(), chains);
+    if (pass == 0) {
+      bool closed_outside = false;
+      for (const auto& chain : chains) {
+        for (int z : {chain.vertices.front(), chain.vertices.back()}) {
+          const int triangles = state_.live_triangle_count();
+          close_small_gap_outside(z, U);
+          closed_outside = closed_outside || state_.live_triangle_count() > triangles;
+        }
+      }
+      if (closed_outside) {
+        continue;
+      }
+    }
     if (chains.size() == 1 && close_small_loop(center, U)) {
       continue;
     }
     const std::vector<Gap> gaps = find_gaps(center, chains, U);
     const Gap& smallest = *std::min_element(
         gaps.begin(), gaps.end(), [](const Gap& a, const Gap& b) { return a.angle < b.angle; });
-    close_gap(center, frame, U, smallest);
+    if (!outside) {
+      close_gap(center, frame, U, smallest);
+      continue;
+    }
+    // A reopened vertex lies outside S, where M may be singular or not even defined (bratu2d
+    // at ε < 0 has 1 + εu = 0): where its gap cannot be closed it is left exterior with the
+    // triangles it has. If M ∩ S beyond it is then uncovered, the coverage check reports it.
+    try {
+      close_gap(center, frame, U, smallest);
+    } catch (const StopRun& stop) {
+      if (stop.termination != CoveringTermination::ProjectionFailed) {
+        throw;
+      }
+      state_.set_type(center, VertexType::Exterior);
+      return;
+    }
   }
   std::ostringstream message;
   message << "frontal vertex " << center << " " << describe_point(state_.point(center))
@@ -536,12 +647,12 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
     }
     const int v = add_point(x);
     require_fit({center, previous, v}, U);
-    state_.add_triangle(center, previous, v);
+    add_triangle(center, previous, v);
     remember_tangent(v, frame);
     previous = v;
   }
   require_fit({center, previous, gap.first}, U);
-  state_.add_triangle(center, previous, gap.first);
+  add_triangle(center, previous, gap.first);
 }
 
 // The smallest-gap order needs the tangent plane at every frontal vertex. Factoring DF there
@@ -610,7 +721,7 @@ void FrontBuilder::connect_to_front_vertex(int center, int previous, int w,
                "folding the mesh";
     throw StopRun{CoveringTermination::FrontCollision, message.str()};
   }
-  state_.add_triangle(center, previous, w);
+  add_triangle(center, previous, w);
   ++connections_;
 }
 
@@ -638,7 +749,7 @@ void FrontBuilder::add_closing_triangle(int center, int last, int first, const E
             << " is taken or the triangle would overlap the mesh there";
     throw StopRun{CoveringTermination::FrontCollision, message.str()};
   }
-  state_.add_triangle(center, last, first);
+  add_triangle(center, last, first);
 }
 
 bool FrontBuilder::try_merge(int /*center*/, int first, int last, const Linearization& frame) {
@@ -659,6 +770,7 @@ bool FrontBuilder::try_merge(int /*center*/, int first, int last, const Lineariz
   state_.identify(first, last, average,
                   inside ? std::nullopt : std::optional(VertexType::Exterior));
   layer_[first] = std::min(layer_[first], layer_[last]);
+  reopen_bridges(first);
   ++merges_;
   return true;
 }
