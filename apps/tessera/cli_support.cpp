@@ -55,6 +55,61 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
   return values;
 }
 
+namespace {
+
+// "--box name=lower:upper,…": bounds on named coordinates only, either side may be empty
+// (unbounded). At large n a box needs 2n numbers; a continuation user bounds the parameters.
+Domain named_bounds(const std::string& text, const ImplicitProblem& problem) {
+  const int n = problem.ambient_dimension();
+  const std::vector<std::string> names = problem.coordinate_names();
+  Domain domain(n);
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    const auto equals = item.find('=');
+    const auto colon = item.find(':', equals == std::string::npos ? 0 : equals);
+    TESSERA_CHECK(equals != std::string::npos && colon != std::string::npos,
+                  "--box item '" << item
+                                 << "' is not name=lower:upper (e.g. lambda=5:20; either bound may "
+                                    "be left empty)");
+    const std::string name = item.substr(0, equals);
+    const auto found = std::find(names.begin(), names.end(), name);
+    TESSERA_CHECK(found != names.end(), "--box names coordinate '"
+                                            << name << "', which problem '" << problem.name()
+                                            << "' does not have");
+    const int i = static_cast<int>(found - names.begin());
+    const auto bound = [&](const std::string& part, bool is_lower) {
+      if (part.empty()) {
+        return;
+      }
+      const auto values = parse_numbers(part, "--box");
+      TESSERA_CHECK(values.size() == 1 && std::isfinite(values[0]),
+                    "--box bound '" << part << "' of " << name << " is not one finite number");
+      Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
+      Eigen::VectorXd point = Eigen::VectorXd::Zero(n);
+      normal(i) = is_lower ? 1.0 : -1.0;
+      point(i) = values[0];
+      std::ostringstream label;
+      label << name << (is_lower ? " >= " : " <= ") << values[0];
+      domain.add_half_space(normal, point, label.str());
+    };
+    const std::string lower = item.substr(equals + 1, colon - equals - 1);
+    const std::string upper = item.substr(colon + 1);
+    if (!lower.empty() && !upper.empty()) {
+      const auto lo = parse_numbers(lower, "--box");
+      const auto hi = parse_numbers(upper, "--box");
+      TESSERA_CHECK(lo.size() != 1 || hi.size() != 1 || lo[0] <= hi[0],
+                    "--box is empty: lower bound " << lower << " of " << name
+                                                   << " exceeds upper bound " << upper);
+    }
+    bound(lower, true);
+    bound(upper, false);
+  }
+  return domain;
+}
+
+}  // namespace
+
 void apply_start_and_box(ProblemSetup& setup, const std::string& start, const std::string& box) {
   const int n = setup.problem->ambient_dimension();
   if (!start.empty()) {
@@ -64,7 +119,11 @@ void apply_start_and_box(ProblemSetup& setup, const std::string& start, const st
                                  << "' has n = " << n << " coordinates");
     setup.start = Eigen::Map<const Eigen::VectorXd>(values.data(), n);
   }
-  if (!box.empty()) {
+  if (!box.empty() && box.find('=') != std::string::npos) {
+    setup.domain.intersect_with(named_bounds(box, *setup.problem));
+    setup.expected_euler_characteristic.reset();
+    setup.exact_area.reset();
+  } else if (!box.empty()) {
     const auto values = parse_numbers(box, "--box");
     TESSERA_CHECK(static_cast<int>(values.size()) == 2 * n,
                   "--box has " << values.size() << " values, expected " << 2 * n

@@ -31,7 +31,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommand& command) {
                    "vertices, then smoothed; slower)")
       ->check(CLI::IsMember({"disk", "hexagonal"}));
   compare->add_option("--start", command.start, "start point, comma separated");
-  compare->add_option("--box", command.box, "clip to a box: lower,upper for each coordinate");
+  compare->add_option("--box", command.box, "clip to a box: lower,upper for each coordinate, or name=lower:upper,…");
   compare
       ->add_option("--max-vertices", command.settings.max_vertices,
                    "stop each method after this many vertices")

@@ -96,7 +96,9 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
       ->check(CLI::IsMember({"disk", "hexagonal"}));
   mesh_app->add_option("--start", mesh.start, "start point, comma separated, e.g. 0,0,1");
   mesh_app->add_option("--box", mesh.box,
-                       "clip to a box: lower,upper for each coordinate, e.g. -1,1,-1,1,-0.8,1");
+                       "clip to a box: lower,upper for each coordinate, e.g. -1,1,-1,1,-0.8,1, "
+                       "or bounds on named coordinates, e.g. lambda=5:20,epsilon=0.15: (an empty "
+                       "side is unbounded)");
   mesh_app->add_option("-o,--output", mesh.output, "mesh file: .ply, .obj, .vtk or .vtu")
       ->required();
   mesh_app->add_option("--summary", mesh.summary, "write a JSON summary to this file");

@@ -85,6 +85,7 @@ std::vector<Surface> surfaces() {
       {"sphere_box", "tests/stress/problems/sphere_box.tsr", true, false},
       {"torus_slab", "tests/stress/problems/torus_slab.tsr", true, false},
       {"tilted_torus_box", "tests/stress/problems/tilted_torus_box.tsr", true, false},
+      {"sphere_belt", "tests/stress/problems/sphere_belt.tsr", true, false},
   };
 }
 

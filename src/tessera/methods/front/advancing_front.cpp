@@ -142,6 +142,9 @@ class FrontBuilder {
   int merges_ = 0;
   int step_reductions_ = 0;
   int connections_ = 0;
+  // Set once reopen_bridges has reopened a vertex: only then are small gaps at exterior
+  // vertices closed (close_small_gap_outside), so runs without a band are as before.
+  bool bridged_ = false;
   std::set<std::pair<double, int>> by_gap_;     // (gap angle, vertex), smallest first
   std::vector<double> gap_key_;                 // key of each vertex in by_gap_, NaN if absent
   std::vector<Eigen::MatrixXd> tangent_cache_;  // n×2 tangent basis per vertex, empty if unknown
@@ -388,6 +391,7 @@ void FrontBuilder::reopen_bridges(int v) {
           !domain_.segment_meets_interior(state_.point(v), state_.point(w), kBridgeDepth * step_)) {
         continue;
       }
+      bridged_ = true;
       for (int u : {v, w}) {
         state_.set_type(u, VertexType::Frontal);
         if (options_.order == FrontOrder::SmallestGapFirst) {
@@ -403,7 +407,10 @@ void FrontBuilder::reopen_bridges(int v) {
 // triangle of the frontal vertex could overlap the triangles at z instead; seen where the front
 // runs along a band narrower than h and meets the part of itself that stopped at the band's
 // face. The triangle is added from the centre's frame (z lies within h of it): no merge,
-// because that would move the centre.
+// because that would move the centre. Only after a bridge was reopened: elsewhere it lets
+// runs go on that would stop, e.g. over a cap of M outside S smaller than the step (sphere in
+// the box [−0.97, 0.97]³ at step 0.53), which no vertex then falls into and which the mesh
+// covers over.
 void FrontBuilder::close_small_gap_outside(int z, const Eigen::MatrixXd& U) {
   if (state_.type(z) != VertexType::Exterior) {
     return;
@@ -512,7 +519,7 @@ void FrontBuilder::process(int center) {
     // each gap is then the counterclockwise angle from an open edge to the next (this replaces
     // the paper's average-direction test in Agap; see docs/algorithms/front.md).
     const Eigen::MatrixXd U = oriented_frame(center, frame.tangent_basis(), chains);
-    if (pass == 0) {
+    if (pass == 0 && bridged_) {
       bool closed_outside = false;
       for (const auto& chain : chains) {
         for (int z : {chain.vertices.front(), chain.vertices.back()}) {
