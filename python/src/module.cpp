@@ -107,6 +107,8 @@ struct MeshRequest {
   MethodSettings settings;
   std::vector<double> start;
   std::vector<double> box;
+  /// Bounds on named coordinates, `--box`'s name=lower:upper,… form; replaces `box` if set.
+  std::string named_box;
   bool improve = false;
   int refine = 0;
   int report_samples = -1;
@@ -115,12 +117,19 @@ struct MeshRequest {
   bool wants_patches = false;
 };
 
+std::string box_text(const MeshRequest& request) {
+  if (!request.named_box.empty()) {
+    return request.named_box;
+  }
+  return request.box.empty() ? "" : join_numbers(request.box);
+}
+
 std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& problem,
                                          MeshRequest request, const py::object& progress,
                                          bool handle_interrupt) {
   ProblemSetup setup = problem->setup();
   app::apply_start_and_box(setup, request.start.empty() ? "" : join_numbers(request.start),
-                           request.box.empty() ? "" : join_numbers(request.box));
+                           box_text(request));
   const CoveringMethod& method = request.method.empty() ? covering_methods().front()
                                                         : find_covering_method(request.method);
   // As `tessera mesh`: a method's own options given to another method would be ignored.
@@ -394,7 +403,7 @@ py::tuple compare_methods(const std::shared_ptr<ProblemHandle>& problem,
                           const MeshRequest& request, bool handle_interrupt) {
   MethodSettings settings = request.settings;
   const std::string start = request.start.empty() ? "" : join_numbers(request.start);
-  const std::string box = request.box.empty() ? "" : join_numbers(request.box);
+  const std::string box = box_text(request);
   {
     // Checks --start and --box before any computation.
     ProblemSetup setup = problem->setup();
@@ -599,6 +608,7 @@ PYBIND11_MODULE(_tessera, module) {
       .def_readwrite("method", &MeshRequest::method)
       .def_readwrite("start", &MeshRequest::start)
       .def_readwrite("box", &MeshRequest::box)
+      .def_readwrite("named_box", &MeshRequest::named_box)
       .def_readwrite("improve", &MeshRequest::improve)
       .def_readwrite("refine", &MeshRequest::refine)
       .def_readwrite("report_samples", &MeshRequest::report_samples)

@@ -420,6 +420,22 @@ def _member(name: str, value: str, allowed: Sequence[str]) -> str:
     return value
 
 
+def _set_box(request, box) -> None:
+    """A list sets lower, upper for every coordinate; a dict {name: (lower, upper)} bounds the
+    named coordinates only (``--box name=lower:upper,...``; None leaves a side unbounded)."""
+    if isinstance(box, dict):
+        def side(value):
+            return "" if value is None else repr(float(value))
+        items = []
+        for name, bounds in box.items():
+            if not isinstance(bounds, (tuple, list)) or len(bounds) != 2:
+                raise ValueError(f"box[{name!r}] must be (lower, upper), got {bounds!r}")
+            items.append(f"{name}={side(bounds[0])}:{side(bounds[1])}")
+        request.named_box = ",".join(items)
+    else:
+        request.box = _numbers(box)
+
+
 def mesh(
     problem: ProblemLike,
     *,
@@ -428,7 +444,7 @@ def mesh(
     tolerance: Optional[float] = None,
     placement: str = "disk",
     start: Optional[ArrayLike] = None,
-    box: Optional[ArrayLike] = None,
+    box: Optional[Union[ArrayLike, Dict[str, Any]]] = None,
     improve: bool = False,
     view: Optional[str] = None,
     folds: Optional[str] = None,
@@ -456,7 +472,8 @@ def mesh(
         bisection on M (atlas: also sizes the charts, default step/50; bezier: also limits
         the steps; front and bezier: no bound by default).
     placement: atlas: "disk" (default) or "hexagonal".
-    start: start point (n values); box: lower, upper for each coordinate.
+    start: start point (n values); box: lower, upper for each coordinate, or a dict of bounds
+        on named coordinates, e.g. {"lambda": (5, 20), "epsilon": (0.15, None)}.
     improve: edge swaps and tangential smoothing on M afterwards (``--improve``).
     view: the view written by `Mesh.write` and reported (``--view``).
     folds: the parameter plane of the fold curves, e.g. "lambda,epsilon" (``--folds``,
@@ -489,7 +506,7 @@ def mesh(
     request.tolerance = _finite_positive("tolerance", tolerance)
     request.placement = _member("placement", placement, ["disk", "hexagonal"])
     request.start = _numbers(start)
-    request.box = _numbers(box)
+    _set_box(request, box)
     request.improve = bool(improve)
     request.view = view or ""
     request.folds = folds or ""
@@ -622,7 +639,7 @@ def compare(
     tolerance: Optional[float] = None,
     placement: str = "disk",
     start: Optional[ArrayLike] = None,
-    box: Optional[ArrayLike] = None,
+    box: Optional[Union[ArrayLike, Dict[str, Any]]] = None,
     max_vertices: int = 2_000_000,
     handle_interrupt: bool = True,
 ) -> Dict[str, Any]:
@@ -652,7 +669,7 @@ def compare(
     request.tolerance = _finite_positive("tolerance", tolerance)
     request.placement = _member("placement", placement, ["disk", "hexagonal"])
     request.start = _numbers(start)
-    request.box = _numbers(box)
+    _set_box(request, box)
     request.max_vertices = _in_range("max_vertices", max_vertices, 7, 100_000_000, int)
     report_json, interrupt_count = _tessera.compare(chosen._core, request,
                                                     bool(handle_interrupt))

@@ -53,6 +53,18 @@ def test_parameters_box_and_start():
     assert mesh.summary["topology"]["euler_characteristic"] == 1
 
 
+def test_box_on_named_coordinates():
+    # The plane z = 0 over [-1, 1]^2, cut to x in [-0.5, 0.5] and y >= 0: area 1.
+    mesh = tessera.mesh("plane", box={"x": (-0.5, 0.5), "y": (0, None)})
+    assert mesh.vertices[:, 0].min() >= -0.5 and mesh.vertices[:, 0].max() <= 0.5
+    assert mesh.vertices[:, 1].min() >= 0.0
+    assert mesh.summary["shape"]["area"] == pytest.approx(1.0, abs=1e-9)
+    with pytest.raises(ValueError, match="names coordinate 'w'"):
+        tessera.mesh("plane", box={"w": (0, 1)})
+    with pytest.raises(ValueError, match="must be \\(lower, upper\\)"):
+        tessera.mesh("plane", box={"x": 0.5})
+
+
 def test_problem_files_and_expressions(tmp_path):
     from_file = tessera.Problem.from_file(tessera_repository() / "examples/problems/sphere_cut.tsr",
                                           r=2)

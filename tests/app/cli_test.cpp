@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "support/test_support.h"
+#include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/methods/front/advancing_front.h"
@@ -217,6 +218,35 @@ TEST(CliMeshFails, WhenTheStartProjectsOutsideTheBox) {
   // The start (0, 0, 1) of the unit sphere projects onto itself, above z <= 0.5.
   expect_exit(run_cli("mesh sphere --box -1,1,-1,1,-0.5,0.5 -o " + quoted(work_path("box.ply"))),
               kComputationFailed, {"outside the domain", "z <= 0.5"});
+}
+
+// --- --box on named coordinates ---------------------------------------------------------------
+
+TEST(CliNamedBox, BoundsOnlyTheNamedCoordinates) {
+  // The plane z = 0 over [−1, 1]², cut to x ∈ [−0.5, 0.5] and y ≥ 0: y's upper bound is the
+  // catalogue's, z is left alone. Area 1 · 1, every vertex within the bounds.
+  const std::string mesh_file = work_path("named_box.ply");
+  ASSERT_EQ(run_cli("mesh plane -q --box x=-0.5:0.5,y=0: -o " + quoted(mesh_file)).exit_code,
+            kSuccess);
+  const TriangleMesh mesh = read_mesh(mesh_file);
+  EXPECT_NEAR(surface_area(mesh), 1.0, 1e-9);
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    EXPECT_GE(mesh.point(v)(0), -0.5);
+    EXPECT_LE(mesh.point(v)(0), 0.5);
+    EXPECT_GE(mesh.point(v)(1), 0.0);
+  }
+}
+
+TEST(CliNamedBox, NamesWhatIsWrong) {
+  const std::string out = quoted(work_path("bad_box.ply"));
+  expect_exit(run_cli("mesh plane --box w=0:1 -o " + out), kUsageError,
+              {"--box names coordinate 'w'", "plane"});
+  expect_exit(run_cli("mesh plane --box x=0.5 -o " + out), kUsageError,
+              {"--box item 'x=0.5'", "name=lower:upper"});
+  expect_exit(run_cli("mesh plane --box x=1:0 -o " + out), kUsageError,
+              {"--box is empty", "x"});
+  expect_exit(run_cli("mesh plane --box x=a:1 -o " + out), kUsageError, {"'a'"});
+  EXPECT_FALSE(std::ifstream(work_path("bad_box.ply")).good());
 }
 
 // --- Problem files with mistakes: exit 2, naming the file and line --------------------------
