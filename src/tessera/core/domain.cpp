@@ -58,12 +58,30 @@ void Domain::add_half_space(const Eigen::VectorXd& normal, const Eigen::VectorXd
                                                                            "normal or point");
   const double length = normal.norm();
   TESSERA_CHECK(length > 0.0, "half-space '" << label << "' has a zero normal vector");
-  half_spaces_.push_back({normal / length, point, std::move(label)});
+  HalfSpace half_space{normal / length, point, std::move(label), {}};
+  // At large n the domain is a few bounds on parameters: their distances are asked for at every
+  // vertex, projection and cut, and a dense dot product was 3 % of a covering (bvp, n = 10⁴).
+  const Eigen::Index nonzeros = (half_space.normal.array() != 0.0).count();
+  if (nonzeros <= dimension_ / 8) {
+    for (int i = 0; i < dimension_; ++i) {
+      if (half_space.normal(i) != 0.0) {
+        half_space.support.push_back(i);
+      }
+    }
+  }
+  half_spaces_.push_back(std::move(half_space));
 }
 
 double Domain::signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const {
   const HalfSpace& h = half_spaces_[k];
-  return h.normal.dot(x - h.point);
+  if (h.support.empty()) {
+    return h.normal.dot(x - h.point);
+  }
+  double distance = 0.0;
+  for (int i : h.support) {
+    distance += h.normal(i) * (x(i) - h.point(i));
+  }
+  return distance;
 }
 
 BoundaryDistance Domain::boundary_distance(const Eigen::Ref<const Eigen::VectorXd>& x) const {

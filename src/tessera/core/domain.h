@@ -13,6 +13,9 @@ struct HalfSpace {
   Eigen::VectorXd normal;  ///< n-vector, unit length (normalised on construction by Domain)
   Eigen::VectorXd point;   ///< n-vector, a point on the bounding hyperplane
   std::string label;       ///< for messages, e.g. "x >= -1.5"
+  /// Indices of the normal's nonzero entries when they are few (a bound on a coordinate has
+  /// one): signed distances then cost O(1) instead of O(n). Empty: use the whole normal.
+  std::vector<int> support;
 };
 
 /// The nearest bounding hyperplane of a point (the paper's Chkbnd).

@@ -41,6 +41,13 @@ bool boxes_overlap(const ViewBox& a, const ViewBox& b) {
 // array is stored (n may be 10⁵).
 bool ambient_boxes_overlap(const Eigen::Ref<const Eigen::MatrixXd>& points, const Triangle& a,
                            double margin_a, const Triangle& b, double margin_b) {
+  // Triangles with a common vertex overlap without looking: most candidate pairs are such
+  // neighbours, and at large n this O(n) scan was 7 % of a front run's time (bvp, n = 3002).
+  for (int v : a) {
+    if (v == b[0] || v == b[1] || v == b[2]) {
+      return true;
+    }
+  }
   const double margin = margin_a + margin_b;
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     const double a_lower = std::min({points(i, a[0]), points(i, a[1]), points(i, a[2])});
