@@ -210,22 +210,31 @@ std::vector<FanChain> FrontState::fan_chains(int v) const {
 
 double FrontState::fan_signed_area(int v, const FanChain& chain, const Eigen::MatrixXd& U) const {
   double area = 0.0;
+  if (chain.vertices.size() < 2) {
+    return area;
+  }
   const Eigen::VectorXd center = point(v);
+  // Each vertex of the chain projected once (O(n) each): b becomes the next a.
+  Eigen::Vector2d a = U.transpose() * (point(chain.vertices[0]) - center);
   for (std::size_t i = 0; i + 1 < chain.vertices.size(); ++i) {
-    const Eigen::Vector2d a = U.transpose() * (point(chain.vertices[i]) - center);
     const Eigen::Vector2d b = U.transpose() * (point(chain.vertices[i + 1]) - center);
     area += 0.5 * cross(a, b);
+    a = b;
   }
   return area;
 }
 
 double FrontState::fan_angle(int v, const FanChain& chain, const Eigen::MatrixXd& U) const {
   double total = 0.0;
+  if (chain.vertices.size() < 2) {
+    return total;
+  }
   const Eigen::VectorXd center = point(v);
+  Eigen::Vector2d a = U.transpose() * (point(chain.vertices[0]) - center);
   for (std::size_t i = 0; i + 1 < chain.vertices.size(); ++i) {
-    const Eigen::Vector2d a = U.transpose() * (point(chain.vertices[i]) - center);
     const Eigen::Vector2d b = U.transpose() * (point(chain.vertices[i + 1]) - center);
     total += std::atan2(cross(a, b), a.dot(b));
+    a = b;
   }
   return total;
 }
@@ -233,9 +242,23 @@ double FrontState::fan_angle(int v, const FanChain& chain, const Eigen::MatrixXd
 bool FrontState::triangle_fits(const Triangle& t, const Eigen::MatrixXd& U) const {
   // Sectors that share an edge touch exactly; the tolerance only absorbs rounding.
   constexpr double kTolerance = 1e-9;
+  // The direction from a corner to each of its neighbours, computed once per corner: each
+  // neighbour is in two of the corner's triangles, and a projection costs O(n).
+  std::vector<std::pair<int, double>> known;
+  int known_from = -1;
   const auto direction = [&](int from, int to) {
+    if (from != known_from) {
+      known.clear();
+      known_from = from;
+    }
+    for (const auto& [vertex, angle] : known) {
+      if (vertex == to) {
+        return angle;
+      }
+    }
     const Eigen::Vector2d y = U.transpose() * (point(to) - point(from));
-    return std::atan2(y(1), y(0));
+    known.emplace_back(to, std::atan2(y(1), y(0)));
+    return known.back().second;
   };
   const auto ccw = [](double from, double to) {
     const double two_pi = 2 * std::numbers::pi;
