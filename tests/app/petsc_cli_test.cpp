@@ -35,15 +35,11 @@ bool contains(const std::string& text, const std::string& fragment) {
 std::string small_bvp_run() {
   const ProblemSetup setup = make_catalogue_problem("bvp:points=20");
   const int n = setup.problem->ambient_dimension();
-  std::string box;
-  for (int i = 0; i < n - 2; ++i) {
-    box += "-1,30,";
-  }
   const double lambda = setup.start(n - 2);
   const double epsilon = setup.start(n - 1);
-  box += std::to_string(lambda - 0.3) + "," + std::to_string(lambda + 0.3) + "," +
-         std::to_string(epsilon - 0.05) + "," + std::to_string(epsilon + 0.05);
-  return "mesh bvp:points=20 --box " + box + " --tolerance 0.02";
+  return "mesh bvp:points=20 --box lambda=" + std::to_string(lambda - 0.3) + ":" +
+         std::to_string(lambda + 0.3) + ",epsilon=" + std::to_string(epsilon - 0.05) + ":" +
+         std::to_string(epsilon + 0.05) + " --tolerance 0.02";
 }
 
 #if defined(TESSERA_MPIEXEC)
@@ -104,6 +100,19 @@ TEST(PetscCli, AProblemWithoutAPetscImplementationIsAUsageErrorOnEveryRank) {
   EXPECT_TRUE(contains(result.output, "problem 'torus' has no PETSc implementation"))
       << result.output;
   EXPECT_FALSE(fs::exists(folder + "/t.ply"));
+}
+
+// SuperLU_dist aborted the job (its own abort, exit 255) on the border rows' zero diagonal:
+// now a usage error naming the reason, on every rank, before any work.
+TEST(PetscCli, SuperLuDistIsRefusedWithTheReason) {
+  const std::string folder = testing::temporary_directory("petsc_cli_superlu");
+  const auto result = run_shell(mpiexec(2) + TESSERA_CLI + " " + small_bvp_run() +
+                                " --backend petsc -o " + folder +
+                                "/s.ply -pc_factor_mat_solver_type superlu_dist");
+  EXPECT_EQ(result.exit_code, kUsageError) << result.output;
+  EXPECT_TRUE(contains(result.output, "superlu_dist cannot factor")) << result.output;
+  EXPECT_TRUE(contains(result.output, "MC64")) << result.output;
+  EXPECT_FALSE(fs::exists(folder + "/s.ply"));
 }
 
 #endif

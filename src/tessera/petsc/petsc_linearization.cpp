@@ -112,6 +112,21 @@ void DistributedLinearization::make_solver() {
   }
   // PETSc's command-line options (-ksp_type, -pc_type, -mat_mumps_…) win over these defaults.
   check(KSPSetFromOptions(solver_), "KSPSetFromOptions");
+  // SuperLU_dist pivots statically: the border rows' zero diagonal needs its MC64 row
+  // permutation, which Debian's build leaves out (non-free), and its other permutation (AWPM)
+  // needs a square process grid; it then aborts the whole job ("pivotL() encounters zero
+  // diagonal") instead of returning an error. Refused here with the reason, before any work.
+  PCType chosen = nullptr;
+  check(PCGetType(preconditioner, &chosen), "PCGetType");
+  const char* chosen_package = nullptr;
+  if (chosen != nullptr && (std::string(chosen) == PCLU || std::string(chosen) == PCCHOLESKY)) {
+    check(PCFactorGetMatSolverType(preconditioner, &chosen_package), "PCFactorGetMatSolverType");
+  }
+  TESSERA_CHECK(chosen_package == nullptr || std::string(chosen_package) != MATSOLVERSUPERLU_DIST,
+                "-pc_factor_mat_solver_type superlu_dist cannot factor tessera's bordered Jacobians: "
+                "their border rows have a zero diagonal, which SuperLU_dist's static pivoting "
+                "needs its MC64 row permutation for, and Debian's SuperLU_dist is built without "
+                "it; use mumps (the default on several ranks) or an iterative -ksp_type");
 }
 
 bool DistributedLinearization::factor(Vec x, const TangentPair* reference) {
