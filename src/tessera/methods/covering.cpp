@@ -19,6 +19,7 @@
 #include "tessera/geometry/pinched_vertices.h"
 #include "tessera/methods/common/clip_to_domain.h"
 #include "tessera/methods/common/local_repair.h"
+#include "tessera/methods/common/boundary_notches.h"
 #include "tessera/methods/common/refine_to_tolerance.h"
 #include "tessera/methods/improvement/edge_swap.h"
 #include "tessera/methods/start_point.h"
@@ -398,6 +399,15 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
       }
       if (!refusal.empty()) {
         fail(summary, CoveringTermination::ProjectionFailed, refusal);
+      } else if (summary.termination != CoveringTermination::Interrupted) {
+        const NotchClosing notches = close_boundary_notches(problem, domain, result.mesh,
+                                                            2.0 * context.boundary_edge_length);
+        if (notches.added_triangles > 0) {
+          summary.notes.push_back(
+              "closed " + std::to_string(notches.added_triangles) +
+              " notch(es) in the boundary with a triangle each: the build left M ∩ S uncovered "
+              "next to a boundary vertex inside S");
+        }
       }
       if (context.swap_after_clipping && result.mesh.triangle_count() > 0 &&
           summary.termination != CoveringTermination::Interrupted) {
