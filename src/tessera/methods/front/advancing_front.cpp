@@ -288,6 +288,10 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
                       "interrupted at " + std::to_string(state_.live_vertex_count()) + " vertices"};
       }
     }
+    // Parts of the front connected to an exterior vertex are never glued there (it is not
+    // processed): bratu2d:N=8 at h = 0.15 had such a pinch at ε = −0.02, and every face's
+    // clipping then failed its validation. The copies lie outside S and are cut away.
+    state_.split_pinched_exterior_vertices();
   } catch (const StopRun& stop) {
     summary.termination = stop.termination;
     summary.message = stop.message;

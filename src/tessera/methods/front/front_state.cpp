@@ -29,6 +29,17 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a(0) * b(1) - a(1) * b(0);
 }
 
+// The index of the chain with the most vertices (the fan that stays at v).
+std::size_t largest_chain(const std::vector<FanChain>& chains) {
+  std::size_t largest = 0;
+  for (std::size_t i = 1; i < chains.size(); ++i) {
+    if (chains[i].vertices.size() > chains[largest].vertices.size()) {
+      largest = i;
+    }
+  }
+  return largest;
+}
+
 }  // namespace
 
 FrontState::FrontState(int ambient_dimension, double grid_cell)
@@ -455,6 +466,23 @@ void FrontState::remove_triangle(int t) {
   --live_triangles_;
 }
 
+std::vector<int> FrontState::chain_triangles(int v, const FanChain& chain) const {
+  std::vector<int> found;
+  const auto& vertices = chain.vertices;
+  const std::size_t count = chain.is_closed ? vertices.size() : vertices.size() - 1;
+  for (std::size_t j = 0; j < count; ++j) {
+    const int a = vertices[j];
+    const int b = vertices[(j + 1) % vertices.size()];
+    for (int t : incident_[v]) {
+      const auto edge = opposite_edge(triangles_[t], v);
+      if (edge.first == a && edge.second == b) {
+        found.push_back(t);
+      }
+    }
+  }
+  return found;
+}
+
 int FrontState::drop_pinched_fans() {
   int removed = 0;
   for (int v = 0; v < static_cast<int>(types_.size()); ++v) {
@@ -465,28 +493,12 @@ int FrontState::drop_pinched_fans() {
     if (chains.size() <= 1) {
       continue;
     }
-    std::size_t largest = 0;
-    for (std::size_t i = 1; i < chains.size(); ++i) {
-      if (chains[i].vertices.size() > chains[largest].vertices.size()) {
-        largest = i;
-      }
-    }
+    const std::size_t largest = largest_chain(chains);
     std::vector<int> doomed;
     for (std::size_t i = 0; i < chains.size(); ++i) {
-      if (i == largest) {
-        continue;
-      }
-      const auto& chain = chains[i].vertices;
-      const std::size_t count = chains[i].is_closed ? chain.size() : chain.size() - 1;
-      for (std::size_t j = 0; j < count; ++j) {
-        const int a = chain[j];
-        const int b = chain[(j + 1) % chain.size()];
-        for (int t : incident_[v]) {
-          const auto edge = opposite_edge(triangles_[t], v);
-          if (edge.first == a && edge.second == b) {
-            doomed.push_back(t);
-          }
-        }
+      if (i != largest) {
+        const std::vector<int> fan = chain_triangles(v, chains[i]);
+        doomed.insert(doomed.end(), fan.begin(), fan.end());
       }
     }
     for (int t : doomed) {
@@ -495,6 +507,40 @@ int FrontState::drop_pinched_fans() {
     }
   }
   return removed;
+}
+
+int FrontState::split_pinched_exterior_vertices() {
+  int added = 0;
+  const int vertex_count = static_cast<int>(types_.size());
+  for (int v = 0; v < vertex_count; ++v) {
+    if (types_[v] != VertexType::Exterior || incident_[v].empty()) {
+      continue;
+    }
+    const auto chains = fan_chains(v);
+    if (chains.size() <= 1) {
+      continue;
+    }
+    const std::size_t largest = largest_chain(chains);
+    for (std::size_t i = 0; i < chains.size(); ++i) {
+      if (i == largest) {
+        continue;
+      }
+      const Eigen::VectorXd x = point(v);
+      const int copy = add_vertex(x, VertexType::Exterior);
+      for (int t : chain_triangles(v, chains[i])) {
+        for (int& corner : triangles_[t]) {
+          if (corner == v) {
+            corner = copy;
+          }
+        }
+        auto& list = incident_[v];
+        list.erase(std::remove(list.begin(), list.end(), t), list.end());
+        incident_[copy].push_back(t);
+      }
+      ++added;
+    }
+  }
+  return added;
 }
 
 TriangleMesh FrontState::take_mesh() {

@@ -82,6 +82,11 @@ class FrontState {
   /// was connected to a part of itself that was not yet glued), only its largest fan is kept.
   /// Only removes triangles, so no overlap can appear. Returns the number removed.
   int drop_pinched_fans();
+  /// Where an exterior vertex has several fans (parts of the front connected to it that were
+  /// never glued, since exterior vertices are not processed), each fan but the largest gets a
+  /// copy of the vertex: the touch lies outside S and clipping removes both copies, whereas
+  /// the pinch made every face's clipping fail its validation. Returns the copies made.
+  int split_pinched_exterior_vertices();
 
   /// The live part as a compact TriangleMesh (unreferenced vertices dropped). The points are
   /// handed over, compacted in place, not copied: the state has none afterwards.
@@ -89,6 +94,8 @@ class FrontState {
 
  private:
   int edge_triangle_count(int a, int b) const;
+  /// The triangles of v's fan `chain` (as returned by fan_chains(v)).
+  std::vector<int> chain_triangles(int v, const FanChain& chain) const;
   bool has_directed_edge(int a, int b) const;
 
   PointStorage coordinates_;
