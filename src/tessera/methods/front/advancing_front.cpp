@@ -105,6 +105,9 @@ class FrontBuilder {
   /// Makes v and an exterior neighbour frontal again where the open edge between them runs
   /// through S: M ∩ S beyond that edge is not covered yet (see the definition).
   void reopen_bridges(int v);
+  /// True if v has exterior neighbours beyond two opposite faces of S (normals more than 120°
+  /// apart): v lies in a band of M ∩ S narrower than about 2h.
+  bool is_in_band(int v) const;
   /// Closes a gap below α_min at an exterior vertex z by one triangle, as if z were frontal;
   /// leaves it if the triangle does not fit. U: the tangent frame of a vertex near z.
   void close_small_gap_outside(int z, const Eigen::MatrixXd& U);
@@ -411,8 +414,8 @@ void FrontBuilder::reopen_bridges(int v) {
 // triangle of the frontal vertex could overlap the triangles at z instead; seen where the front
 // runs along a band narrower than h and meets the part of itself that stopped at the band's
 // face. The triangle is added from the centre's frame (z lies within h of it): no merge,
-// because that would move the centre. Only after a bridge was reopened: elsewhere it lets
-// runs go on that would stop, e.g. over a cap of M outside S smaller than the step (sphere in
+// because that would move the centre. Only in a band (a bridge was reopened, or the centre has
+// exterior neighbours beyond two opposite faces): elsewhere it lets runs go on that would stop, e.g. over a cap of M outside S smaller than the step (sphere in
 // the box [−0.97, 0.97]³ at step 0.53), which no vertex then falls into and which the mesh
 // covers over.
 void FrontBuilder::close_small_gap_outside(int z, const Eigen::MatrixXd& U) {
@@ -432,6 +435,33 @@ void FrontBuilder::close_small_gap_outside(int z, const Eigen::MatrixXd& U) {
       state_.triangle_fits({z, gap.last, gap.first}, U)) {
     add_triangle(z, gap.last, gap.first);
   }
+}
+
+bool FrontBuilder::is_in_band(int v) const {
+  if (domain_.is_unbounded()) {
+    return false;
+  }
+  const auto& faces = domain_.half_spaces();
+  std::vector<int> beyond;  // faces that some exterior neighbour of v lies beyond
+  for (int w : state_.ring(v, 1)) {
+    if (state_.type(w) != VertexType::Exterior) {
+      continue;
+    }
+    for (int k = 0; k < static_cast<int>(faces.size()); ++k) {
+      if (domain_.signed_distance(k, state_.point(w)) < 0 &&
+          std::find(beyond.begin(), beyond.end(), k) == beyond.end()) {
+        beyond.push_back(k);
+      }
+    }
+  }
+  for (int k : beyond) {
+    for (int l : beyond) {
+      if (faces[k].normal.dot(faces[l].normal) < -0.5) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
@@ -523,7 +553,7 @@ void FrontBuilder::process(int center) {
     // each gap is then the counterclockwise angle from an open edge to the next (this replaces
     // the paper's average-direction test in Agap; see docs/algorithms/front.md).
     const Eigen::MatrixXd U = oriented_frame(center, frame.tangent_basis(), chains);
-    if (pass == 0 && bridged_) {
+    if (pass == 0 && (bridged_ || is_in_band(center))) {
       bool closed_outside = false;
       for (const auto& chain : chains) {
         for (int z : {chain.vertices.front(), chain.vertices.back()}) {
