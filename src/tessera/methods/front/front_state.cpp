@@ -516,7 +516,12 @@ int FrontState::split_pinched_exterior_vertices() {
     if (types_[v] != VertexType::Exterior || incident_[v].empty()) {
       continue;
     }
-    const auto chains = fan_chains(v);
+    std::vector<FanChain> chains;
+    try {
+      chains = fan_chains(v);
+    } catch (const ComputationFailed&) {
+      continue;  // not chains at all (a fold): left for clipping and validation to judge
+    }
     if (chains.size() <= 1) {
       continue;
     }
@@ -525,7 +530,7 @@ int FrontState::split_pinched_exterior_vertices() {
       if (i == largest) {
         continue;
       }
-      const Eigen::VectorXd x = point(v);
+      const Eigen::VectorXd x = point(v);  // a copy: add_vertex may move the storage
       const int copy = add_vertex(x, VertexType::Exterior);
       for (int t : chain_triangles(v, chains[i])) {
         for (int& corner : triangles_[t]) {
