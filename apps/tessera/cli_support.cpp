@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "tessera/core/error.h"
@@ -78,32 +79,36 @@ Domain named_bounds(const std::string& text, const ImplicitProblem& problem) {
                                             << name << "', which problem '" << problem.name()
                                             << "' does not have");
     const int i = static_cast<int>(found - names.begin());
-    const auto bound = [&](const std::string& part, bool is_lower) {
+    // An empty side is unbounded; a given one is a single finite number.
+    const auto parse_side = [&](const std::string& part) -> std::optional<double> {
       if (part.empty()) {
-        return;
+        return std::nullopt;
       }
       const auto values = parse_numbers(part, "--box");
       TESSERA_CHECK(values.size() == 1 && std::isfinite(values[0]),
                     "--box bound '" << part << "' of " << name << " is not one finite number");
+      return values[0];
+    };
+    const std::optional<double> lower = parse_side(item.substr(equals + 1, colon - equals - 1));
+    const std::optional<double> upper = parse_side(item.substr(colon + 1));
+    TESSERA_CHECK(!lower || !upper || *lower <= *upper,
+                  "--box is empty: lower bound " << *lower << " of " << name
+                                                 << " exceeds upper bound " << *upper);
+    const auto add = [&](double bound, bool is_lower) {
       Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
       Eigen::VectorXd point = Eigen::VectorXd::Zero(n);
       normal(i) = is_lower ? 1.0 : -1.0;
-      point(i) = values[0];
+      point(i) = bound;
       std::ostringstream label;
-      label << name << (is_lower ? " >= " : " <= ") << values[0];
+      label << name << (is_lower ? " >= " : " <= ") << bound;
       domain.add_half_space(normal, point, label.str());
     };
-    const std::string lower = item.substr(equals + 1, colon - equals - 1);
-    const std::string upper = item.substr(colon + 1);
-    if (!lower.empty() && !upper.empty()) {
-      const auto lo = parse_numbers(lower, "--box");
-      const auto hi = parse_numbers(upper, "--box");
-      TESSERA_CHECK(lo.size() != 1 || hi.size() != 1 || lo[0] <= hi[0],
-                    "--box is empty: lower bound " << lower << " of " << name
-                                                   << " exceeds upper bound " << upper);
+    if (lower) {
+      add(*lower, true);
     }
-    bound(lower, true);
-    bound(upper, false);
+    if (upper) {
+      add(*upper, false);
+    }
   }
   return domain;
 }

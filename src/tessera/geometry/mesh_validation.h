@@ -128,6 +128,10 @@ struct MeshValidation {
   /// True if there is no defect. Edges whose triangles disagree in orientation count only in
   /// orientable components: a Möbius strip is a valid, non-orientable mesh.
   bool is_valid() const { return defects.empty(); }
+  /// No defect but vertices that no triangle uses (what an edit leaves before compaction).
+  bool is_valid_but_unreferenced() const {
+    return defects.size() == static_cast<std::size_t>(unreferenced_vertex_count > 0 ? 1 : 0);
+  }
   /// At least one triangle and no boundary edge.
   bool is_closed() const { return triangle_count > 0 && boundary_edge_count == 0; }
   /// No non-manifold edge or vertex.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tessera/core/linearization.h"
+#include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
 
@@ -20,23 +21,6 @@ constexpr double kMinAngle = 10.0 * std::numbers::pi / 180.0;
 constexpr double kMinAreaRatio = 1e-6;
 // Each pass adds one triangle; a notch takes one to a few.
 constexpr int kMaxPasses = 64;
-
-double smallest_angle(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
-                      const Eigen::VectorXd& c) {
-  const std::array<double, 3> side{(b - c).norm(), (c - a).norm(), (a - b).norm()};
-  double smallest = std::numbers::pi;
-  for (int k = 0; k < 3; ++k) {
-    const double opposite = side[k];
-    const double p = side[(k + 1) % 3];
-    const double q = side[(k + 2) % 3];
-    if (p == 0 || q == 0) {
-      return 0.0;
-    }
-    const double cosine = std::clamp((p * p + q * q - opposite * opposite) / (2 * p * q), -1.0, 1.0);
-    smallest = std::min(smallest, std::acos(cosine));
-  }
-  return smallest;
-}
 
 double signed_area(const Eigen::MatrixXd& T, const Eigen::VectorXd& origin,
                    const std::array<Eigen::VectorXd, 3>& corners) {
@@ -56,11 +40,6 @@ struct Candidate {
   int b = -1;
   int along_av = -1;  // the triangle on the boundary edge a→v
 };
-
-bool is_valid_but_unreferenced(const MeshValidation& validation) {
-  return validation.defects.size() ==
-         static_cast<std::size_t>(validation.unreferenced_vertex_count > 0 ? 1 : 0);
-}
 
 }  // namespace
 
@@ -112,20 +91,23 @@ NotchClosing close_boundary_notches(const ImplicitProblem& problem, const Domain
     const Eigen::VectorXd a = mesh.point(c.a);
     const Eigen::VectorXd v = mesh.point(c.v);
     const Eigen::VectorXd b = mesh.point(c.b);
-    bool accepted = smallest_angle(a, b, v) >= kMinAngle && linearization.factor(problem, v);
+    const double ab = (a - b).norm();
+    const double bv = (b - v).norm();
+    const double va = (v - a).norm();
+    bool accepted = min_angle_of_sides(ab, bv, va) >= kMinAngle && linearization.factor(problem, v);
     if (accepted) {
       const Eigen::MatrixXd& T = linearization.tangent_basis();
       const Triangle& along = mesh.triangle(c.along_av);
-      const double existing = signed_area(
-          T, v, {mesh.point(along[0]), mesh.point(along[1]), mesh.point(along[2])});
+      const double existing =
+          signed_area(T, v, {mesh.point(along[0]), mesh.point(along[1]), mesh.point(along[2])});
       const double added = signed_area(T, v, {a, b, v});
-      const double longest = std::max({(a - b).norm(), (b - v).norm(), (v - a).norm()});
+      const double longest = std::max({ab, bv, va});
       accepted = existing * added > 0 && std::abs(added) > kMinAreaRatio * longest * longest;
     }
     if (accepted) {
       mesh.add_triangle(c.a, c.b, c.v);
       const std::array<int, 3> changed{c.a, c.b, c.v};
-      if (!is_valid_but_unreferenced(validate_around(mesh, changed))) {
+      if (!validate_around(mesh, changed).is_valid_but_unreferenced()) {
         std::vector<Triangle> triangles = mesh.triangles();
         triangles.pop_back();
         mesh.set_triangles(std::move(triangles));

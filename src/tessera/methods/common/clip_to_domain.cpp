@@ -54,10 +54,6 @@ std::vector<int> common_faces(const std::vector<int>& a, const std::vector<int>&
 }
 
 // Valid but for vertices no triangle uses (those cut or collapsed away, compacted later).
-bool is_valid_but_unreferenced(const MeshValidation& validation) {
-  return validation.defects.size() ==
-         static_cast<std::size_t>(validation.unreferenced_vertex_count > 0 ? 1 : 0);
-}
 
 // Records which bounding hyperplanes each vertex already lies on (to kOnFaceTolerance) and
 // puts it on them exactly.
@@ -529,7 +525,7 @@ int collapse_short_boundary_edges(const ImplicitProblem& problem, TriangleMesh& 
       std::vector<Triangle> before = mesh.triangles();
       mesh.set_triangles(std::move(triangles));
       const std::array<int, 1> around{a};  // b's triangles are a's now
-      if (!is_valid_but_unreferenced(validate_around(mesh, around))) {
+      if (!validate_around(mesh, around).is_valid_but_unreferenced()) {
         mesh.set_triangles(std::move(before));
         continue;
       }
@@ -595,7 +591,7 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
         changed.push_back(v);
       }
       const MeshValidation validation = validate_around(mesh, changed);
-      if (is_valid_but_unreferenced(validation)) {
+      if (validation.is_valid_but_unreferenced()) {
         compact(mesh, attempt_faces, std::vector<bool>(mesh.triangle_count(), true));
         on_faces = std::move(attempt_faces);
         summary.snapped_vertices += attempt_summary.snapped_vertices;

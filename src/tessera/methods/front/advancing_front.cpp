@@ -3,6 +3,8 @@
 // given a complete neighbourhood of triangles by closing its gap, either by merging the two open
 // edges (gap < α_min) or by n_new sectors whose new vertices are projected onto M with the chord
 // corrector frozen at the frontal point (eq. 2.5). Afterwards the mesh is clipped to the domain.
+// The builder's state is declared in front_builder.h; its handling of bands of M ∩ S narrower
+// than the step is in front_bands.cpp.
 #include "tessera/methods/front/advancing_front.h"
 
 #include <algorithm>
@@ -19,6 +21,7 @@
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
 #include "tessera/methods/common/clip_to_domain.h"
+#include "tessera/methods/front/front_builder.h"
 #include "tessera/methods/front/front_state.h"
 #include "tessera/methods/start_point.h"
 
@@ -43,119 +46,8 @@ void FrontOptions::validate() const {
                 "FrontOptions::max_vertices = " << max_vertices << " must be >= 7");
 }
 
-namespace {
+namespace front_detail {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-// Front loops up to this length are closed by a triangulation of the loop itself.
-constexpr int kMaxClosedLoop = 6;
-// Edges longer than this multiple of h are avoided where a choice exists.
-constexpr double kMaxEdgeRatio = 1.5;
-// Radians added to a frontal vertex's priority key per layer (generation) it is away from the
-// start; see FrontBuilder::priority.
-constexpr double kLayerWeight = 0.05;
-// An open edge between two exterior vertices that runs deeper than this fraction of h inside S
-// reopens them (FrontBuilder::reopen_bridges).
-constexpr double kBridgeDepth = 0.05;
-
-// Thrown inside the builder to stop the run; caught in triangulate_by_front, which keeps the
-// mesh built so far (it is valid: every step leaves a consistent partial mesh).
-struct StopRun {
-  CoveringTermination termination;
-  std::string message;
-};
-
-// A gap in the neighbourhood of a frontal vertex: counterclockwise from open edge (x_c, last)
-// to open edge (x_c, first), `angle` radians wide in the tangent plane.
-struct Gap {
-  int last;
-  int first;
-  double angle;
-};
-
-class FrontBuilder {
- public:
-  FrontBuilder(const ImplicitProblem& problem, const Domain& domain, const FrontOptions& options)
-      : problem_(problem),
-        domain_(domain),
-        options_(options),
-        state_(problem.ambient_dimension(), options.step * options.collision_distance_fraction) {}
-
-  void run(const Eigen::VectorXd& start_point, const Linearization& start_frame,
-           CoveringSummary& summary);
-  FrontState& state() { return state_; }
-
- private:
-  void build_initial_hexagon(const Eigen::VectorXd& center, const Linearization& frame);
-  void process(int center);
-  std::vector<Gap> find_gaps(int center, const std::vector<FanChain>& chains,
-                             const Eigen::MatrixXd& U) const;
-  void close_gap(int center, const Linearization& frame, const Eigen::MatrixXd& U, const Gap& gap);
-  std::optional<int> colliding_front_vertex(int center, int previous, const Eigen::VectorXd& x,
-                                            const Eigen::MatrixXd& U);
-  void connect_to_front_vertex(int center, int previous, int w, const Eigen::MatrixXd& U);
-  bool try_merge(int center, int first, int last, const Linearization& frame);
-  void add_closing_triangle(int center, int last, int first, const Eigen::MatrixXd& U);
-  void require_fit(const Triangle& t, const Eigen::MatrixXd& U);
-  /// Projects x_c + h·U·direction onto M (chord, with step-halving continuation on failure).
-  Eigen::VectorXd new_point(int center, const Linearization& frame, const Eigen::MatrixXd& U,
-                            double angle);
-  int add_point(const Eigen::VectorXd& x);
-  /// Adds the triangle, then reopens the bridges its corners now have.
-  void add_triangle(int a, int b, int c);
-  /// Makes v and an exterior neighbour frontal again where the open edge between them runs
-  /// through S: M ∩ S beyond that edge is not covered yet (see the definition).
-  void reopen_bridges(int v);
-  /// True if v has exterior neighbours beyond two opposite faces of S (normals more than 120°
-  /// apart): v lies in a band of M ∩ S narrower than about 2h.
-  bool is_in_band(int v) const;
-  /// Closes a gap below α_min at an exterior vertex z by one triangle, as if z were frontal;
-  /// leaves it if the triangle does not fit. U: the tangent frame of a vertex near z.
-  void close_small_gap_outside(int z, const Eigen::MatrixXd& U);
-  /// Caches the tangent basis at a new frontal vertex v from its creator's factorisation.
-  void remember_tangent(int v, const Linearization& frame);
-  bool close_small_loop(int center, const Eigen::MatrixXd& U);
-  /// The next frontal vertex in the order of options.order; nullopt when the front is empty.
-  std::optional<int> next_frontal();
-  /// Re-keys v in the smallest-gap-first order (removes it if it is no longer frontal).
-  void refresh_priority(int v);
-  /// The smallest gap angle at v, in v's own tangent plane (cached per vertex).
-  double smallest_gap(int v);
-  /// The key of v in the smallest-gap-first order: the smallest gap, plus kLayerWeight per
-  /// layer for gaps that need no merge (see docs/algorithms/front.md, *Order*).
-  double priority(int v);
-  /// Frees v's cached tangent basis (2n doubles) once v is finished: the cache then holds
-  /// only the front, not the whole mesh.
-  void release_tangent(int v) {
-    if (static_cast<std::size_t>(v) < tangent_cache_.size()) {
-      tangent_cache_[v] = Eigen::MatrixXd();
-    }
-  }
-  /// The cached tangent basis of v, or else of one of its neighbours; null if none is known.
-  const Eigen::MatrixXd* cached_tangent_near(int v) const;
-  /// U oriented so that v's triangles turn counterclockwise.
-  Eigen::MatrixXd oriented_frame(int v, const Eigen::MatrixXd& basis,
-                                 const std::vector<FanChain>& chains) const;
-
-  const ImplicitProblem& problem_;
-  const Domain& domain_;
-  const FrontOptions& options_;
-  FrontState state_;
-  CorrectorOptions chord_options_;
-  double step_ = 0.0;
-  int merges_ = 0;
-  int step_reductions_ = 0;
-  int connections_ = 0;
-  // Set once reopen_bridges has reopened a vertex: only then are small gaps at exterior
-  // vertices closed (close_small_gap_outside), so runs without a band are as before.
-  bool bridged_ = false;
-  std::set<std::pair<double, int>> by_gap_;     // (gap angle, vertex), smallest first
-  std::vector<double> gap_key_;                 // key of each vertex in by_gap_, NaN if absent
-  std::vector<Eigen::MatrixXd> tangent_cache_;  // n×2 tangent basis per vertex, empty if unknown
-  std::vector<int> layer_;      // per vertex: 0 for the start, 1 + its creator's layer otherwise
-  int new_vertex_layer_ = 1;    // the layer of the vertices the current step creates
-  Linearization center_frame_;  // at the vertex being processed
-  Linearization gap_frame_;     // for the gap angles of the priority order
-};
 
 std::optional<int> FrontBuilder::next_frontal() {
   if (options_.order == FrontOrder::Fifo) {
@@ -366,102 +258,6 @@ int FrontBuilder::add_point(const Eigen::VectorXd& x) {
   layer_.resize(v + 1, new_vertex_layer_);
   layer_[v] = new_vertex_layer_;
   return v;
-}
-
-void FrontBuilder::add_triangle(int a, int b, int c) {
-  state_.add_triangle(a, b, c);
-  for (int v : {a, b, c}) {
-    reopen_bridges(v);
-  }
-}
-
-// Vertices outside S are not advanced: the front stops one triangle beyond the boundary and the
-// clipping cuts the rest. That assumes the triangles the front stops with cover S up to the
-// boundary. Where M ∩ S is a band narrower than the step (bratu2d near u = 0, ε ∈ [0, 0.3], at
-// steps of 0.3 and more), a triangle can have two exterior corners on opposite sides of the
-// band, and its open edge between them spans the band: nothing beyond that edge would ever be
-// covered, and the run ended with a hole. The same happens at a corner of S that an open edge
-// cuts. Such an edge's ends are therefore advanced like frontal vertices: the front goes on
-// along the band as a strip of triangles straddling it, until the band ends. An edge that cuts
-// S by less than kBridgeDepth·h is left: the corner it cuts off is below the mesh's resolution
-// (the clipping snaps vertices within boundary_snap_fraction·h anyway).
-void FrontBuilder::reopen_bridges(int v) {
-  if (state_.type(v) != VertexType::Exterior) {
-    return;
-  }
-  for (const FanChain& chain : state_.fan_chains(v)) {
-    if (chain.is_closed) {
-      continue;
-    }
-    for (int w : {chain.vertices.front(), chain.vertices.back()}) {
-      if (state_.type(w) != VertexType::Exterior ||
-          !domain_.segment_meets_interior(state_.point(v), state_.point(w), kBridgeDepth * step_)) {
-        continue;
-      }
-      bridged_ = true;
-      for (int u : {v, w}) {
-        state_.set_type(u, VertexType::Frontal);
-        if (options_.order == FrontOrder::SmallestGapFirst) {
-          refresh_priority(u);
-        }
-      }
-    }
-  }
-}
-
-// A frontal vertex next to an exterior one z whose gap is below α_min: were z frontal, it would
-// close that gap first (a merge or one triangle). Exterior vertices are never processed, so a
-// triangle of the frontal vertex could overlap the triangles at z instead; seen where the front
-// runs along a band narrower than h and meets the part of itself that stopped at the band's
-// face. The triangle is added from the centre's frame (z lies within h of it): no merge,
-// because that would move the centre. Only in a band (a bridge was reopened, or the centre has
-// exterior neighbours beyond two opposite faces): elsewhere it lets runs go on that would stop, e.g. over a cap of M outside S smaller than the step (sphere in
-// the box [−0.97, 0.97]³ at step 0.53), which no vertex then falls into and which the mesh
-// covers over.
-void FrontBuilder::close_small_gap_outside(int z, const Eigen::MatrixXd& U) {
-  if (state_.type(z) != VertexType::Exterior) {
-    return;
-  }
-  const auto chains = state_.fan_chains(z);
-  if (chains.size() != 1 || chains[0].is_closed) {
-    return;
-  }
-  const Gap gap = find_gaps(z, chains, U).front();
-  if (gap.angle <= 0 || gap.angle >= options_.min_gap_angle || gap.first == gap.last ||
-      state_.are_adjacent(gap.first, gap.last)) {
-    return;
-  }
-  if (state_.can_add_edge(gap.last, gap.first) &&
-      state_.triangle_fits({z, gap.last, gap.first}, U)) {
-    add_triangle(z, gap.last, gap.first);
-  }
-}
-
-bool FrontBuilder::is_in_band(int v) const {
-  if (domain_.is_unbounded()) {
-    return false;
-  }
-  const auto& faces = domain_.half_spaces();
-  std::vector<int> beyond;  // faces that some exterior neighbour of v lies beyond
-  for (int w : state_.ring(v, 1)) {
-    if (state_.type(w) != VertexType::Exterior) {
-      continue;
-    }
-    for (int k = 0; k < static_cast<int>(faces.size()); ++k) {
-      if (domain_.signed_distance(k, state_.point(w)) < 0 &&
-          std::find(beyond.begin(), beyond.end(), k) == beyond.end()) {
-        beyond.push_back(k);
-      }
-    }
-  }
-  for (int k : beyond) {
-    for (int l : beyond) {
-      if (faces[k].normal.dot(faces[l].normal) < -0.5) {
-        return true;
-      }
-    }
-  }
-  return false;
 }
 
 Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
@@ -832,14 +628,14 @@ bool FrontBuilder::close_small_loop(int center, const Eigen::MatrixXd& U) {
   return state_.triangulate_hole(loop, U, loop.size() <= 3 ? 0.0 : 20.0 * std::numbers::pi / 180);
 }
 
-}  // namespace
+}  // namespace front_detail
 
 CoveringResult triangulate_by_front(const ImplicitProblem& problem, const Eigen::VectorXd& start,
                                     const Domain& domain, const FrontOptions& options) {
   options.validate();
   return run_covering("front", problem, start, domain, options,
                       [&options](CoveringContext& context, CoveringResult& result) {
-                        FrontBuilder builder(context.problem, context.domain, options);
+                        front_detail::FrontBuilder builder(context.problem, context.domain, options);
                         builder.run(context.start.x, context.start.linearization, result.summary);
                         result.mesh = builder.state().take_mesh();
                         context.boundary_edge_length = result.summary.step;

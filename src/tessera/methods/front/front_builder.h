@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: MIT
+// The advancing front's builder (PITMAN), internal to the front method: its state and steps.
+// Defined in advancing_front.cpp (the front's steps) and front_bands.cpp (bands of M ∩ S
+// narrower than the step).
+#pragma once
+
+#include <Eigen/Core>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "tessera/core/domain.h"
+#include "tessera/core/implicit_problem.h"
+#include "tessera/core/linearization.h"
+#include "tessera/methods/covering.h"
+#include "tessera/methods/front/advancing_front.h"
+#include "tessera/methods/front/front_state.h"
+
+namespace tessera::front_detail {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// Front loops up to this length are closed by a triangulation of the loop itself.
+constexpr int kMaxClosedLoop = 6;
+// Edges longer than this multiple of h are avoided where a choice exists.
+constexpr double kMaxEdgeRatio = 1.5;
+// Radians added to a frontal vertex's priority key per layer (generation) it is away from the
+// start; see FrontBuilder::priority.
+constexpr double kLayerWeight = 0.05;
+
+// Thrown inside the builder to stop the run; caught in triangulate_by_front, which keeps the
+// mesh built so far (it is valid: every step leaves a consistent partial mesh).
+struct StopRun {
+  CoveringTermination termination;
+  std::string message;
+};
+
+// A gap in the neighbourhood of a frontal vertex: counterclockwise from open edge (x_c, last)
+// to open edge (x_c, first), `angle` radians wide in the tangent plane.
+struct Gap {
+  int last;
+  int first;
+  double angle;
+};
+
+class FrontBuilder {
+ public:
+  FrontBuilder(const ImplicitProblem& problem, const Domain& domain, const FrontOptions& options)
+      : problem_(problem),
+        domain_(domain),
+        options_(options),
+        state_(problem.ambient_dimension(), options.step * options.collision_distance_fraction) {}
+
+  void run(const Eigen::VectorXd& start_point, const Linearization& start_frame,
+           CoveringSummary& summary);
+  FrontState& state() { return state_; }
+
+ private:
+  void build_initial_hexagon(const Eigen::VectorXd& center, const Linearization& frame);
+  void process(int center);
+  std::vector<Gap> find_gaps(int center, const std::vector<FanChain>& chains,
+                             const Eigen::MatrixXd& U) const;
+  void close_gap(int center, const Linearization& frame, const Eigen::MatrixXd& U, const Gap& gap);
+  std::optional<int> colliding_front_vertex(int center, int previous, const Eigen::VectorXd& x,
+                                            const Eigen::MatrixXd& U);
+  void connect_to_front_vertex(int center, int previous, int w, const Eigen::MatrixXd& U);
+  bool try_merge(int center, int first, int last, const Linearization& frame);
+  void add_closing_triangle(int center, int last, int first, const Eigen::MatrixXd& U);
+  void require_fit(const Triangle& t, const Eigen::MatrixXd& U);
+  /// Projects x_c + h·U·direction onto M (chord, with step-halving continuation on failure).
+  Eigen::VectorXd new_point(int center, const Linearization& frame, const Eigen::MatrixXd& U,
+                            double angle);
+  int add_point(const Eigen::VectorXd& x);
+  /// Adds the triangle, then reopens the bridges its corners now have.
+  void add_triangle(int a, int b, int c);
+  /// Makes v and an exterior neighbour frontal again where the open edge between them runs
+  /// through S: M ∩ S beyond that edge is not covered yet (see the definition).
+  void reopen_bridges(int v);
+  /// True if v has exterior neighbours beyond two opposite faces of S (normals more than 120°
+  /// apart): v lies in a band of M ∩ S narrower than about 2h.
+  bool is_in_band(int v) const;
+  /// Closes a gap below α_min at an exterior vertex z by one triangle, as if z were frontal;
+  /// leaves it if the triangle does not fit. U: the tangent frame of a vertex near z.
+  void close_small_gap_outside(int z, const Eigen::MatrixXd& U);
+  /// Caches the tangent basis at a new frontal vertex v from its creator's factorisation.
+  void remember_tangent(int v, const Linearization& frame);
+  bool close_small_loop(int center, const Eigen::MatrixXd& U);
+  /// The next frontal vertex in the order of options.order; nullopt when the front is empty.
+  std::optional<int> next_frontal();
+  /// Re-keys v in the smallest-gap-first order (removes it if it is no longer frontal).
+  void refresh_priority(int v);
+  /// The smallest gap angle at v, in v's own tangent plane (cached per vertex).
+  double smallest_gap(int v);
+  /// The key of v in the smallest-gap-first order: the smallest gap, plus kLayerWeight per
+  /// layer for gaps that need no merge (see docs/algorithms/front.md, *Order*).
+  double priority(int v);
+  /// Frees v's cached tangent basis (2n doubles) once v is finished: the cache then holds
+  /// only the front, not the whole mesh.
+  void release_tangent(int v) {
+    if (static_cast<std::size_t>(v) < tangent_cache_.size()) {
+      tangent_cache_[v] = Eigen::MatrixXd();
+    }
+  }
+  /// The cached tangent basis of v, or else of one of its neighbours; null if none is known.
+  const Eigen::MatrixXd* cached_tangent_near(int v) const;
+  /// U oriented so that v's triangles turn counterclockwise.
+  Eigen::MatrixXd oriented_frame(int v, const Eigen::MatrixXd& basis,
+                                 const std::vector<FanChain>& chains) const;
+
+  const ImplicitProblem& problem_;
+  const Domain& domain_;
+  const FrontOptions& options_;
+  FrontState state_;
+  CorrectorOptions chord_options_;
+  double step_ = 0.0;
+  int merges_ = 0;
+  int step_reductions_ = 0;
+  int connections_ = 0;
+  // Set once reopen_bridges has reopened a vertex: only then are small gaps at exterior
+  // vertices closed (close_small_gap_outside), so runs without a band are as before.
+  bool bridged_ = false;
+  std::set<std::pair<double, int>> by_gap_;     // (gap angle, vertex), smallest first
+  std::vector<double> gap_key_;                 // key of each vertex in by_gap_, NaN if absent
+  std::vector<Eigen::MatrixXd> tangent_cache_;  // n×2 tangent basis per vertex, empty if unknown
+  std::vector<int> layer_;      // per vertex: 0 for the start, 1 + its creator's layer otherwise
+  int new_vertex_layer_ = 1;    // the layer of the vertices the current step creates
+  Linearization center_frame_;  // at the vertex being processed
+  Linearization gap_frame_;     // for the gap angles of the priority order
+};
+
+}  // namespace tessera::front_detail
