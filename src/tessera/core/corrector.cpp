@@ -122,14 +122,15 @@ CorrectorSummary project_chord(const ImplicitProblem& problem, const Linearizati
 
 double chord_distance_bound(const ImplicitProblem& problem, const Linearization& frozen,
                             const Eigen::Ref<const Eigen::VectorXd>& x, double accuracy,
-                            const CorrectorOptions& options) {
-  return chord_distance_bounds(problem, frozen, x, accuracy, options).front();
+                            const CorrectorOptions& options, double clear_below) {
+  return chord_distance_bounds(problem, frozen, x, accuracy, options, clear_below).front();
 }
 
 std::vector<double> chord_distance_bounds(const ImplicitProblem& problem,
                                           const Linearization& frozen,
                                           const Eigen::Ref<const Eigen::MatrixXd>& points,
-                                          double accuracy, const CorrectorOptions& options) {
+                                          double accuracy, const CorrectorOptions& options,
+                                          double clear_below) {
   // A bound needs the chord to contract, not to contract fast: a slow chord costs solves, a
   // refused one a factorisation or a Gauss–Newton projection (measured on bratu2d from an
   // anchor two edges away: θ = 0.5–0.62 for one sample in twenty).
@@ -193,6 +194,11 @@ std::vector<double> chord_distance_bounds(const ImplicitProblem& problem,
           continue;  // +∞
         }
         const double remainder = theta[s] / (1.0 - theta[s]) * correction;
+        // A clear pass after two steps (see the header for the factor 4).
+        if (k == 1 && theta[s] <= 0.125 && displacement + 4.0 * correction <= clear_below) {
+          bound[s] = displacement + 4.0 * correction;
+          continue;
+        }
         // θ is trusted from two ratios (three steps), not one: a first step that overshoots
         // along a curved M can make the first ratio small and the second exceed 1 (cstr, a
         // chord from an edge's end: 0.018, 0.0016, 0.0037, ... landing 0.027 away, where one

@@ -18,6 +18,9 @@ namespace {
 // Sampled distances are measured to this fraction of the refinement threshold: enough to
 // decide "split or not", and a bound from above, so the decision errs towards splitting.
 constexpr double kDistanceAccuracy = 0.02;
+// A sample whose two-step bound (chord_distance_bound) is below this fraction of the threshold
+// passes without a third step: most samples of a mesh sized for the tolerance lie well inside.
+constexpr double kClearPass = 0.75;
 
 std::uint64_t edge_key(int a, int b) {
   if (a > b) {
@@ -151,6 +154,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   // distance from above: the estimate errs towards splitting. It is only needed to a small
   // fraction of the threshold, which two or three chord steps give (chord_distance_bound).
   const double accuracy = kDistanceAccuracy * threshold;
+  const double clear_below = kClearPass * threshold;
   const bool is_sparse = problem.has_sparse_jacobian();
   Linearization frozen;
   int frozen_at = -1;
@@ -175,7 +179,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const Linearization* corner = corner_of(tri);
       const double bound =
           corner != nullptr
-              ? chord_distance_bound(problem, *corner, point, accuracy, options.corrector)
+              ? chord_distance_bound(problem, *corner, point, accuracy, options.corrector,
+                                     clear_below)
               : std::numeric_limits<double>::infinity();
       if (std::isfinite(bound)) {
         return bound;
@@ -235,7 +240,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     // step); those where its chord does not contract, another way.
     const auto points = samples.leftCols(count);
     std::vector<double> distance =
-        frozen_ok ? chord_distance_bounds(problem, frozen, points, accuracy, options.corrector)
+        frozen_ok ? chord_distance_bounds(problem, frozen, points, accuracy, options.corrector,
+                                        clear_below)
                   : std::vector<double>(static_cast<std::size_t>(count),
                                         std::numeric_limits<double>::infinity());
     for (Eigen::Index j = 0; j < count; ++j) {
