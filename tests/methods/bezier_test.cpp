@@ -365,6 +365,17 @@ TEST(BezierContinuation, StirredTankReactorCompletesWithAMaximumStep) {
   EXPECT_EQ(validate(run.result.mesh).euler_characteristic, 1);
 }
 
+TEST(BezierContinuation, DischargeBvpCompletesAtItsSuggestedStep) {
+  // M ∩ S has bands narrower than the steps the θ control grows to (ε ∈ [0, 0.3] on the lower
+  // sheet, where u hardly depends on ε): without holding the step to half the band's width
+  // there the front folded over itself ("front collision", 174 vertices).
+  const BezierRun run = run_bezier("bvp:points=100");
+  ASSERT_TRUE(run.result.summary.is_complete()) << run.result.summary.message;
+  expect_invariants(run, "bvp");
+  EXPECT_EQ(validate(run.result.mesh).euler_characteristic, 1);
+  EXPECT_GT(run.result.mesh.vertex_count(), 200);
+}
+
 TEST(BezierContinuation, RefusesBadOptionsNamingThem) {
   const ProblemSetup setup = make_catalogue_problem("sphere");
   BezierOptions options;

@@ -134,6 +134,46 @@ bool Domain::segment_meets_interior(const Eigen::Ref<const Eigen::VectorXd>& x,
   return true;
 }
 
+double Domain::band_width(const Eigen::Ref<const Eigen::VectorXd>& x,
+                          const Eigen::Ref<const Eigen::MatrixXd>& T, double reach) const {
+  // Faces nearly parallel to the plane (‖Tᵀb‖ below this) are not crossed by it nearby.
+  constexpr double kMinCrossing = 0.1;
+  struct NearFace {
+    double distance;           // within the plane
+    Eigen::Vector2d inward;    // unit, in T's coordinates
+  };
+  std::vector<NearFace> near;
+  for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
+    const HalfSpace& face = half_spaces_[k];
+    const double d = std::max(0.0, signed_distance(k, x));
+    if (d > reach) {
+      continue;  // within the plane it is at least as far
+    }
+    Eigen::Vector2d projected = Eigen::Vector2d::Zero();
+    if (face.support.empty()) {
+      projected = T.transpose() * face.normal;
+    } else {
+      for (int i : face.support) {
+        projected += face.normal(i) * T.row(i).transpose();
+      }
+    }
+    const double length = projected.norm();
+    if (length < kMinCrossing || d / length > reach) {
+      continue;
+    }
+    near.push_back({d / length, projected / length});
+  }
+  double width = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    for (std::size_t j = i + 1; j < near.size(); ++j) {
+      if (near[i].inward.dot(near[j].inward) < -0.5) {
+        width = std::min(width, near[i].distance + near[j].distance);
+      }
+    }
+  }
+  return width;
+}
+
 void Domain::intersect_with(const Domain& other) {
   if (other.half_spaces_.empty()) {
     return;

@@ -56,6 +56,15 @@ class Domain {
                               const Eigen::Ref<const Eigen::VectorXd>& y,
                               double margin = 0.0) const;
 
+  /// The width of S across x within the plane x + span(T) (T: n×2, orthonormal columns): the
+  /// smallest t_k + t_l over pairs of faces that the plane crosses from nearly opposite sides
+  /// (their normals' directions in the plane at more than 120°), t_k = max(0, d_k)/‖Tᵀb_k‖ the
+  /// distance from x to face k within the plane. Where M ∩ S is a band, this is its width near
+  /// x (to first order). Faces farther than `reach` within the plane are not considered; +∞
+  /// if no pair is within reach (also for the unbounded domain).
+  double band_width(const Eigen::Ref<const Eigen::VectorXd>& x,
+                    const Eigen::Ref<const Eigen::MatrixXd>& T, double reach) const;
+
   /// Intersection of two domains. \pre same ambient dimension.
   void intersect_with(const Domain& other);
 

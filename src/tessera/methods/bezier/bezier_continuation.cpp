@@ -89,7 +89,7 @@ double BezierBuilder::predicted_step(int a, int b) const {
     if (data.theta > 0) {
       factor = std::min(factor, std::sqrt(options_.target_contraction / data.theta));
     }
-    return std::min(factor * data.step, data.step_limit);
+    return std::min({factor * data.step, data.step_limit, data.band_limit});
   };
   return std::clamp(std::min(grown(a), grown(b)), min_step_, max_step_);
 }
