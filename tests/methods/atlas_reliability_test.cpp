@@ -108,6 +108,25 @@ TEST(AtlasReliability, TroughCompletesAtCoarseTolerances) {
   }
 }
 
+TEST(AtlasReliability, Bratu2dBandCompletesAtCoarseSteps) {
+  // bratu2d's lower sheet is a band 0.3 wide between ε = 0 and ε = 0.3. Charts of radius 0.6
+  // spanned it and the atlas could not close one of them ("projection failed" after 16 000
+  // charts, 21 s); the disks are now held to half the band's width there, and the summary
+  // says how many.
+  ReliabilityRun run;
+  run.setup = make_catalogue_problem("bratu2d:N=10");
+  AtlasOptions options;
+  options.step = 0.6;
+  options.tolerance = 0.3;
+  run.result = cover_by_atlas(*run.setup.problem, run.setup.start, run.setup.domain, options);
+  expect_complete_and_sound(run, "bratu2d:N=10 at step 0.6");
+  bool noted = false;
+  for (const std::string& note : run.result.summary.notes) {
+    noted = noted || note.find("half the width of a band") != std::string::npos;
+  }
+  EXPECT_TRUE(noted);
+}
+
 TEST(AtlasReliability, CoarseRadiiAreCappedByTheCurvatureAndTheSummarySaysSo) {
   const ReliabilityRun run = run_atlas(thin_genus2(), 0.03);
   ASSERT_TRUE(run.result.summary.is_complete()) << run.result.summary.message;

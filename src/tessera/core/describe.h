@@ -8,7 +8,9 @@
 namespace tessera {
 
 /// "(x0, x1, …)" with at most `shown` coordinates, 4 significant digits, and the count of
-/// the ones left out: points in R^100000 must still give one-line messages.
+/// the ones left out: points in R^100000 must still give one-line messages. Of a longer point
+/// the first shown − 2 and the last 2 are shown, "(x0, x1, … 98 more, x100, x101)": the
+/// parameters of a discretised problem come last.
 std::string describe_point(const Eigen::Ref<const Eigen::VectorXd>& x, int shown = 4);
 
 }  // namespace tessera

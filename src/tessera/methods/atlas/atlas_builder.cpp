@@ -18,8 +18,11 @@ namespace {
 // The initial polygon is a square of this half-width (in radii): it contains the disk, and its
 // corners (at 1.7 R) are exterior until neighbours cut them.
 constexpr double kInitialHalfWidth = 1.2;
-// A chart is processed until its polygon has no exterior vertex; more children than this
-// means the cuts do not remove the vertices they should (rounding, or charts on other sheets).
+// A chart is processed until its polygon has no exterior vertex; more children than this (times
+// R/r for children of radius r: about 2πR/r of them go round its rim) means the cuts do not
+// remove the vertices they should (rounding, or charts on other sheets). The bound was once
+// (R/r)², the children's area: at r = R/28 that let one chart place 50 000 children without
+// progress before failing (bratu2d:N=10, step 0.7: 21 s; hours at n = 10⁵).
 constexpr int kMaxChildrenPerChart = 64;
 // Below this dimension the orientation det([J; Tᵀ]) is cheap enough to watch for singular
 // crossings at every step (dense problems only; see docs/algorithms/atlas.md).
@@ -112,10 +115,25 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
       }
     }
   }
+  // Where M ∩ S is a band narrower than two radii (bratu2d's lower sheet between ε = 0 and 0.3,
+  // at steps of 0.6 and more), charts spanning it cover it from both faces at once and the
+  // atlas fell apart there; the disk is held to half the band's width (not below a quarter of
+  // the step, which keeps a wedge's tip from asking for ever smaller charts).
+  bool band_capped = false;
+  if (!domain_.is_unbounded()) {
+    const double band = std::max(
+        0.25 * options_.step,
+        0.5 * domain_.band_width(x, linearization.tangent_basis(), 2.0 * options_.step));
+    band_capped = band < trial;
+    trial = std::min(trial, band);
+  }
   double radius = 0.0;
   RadiusCap cap = RadiusCap::None;
   if (!choose_radius(linearization, trial, radius, cap)) {
     return -2;
+  }
+  if (band_capped && cap == RadiusCap::Grading) {
+    cap = RadiusCap::Band;
   }
   // The reach: another part of M (a chart whose centre lies far from this tangent plane, not a
   // transversal crossing) within the disks means M comes back within their distance d, so
@@ -531,9 +549,8 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
              "interrupted at " + std::to_string(chart_count()) + " charts");
         break;
       }
-      // A chart next to much smaller ones needs about (R/r)² of them around it.
-      if (++children >
-          kMaxChildrenPerChart * std::max(1.0, std::pow(charts_[c].radius / smallest_child, 2))) {
+      // A chart next to much smaller ones needs about 2πR/r of them around its rim.
+      if (++children > kMaxChildrenPerChart * std::max(1.0, charts_[c].radius / smallest_child)) {
         fail(summary, CoveringTermination::ProjectionFailed,
              "the chart at " + describe_point(xc) +
                  " could not be closed: its neighbours do not "
@@ -626,7 +643,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
   summary.charts = chart_count();
   summary.singular_crossings = singular_crossings_;
   summary.sheet_rejections = sheet_rejections_;
-  const int capped = capped_[1] + capped_[2] + capped_[3] + capped_[4];
+  const int capped = capped_[1] + capped_[2] + capped_[3] + capped_[4] + capped_[5];
   if (capped > 0) {
     std::ostringstream note;
     note << capped << " of " << chart_count()
@@ -641,6 +658,10 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
          << " next to smaller charts (radii grow by at most " << options_.radius_growth - 1.0
          << " per unit length), " << capped_[static_cast<int>(RadiusCap::Reach)]
          << " by the reach (another part of M within the disk)";
+    if (capped_[static_cast<int>(RadiusCap::Band)] > 0) {
+      note << ", " << capped_[static_cast<int>(RadiusCap::Band)]
+           << " to half the width of a band of M ∩ S narrower than two radii";
+    }
     if (shrunk_charts_ > 0) {
       note << "; " << shrunk_charts_
            << " radii were reduced later, where pointOnDisk failed on the disk or another part "

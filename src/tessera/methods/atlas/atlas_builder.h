@@ -32,6 +32,7 @@ enum class RadiusCap : signed char {
   Grading,    // a neighbouring chart is much smaller (radii change by at most radius_growth − 1
               // per unit length)
   Reach,      // another part of M (not a transversal crossing) lies within the disk
+  Band,       // M ∩ S is a band narrower than two radii here (Domain::band_width)
 };
 
 struct Chart {
@@ -164,7 +165,7 @@ class AtlasBuilder {
   int sheet_rejections_ = 0;
   std::string first_crossing_;
   double min_radius_ = 0.0;
-  std::array<int, 5> capped_ = {0, 0, 0, 0, 0};  // charts by RadiusCap
+  std::array<int, 6> capped_ = {0, 0, 0, 0, 0, 0};  // charts by RadiusCap
   int shrunk_charts_ = 0;  // radii reduced after the chart was made (shrink_radius)
 };
 
