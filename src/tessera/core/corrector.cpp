@@ -55,23 +55,45 @@ CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vecto
   F.resize(space.local_equations());
   dx.resize(space.local_rows());
   double previous_correction = 0.0;
-  for (int k = 0; k < options.max_iterations; ++k) {
+  // Steps with a kept factorisation contract by kReuseContraction at least, so they are
+  // bounded; the factored steps stay limited by max_iterations.
+  const bool reuse = refactor && options.reuse_factorisation && problem.has_sparse_jacobian();
+  const int max_steps = reuse ? 3 * options.max_iterations : options.max_iterations;
+  int factorisations = 0;
+  for (int k = 0; k < max_steps; ++k) {
     problem.evaluate(x, F);
     summary.residual_norm = space.norm(F);
     if (!std::isfinite(summary.residual_norm)) {
       summary.termination = CorrectorTermination::NonFiniteResidual;
       return summary;
     }
-    if (refactor) {
+    minus_F = -F;
+    const auto factor_here = [&] {
       const Eigen::MatrixXd reference =
           linearization.is_factored() ? linearization.tangent_basis() : Eigen::MatrixXd();
-      if (!linearization.factor(problem, x, reference.size() ? &reference : nullptr)) {
+      ++factorisations;
+      return linearization.factor(problem, x, reference.size() ? &reference : nullptr);
+    };
+    if (refactor && (!reuse || k == 0)) {
+      if (!factor_here()) {
         summary.termination = CorrectorTermination::SingularJacobian;
         return summary;
       }
     }
-    minus_F = -F;
     linearization.solve_minimum_norm(minus_F, dx);
+    if (reuse && k > 0 &&
+        !(space.norm(dx) <= kReuseContraction * previous_correction ||
+          space.norm(dx) <= options.tolerance * (1.0 + space.norm(x)))) {
+      // The kept factorisation does not contract well here: the step is taken with a new one.
+      if (factorisations >= options.max_iterations) {
+        break;
+      }
+      if (!factor_here()) {
+        summary.termination = CorrectorTermination::SingularJacobian;
+        return summary;
+      }
+      linearization.solve_minimum_norm(minus_F, dx);
+    }
     x += dx;
     summary.iterations = k + 1;
     summary.correction_norm = space.norm(dx);

@@ -25,7 +25,18 @@ struct CorrectorOptions {
   /// A projection that moves the point farther than this is rejected (e.g. a corrector that
   /// would jump across the narrow opening of a trough onto another sheet).
   double max_displacement = std::numeric_limits<double>::infinity();
+  /// Gauss–Newton on a problem with a sparse Jacobian (where a factorisation costs tens of
+  /// solves) keeps its last factorisation while a step with it contracts by
+  /// kReuseContraction or better, and factors again only where it does not (the step is then
+  /// redone with the new factorisation): Deuflhard's simplified Newton inside Gauss–Newton.
+  /// The point reached is on M to the same tolerance, but the workspace then holds J at the
+  /// last point factored, not at the final iterate: set this only where the caller does not
+  /// use the workspace afterwards. Dense problems ignore it.
+  bool reuse_factorisation = false;
 };
+
+/// The contraction a step with a kept factorisation must reach (reuse_factorisation).
+inline constexpr double kReuseContraction = 0.25;
 
 enum class CorrectorTermination {
   Converged,

@@ -189,6 +189,7 @@ bool AtlasBuilder::project(const Linearization& at_center, double distance, Eige
   y = predicted;
   CorrectorOptions full = options_.corrector;
   full.max_displacement = 0.5 * distance;
+  full.reuse_factorisation = true;  // scratch_ is not used afterwards
   if (!project_gauss_newton(problem_, y, full, scratch_).is_success()) {
     return false;
   }

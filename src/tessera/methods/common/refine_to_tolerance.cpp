@@ -135,12 +135,16 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   // max_contraction, typically 1/2), once more with θ up to 0.9, as the report measures: a
   // midpoint far from a strongly curved M (cstr, an edge 0.2 long) is often first overshot,
   // and a midpoint that can be neither measured nor projected leaves its triangle unrefined.
-  CorrectorOptions patient = options.corrector;
+  // (Only points come out of these projections, not their workspace: Gauss–Newton may keep its
+  // factorisation while it contracts, on sparse problems.)
+  CorrectorOptions corrector = options.corrector;
+  corrector.reuse_factorisation = true;
+  CorrectorOptions patient = corrector;
   patient.max_contraction = std::max(patient.max_contraction, 0.9);
   patient.max_iterations = std::max(patient.max_iterations, 50);
   const auto project_patiently = [&](Eigen::VectorXd& x) {
     const Eigen::VectorXd start = x;
-    if (project_gauss_newton(problem, x, options.corrector, workspace).is_success()) {
+    if (project_gauss_newton(problem, x, corrector, workspace).is_success()) {
       return true;
     }
     x = start;
@@ -362,7 +366,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
         }
       } else {
         projected = faces.size() <= 2 &&
-                    project_onto_faces(problem, domain, faces, x, length, options.corrector);
+                    project_onto_faces(problem, domain, faces, x, length, corrector);
       }
       if (projected) {
         midpoint_of[edge_key(u, v)] = mesh.add_vertex(x);
