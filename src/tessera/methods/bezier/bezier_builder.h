@@ -46,7 +46,7 @@ struct VertexData {
   double step = 0.0;   // s_j: the step with which the vertex was computed (section 5)
   double theta = 0.0;  // θ_j: first contraction of its Gauss–Newton iteration
   double step_limit = std::numeric_limits<double>::infinity();  // from the tolerance, if any
-  // From the domain: where M ∩ S is a band narrower than the grown steps, max(step, width).
+  // From the domain: where M ∩ S is a band narrower than the grown steps, max(step, width/2).
   double band_limit = std::numeric_limits<double>::infinity();
   std::vector<int> faces;  // domain half-spaces the vertex lies on
   bool in_grid = false;

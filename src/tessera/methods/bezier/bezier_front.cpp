@@ -52,7 +52,7 @@ int BezierBuilder::third_vertex(int t, int a, int b) const {
 int BezierBuilder::add_vertex(VertexData vertex) {
   // Section 5's step control sees only M. Across a band of M ∩ S narrower than the steps it
   // grows to (bvp near u = 0: 0.3 wide, steps up to 8 × 0.1), new points fall beyond the
-  // opposite face and the front folds over itself; there the step is held to the band's width
+  // opposite face and the front folds over itself; there the step is held to half its width
   // (never below the initial step).
   if (!domain_.is_unbounded()) {
     vertex.band_limit =
