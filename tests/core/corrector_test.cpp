@@ -8,7 +8,9 @@
 #include <cmath>
 
 #include "tessera/core/counted_problem.h"
+#include "tessera/core/domain.h"
 #include "tessera/core/error.h"
+#include "tessera/core/face_projection.h"
 #include "tessera/core/linearization.h"
 #include "tessera/problems/catalogue.h"
 
@@ -372,4 +374,37 @@ TEST(GaussNewton, KeepsItsFactorisationWhileItContractsOnSparseProblems) {
   const Eigen::VectorXd b = project(dense, x, true, dense_kept);
   EXPECT_EQ(dense_full, dense_kept);
   EXPECT_EQ(a, b);
+}
+
+// The same onto a face of the domain (project_onto_faces, as clipping uses it): on M and exactly
+// on the face either way, with fewer factorisations when they are kept.
+TEST(FaceProjection, KeepsItsFactorisationWhileItContractsOnSparseProblems) {
+  const tessera::ProblemSetup bvp = tessera::make_catalogue_problem("bvp:points=200");
+  const int n = bvp.problem->ambient_dimension();
+  tessera::Domain domain(n);
+  Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd point = Eigen::VectorXd::Zero(n);
+  normal(n - 1) = 1.0;  // ε ≥ 0.22
+  point(n - 1) = 0.22;
+  domain.add_half_space(normal, point, "epsilon >= 0.22");
+  Eigen::VectorXd from = bvp.start;
+  for (int i = 0; i < n; ++i) {
+    from(i) += 0.03 * std::cos(0.21 * i);
+  }
+  long counts[2] = {0, 0};
+  for (const bool reuse : {false, true}) {
+    tessera::CountedProblem problem(*bvp.problem);
+    tessera::CorrectorOptions options;
+    options.reuse_factorisation = reuse;
+    Eigen::VectorXd x = from;
+    ASSERT_TRUE(tessera::project_onto_faces(problem, domain, {0}, x, 1.0, options))
+        << "reuse " << reuse;
+    Eigen::VectorXd F(n - 2);
+    bvp.problem->evaluate(x, F);
+    EXPECT_LE(F.norm(), options.residual_tolerance) << "reuse " << reuse;
+    EXPECT_EQ(x(n - 1), 0.22) << "reuse " << reuse;
+    counts[reuse ? 1 : 0] = problem.factorisations();
+  }
+  EXPECT_GE(counts[0], 3);
+  EXPECT_LT(counts[1], counts[0]);
 }

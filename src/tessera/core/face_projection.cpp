@@ -68,18 +68,18 @@ FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& 
   // The chord converges linearly: it gets more steps, and must contract by a factor 2 per step.
   const int max_steps = frozen != nullptr ? 3 * options.max_iterations : 2 * options.max_iterations;
   const double max_contraction = frozen != nullptr ? options.max_contraction : 0.9;
-  double previous = 0.0;
-  for (int k = 0; k < max_steps; ++k) {
-    problem.evaluate(x, F);
-    if (!F.allFinite()) {
-      return FaceProjection::Failed;
-    }
-    if (frozen == nullptr) {
-      const Eigen::MatrixXd reference = own.is_factored() ? own.tangent_basis() : Eigen::MatrixXd();
-      if (!own.factor(problem, x, reference.size() ? &reference : nullptr)) {
-        return FaceProjection::Failed;
-      }
-    }
+  // Gauss–Newton on a sparse problem may keep its factorisation while the steps contract well
+  // (CorrectorOptions::reuse_factorisation; project_onto_faces retries without it).
+  const bool reuse =
+      frozen == nullptr && options.reuse_factorisation && problem.has_sparse_jacobian();
+  int factorisations = 0;
+  const auto factor_here = [&] {
+    const Eigen::MatrixXd reference = own.is_factored() ? own.tangent_basis() : Eigen::MatrixXd();
+    ++factorisations;
+    return own.factor(problem, x, reference.size() ? &reference : nullptr);
+  };
+  // The step from x: J⁺(−F), completed by the tangential part that reaches the faces.
+  const auto step = [&] {
     linearization.solve_minimum_norm(-F, dx);
     const Eigen::MatrixXd& T = linearization.tangent_basis();
     Eigen::MatrixXd BT(c, 2);
@@ -91,9 +91,30 @@ FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& 
     }
     Eigen::VectorXd z(2);
     if (!solve_minimum_norm_dense(BT, rhs, z)) {
-      return FaceProjection::Failed;  // a face tangent to M: the point is not isolated
+      return false;  // a face tangent to M: the point is not isolated
     }
     dx += T * z;
+    return true;
+  };
+  double previous = 0.0;
+  for (int k = 0; k < (reuse ? 3 * max_steps : max_steps); ++k) {
+    problem.evaluate(x, F);
+    if (!F.allFinite()) {
+      return FaceProjection::Failed;
+    }
+    if (frozen == nullptr && (!reuse || k == 0) && !factor_here()) {
+      return FaceProjection::Failed;
+    }
+    if (!step()) {
+      return FaceProjection::Failed;
+    }
+    if (reuse && k > 0 && dx.norm() > kReuseContraction * previous &&
+        dx.norm() > options.tolerance * (1.0 + x.norm())) {
+      // The kept factorisation does not contract well here: the step with a new one.
+      if (factorisations >= max_steps || !factor_here() || !step()) {
+        return FaceProjection::Failed;
+      }
+    }
     x += dx;
     if ((x - start).norm() > max_move) {
       return k == 0 ? FaceProjection::FirstStepTooFar : FaceProjection::Failed;
@@ -155,7 +176,21 @@ bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
     }
     x = start;
   }
-  return iterate_onto_faces(problem, domain, faces, x, max_move, options, first_contraction,
+  const Eigen::VectorXd start = x;
+  if (iterate_onto_faces(problem, domain, faces, x, max_move, options, first_contraction,
+                         nullptr) == FaceProjection::Converged) {
+    return true;
+  }
+  if (!options.reuse_factorisation || !problem.has_sparse_jacobian()) {
+    return false;
+  }
+  // With a kept factorisation the steps do not stay normal to M ∩ faces: on one face, where
+  // that is a curve, they can drift along it past max_move (seen in clipping bratu2d). Full
+  // Gauss–Newton then decides.
+  x = start;
+  CorrectorOptions full = options;
+  full.reuse_factorisation = false;
+  return iterate_onto_faces(problem, domain, faces, x, max_move, full, first_contraction,
                             nullptr) == FaceProjection::Converged;
 }
 

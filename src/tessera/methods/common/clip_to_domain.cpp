@@ -121,7 +121,10 @@ struct ClipUndo {
 bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, double snap_distance,
                   const ClipOptions& options, TriangleMesh& mesh, FaceSets& on_faces,
                   ClipSummary& summary, ClipUndo& undo) {
-  const CorrectorOptions& corrector = options.corrector;
+  // Only the new vertices come out of these projections: Gauss–Newton may keep its
+  // factorisation while it contracts (sparse problems).
+  CorrectorOptions corrector = options.corrector;
+  corrector.reuse_factorisation = true;
   const auto is_stopped = [&] {
     summary.interrupted = summary.interrupted ||
                           (options.stop_requested && options.stop_requested());
