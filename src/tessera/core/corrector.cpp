@@ -81,9 +81,10 @@ CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vecto
       }
     }
     linearization.solve_minimum_norm(minus_F, dx);
+    double correction = space.norm(dx);  // a global reduction: taken once per solve
     if (reuse && k > 0 &&
-        !(space.norm(dx) <= kReuseContraction * previous_correction ||
-          space.norm(dx) <= options.tolerance * (1.0 + space.norm(x)))) {
+        !(correction <= kReuseContraction * previous_correction ||
+          correction <= options.tolerance * (1.0 + space.norm(x)))) {
       // The kept factorisation does not contract well here: the step is taken with a new one.
       if (factorisations >= options.max_iterations) {
         break;
@@ -93,10 +94,11 @@ CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vecto
         return summary;
       }
       linearization.solve_minimum_norm(minus_F, dx);
+      correction = space.norm(dx);
     }
     x += dx;
     summary.iterations = k + 1;
-    summary.correction_norm = space.norm(dx);
+    summary.correction_norm = correction;
     summary.displacement = space.distance(x, start);
     if (k > 0 && previous_correction > 0) {
       const double theta = summary.correction_norm / previous_correction;
