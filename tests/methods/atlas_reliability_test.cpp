@@ -108,6 +108,34 @@ TEST(AtlasReliability, TroughCompletesAtCoarseTolerances) {
   }
 }
 
+TEST(AtlasReliability, ThinTorusFillsStripsWhereNeighbouringPolygonsDisagree) {
+  // A torus with R = 1, r = 0.07 (curvature 14): tangent planes of neighbouring charts differ by
+  // about 20°, and the polygons of two rows of charts disagreed along strips of 12–52 charts,
+  // once with an island triangle inside; holes of more than 12 charts were refused, so 21 of
+  // the stress campaign's 25 runs failed ("a hole of 16 vertices … cannot be triangulated").
+  struct Case {
+    double step, tolerance;
+    std::vector<double> start;  // empty: the file's start
+  };
+  const std::vector<Case> cases = {
+      {0.035, 0.005, {}},  // a strip of 12 charts around an island triangle
+      {0.016122049512421514, 0.0021275991980830872,  // the stress campaign's case 522: 52
+       {1.0056139815490543, 0.10049439354202486, -0.064987244262022362}}};
+  for (const Case& c : cases) {
+    ReliabilityRun run;
+    run.setup = load_problem_file(testing::source_path("tests/stress/problems/thin_torus.tsr"));
+    Eigen::VectorXd start = run.setup.start;
+    if (!c.start.empty()) {
+      start = Eigen::Map<const Eigen::VectorXd>(c.start.data(), 3);
+    }
+    AtlasOptions options;
+    options.step = c.step;
+    options.tolerance = c.tolerance;
+    run.result = cover_by_atlas(*run.setup.problem, start, run.setup.domain, options);
+    expect_complete_and_sound(run, "thin torus at step " + std::to_string(c.step));
+  }
+}
+
 TEST(AtlasReliability, Bratu2dBandCompletesAtCoarseSteps) {
   // bratu2d's lower sheet is a band 0.3 wide between ε = 0 and ε = 0.3. Charts of radius 0.6
   // spanned it and the atlas could not close one of them ("projection failed" after 16 000

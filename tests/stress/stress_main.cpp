@@ -14,7 +14,9 @@
 // a χ mismatch into TriangulationFailed and hide it from (b).
 //
 // Usage: tessera_stress [--cases N] [--seed S] [--quick] [--max-seconds-per-case T]
-//                       [--source-dir DIR] [--verbose]
+//                       [--source-dir DIR] [--verbose] [--only SURFACE[/METHOD]]
+// --only runs the campaign's cases of one surface (or surface and method) with the same seeds;
+// --verbose prints every case, with the message of those that did not complete.
 // Exit code 1 if any case is invalid, has the wrong χ, is over tolerance, throws or crashes.
 #include <poll.h>
 #include <signal.h>
@@ -459,6 +461,7 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   bool quick = false;
   bool verbose = false;
+  std::string only;  // SURFACE or SURFACE/METHOD: the same cases, the others skipped
   double max_seconds = 120.0;
   std::string source_dir = TESSERA_SOURCE_DIR;
   for (int i = 1; i < argc; ++i) {
@@ -478,13 +481,16 @@ int main(int argc, char** argv) {
       quick = true;
     } else if (argument == "--verbose") {
       verbose = true;
+    } else if (argument == "--only") {
+      only = value();
     } else if (argument == "--max-seconds-per-case") {
       max_seconds = std::stod(value());
     } else if (argument == "--source-dir") {
       source_dir = value();
     } else {
       std::cerr << "usage: tessera_stress [--cases N] [--seed S] [--quick] "
-                   "[--max-seconds-per-case T] [--source-dir DIR] [--verbose]\n";
+                   "[--max-seconds-per-case T] [--source-dir DIR] [--verbose] "
+                   "[--only SURFACE[/METHOD]]\n";
       return argument == "--help" ? 0 : 2;
     }
   }
@@ -503,6 +509,9 @@ int main(int argc, char** argv) {
   Row total;
   for (int index = 0; index < case_count; ++index) {
     const Case c = make_case(index, seed, chosen, source_dir, quick);
+    if (!only.empty() && only != c.surface->name && only != c.surface->name + "/" + c.method) {
+      continue;
+    }
     const Outcome o = run_isolated(c, source_dir, max_seconds);
     Row& r = rows[{c.surface->name, c.method}];
     for (Row* row : {&r, &total}) {
@@ -521,7 +530,8 @@ int main(int argc, char** argv) {
     if (verbose || o.bad()) {
       std::cout << "case " << index << " " << c.surface->name << " " << c.method << " "
                 << o.termination << (o.bad() ? " BAD" : "") << " (" << o.seconds << " s, "
-                << o.triangles << " triangles)\n";
+                << o.triangles << " triangles)"
+                << (verbose && !o.completed ? "\n    " + o.message : std::string()) << "\n";
     }
     if (!o.completed && !o.bad() && !o.timed_out) {
       failure_examples.try_emplace({c.surface->name, c.method}, c, o);

@@ -17,9 +17,17 @@
 namespace tessera {
 namespace {
 
-// Holes of more vertices than this are not a disagreement between neighbouring polygons but a
-// gap in the atlas; they are reported, not papered over.
-constexpr int kMaxHoleVertices = 12;
+// Loops of boundary edges longer than this are the atlas's outer boundary (in S, or around the
+// margin outside it), not holes. Shorter loops between closed charts are holes, filled by
+// triangles whose corners' disks overlap pairwise (see HoleFiller::triangulate).
+constexpr int kMaxHoleVertices = 128;
+// A hole's new edges join charts at most this many times the sum of their radii apart (every
+// edge of the atlas's dual joins overlapping disks, at most 1 times apart in a flat atlas).
+// Closure is judged in each chart's tangent plane, where neighbours on a curved M look nearer
+// than they are in R^n, and a strip of disagreement ends in a fan: on a thin torus the four
+// charts around a hole were 1.01 (R_a + R_b) apart across both diagonals, and the tip of a
+// strip 1.5 radii wide needed an edge 1.53 (R_a + R_b) long.
+constexpr double kHoleEdgeReach = 2.0;
 
 struct Proposal {
   std::pair<std::uint64_t, std::uint32_t> key;  // the triangle's charts, increasing, packed
@@ -160,7 +168,7 @@ int HoleFiller::fill(std::string& message) {
     // 0.01062: four nearly cocircular charts at the face y = 1.5, whose polygons each chose a
     // different diagonal, touching through a second such quad a chart just beyond the margin).
     for (std::vector<int>& simple : split_into_simple_loops(loop, closed_loop)) {
-      if (static_cast<int>(simple.size()) > 4 * kMaxHoleVertices) {
+      if (static_cast<int>(simple.size()) > kMaxHoleVertices) {
         continue;  // the atlas boundary
       }
       const bool all_closed =
@@ -171,7 +179,7 @@ int HoleFiller::fill(std::string& message) {
       std::reverse(simple.begin(), simple.end());  // counter-clockwise around the hole
       // Only counter-clockwise triangles: a loop that cannot be filled so is not a hole but
       // the outline of an island of triangles (filling it would double the island) or a fold.
-      if (static_cast<int>(simple.size()) > kMaxHoleVertices || !triangulate(simple, added, true)) {
+      if (!triangulate(simple, added, true)) {
         if (message.empty()) {
           message = "the charts' polygons leave a hole of " + std::to_string(simple.size()) +
                     " vertices near " + describe_point(cells_.center(simple.front())) +
@@ -189,30 +197,50 @@ int HoleFiller::fill(std::string& message) {
 bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>& added,
                              bool require_counter_clockwise) const {
   const int k = static_cast<int>(loop.size());
-  std::vector<Eigen::VectorXd> x(k);
+  // The loop's points relative to the first (n × k), their distances and their coordinates in
+  // every corner's tangent plane, computed once: O(n k²) here, O(1) per candidate triangle in
+  // the O(k³) search below.
+  const Eigen::VectorXd origin = cells_.center(loop[0]);
+  Eigen::MatrixXd X(origin.size(), k);
   for (int i = 0; i < k; ++i) {
-    x[i] = cells_.center(loop[i]);
+    X.col(i) = cells_.center(loop[i]) - origin;
+  }
+  const Eigen::MatrixXd gram = X.transpose() * X;
+  Eigen::MatrixXd distance(k, k);
+  for (int i = 0; i < k; ++i) {
+    for (int j = 0; j < k; ++j) {
+      distance(i, j) = std::sqrt(std::max(0.0, gram(i, i) + gram(j, j) - 2.0 * gram(i, j)));
+    }
   }
   // Orientation is judged in the tangent planes of the triangle's own vertices (all three must
   // agree: where M turns fast, one far tangent plane can misjudge it); angles in R^n.
-  std::vector<Eigen::MatrixXd> T(k);
+  std::vector<Eigen::MatrixXd> plane(k);  // 2 × k: the loop in corner i's tangent coordinates
   for (int i = 0; i < k; ++i) {
-    T[i] = cells_.tangent(loop[i]);
+    plane[i] = cells_.tangent(loop[i]).transpose() * X;
   }
   auto quality = [&](int a, int b, int c) {
     for (int corner : {a, b, c}) {
-      const Eigen::Vector2d u = T[corner].transpose() * (x[b] - x[a]);
-      const Eigen::Vector2d v = T[corner].transpose() * (x[c] - x[a]);
+      const Eigen::Vector2d u = plane[corner].col(b) - plane[corner].col(a);
+      const Eigen::Vector2d v = plane[corner].col(c) - plane[corner].col(a);
       if (require_counter_clockwise && u(0) * v(1) - u(1) * v(0) <= 0) {
         return -1.0;  // not counter-clockwise: would fold over its neighbours
       }
     }
-    const double smallest = min_angle_of_sides((x[b] - x[a]).norm(), (x[c] - x[b]).norm(),
-                                               (x[a] - x[c]).norm());
+    const double smallest = min_angle_of_sides(distance(a, b), distance(b, c), distance(a, c));
     return smallest > 0 ? smallest : -1.0;
   };
+  // A new edge joins two charts whose disks (nearly) overlap, as every edge of the atlas's dual
+  // does (kHoleEdgeReach): a hole between closed charts, a disagreement of their polygons, is
+  // filled, while a gap no chart covers could only be bridged by longer edges and is reported.
+  // The hole's size is not the test: on a thin torus (r = 0.07, charts of radius 0.023) the
+  // polygons of two rows of charts, seen from planes 20° apart, disagree along strips of
+  // 12–52 charts.
   auto diagonal_allowed = [&](int a, int b) {
-    return b - a == 1 || (a == 0 && b == k - 1) || !has_edge(loop[a], loop[b]);
+    if (b - a == 1 || (a == 0 && b == k - 1)) {
+      return true;
+    }
+    return !has_edge(loop[a], loop[b]) &&
+           distance(a, b) < kHoleEdgeReach * (cells_.radius(loop[a]) + cells_.radius(loop[b]));
   };
   const double kNone = -1.0;
   std::vector<double> best(k * k, kNone);
@@ -330,29 +358,50 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
   }
 
   // An edge of more than two triangles cannot come from consistent fans; drop them all and let
-  // the hole filler triangulate the place again.
+  // the hole filler triangulate the place again. So is a triangle none of whose edges another
+  // triangle shares: an island inside a hole (on a thin torus, one triangle of three charts
+  // whose polygons agreed, in a strip where their neighbours' did not), whose outline cannot
+  // be filled and which the hole's triangles would overlap.
   {
-    std::vector<std::pair<std::uint64_t, int>> edges;
+    std::vector<std::pair<std::uint64_t, int>> edges;  // (edge, triangle), -1: a settled one
+    std::vector<bool> near(cells.chart_count, false);
     for (int t = 0; t < static_cast<int>(triangles.size()); ++t) {
       for (int e = 0; e < 3; ++e) {
         const int a = triangles[t][e];
         const int b = triangles[t][(e + 1) % 3];
         edges.emplace_back(edge_key(std::min(a, b), std::max(a, b)), t);
+        near[a] = true;
+      }
+    }
+    for (const Triangle& t : settled) {
+      for (int e = 0; e < 3; ++e) {
+        const int a = t[e];
+        const int b = t[(e + 1) % 3];
+        if (near[a] && near[b]) {
+          edges.emplace_back(edge_key(std::min(a, b), std::max(a, b)), -1);
+        }
       }
     }
     std::sort(edges.begin(), edges.end());
     std::vector<bool> drop(triangles.size(), false);
+    std::vector<int> shared_edges(triangles.size(), 0);
     for (std::size_t i = 0; i < edges.size();) {
       std::size_t j = i;
       while (j < edges.size() && edges[j].first == edges[i].first) {
         ++j;
       }
-      if (j - i > 2) {
-        for (std::size_t q = i; q < j; ++q) {
-          drop[edges[q].second] = true;
+      for (std::size_t q = i; q < j; ++q) {
+        if (edges[q].second >= 0) {
+          drop[edges[q].second] = drop[edges[q].second] || j - i > 2;
+          shared_edges[edges[q].second] += j - i > 1 ? 1 : 0;
         }
       }
       i = j;
+    }
+    if (triangles.size() + settled.size() > 1) {
+      for (std::size_t t = 0; t < triangles.size(); ++t) {
+        drop[t] = drop[t] || shared_edges[t] == 0;
+      }
     }
     std::vector<Triangle> kept;
     for (std::size_t t = 0; t < triangles.size(); ++t) {
