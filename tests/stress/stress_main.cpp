@@ -528,8 +528,8 @@ int main(int argc, char** argv) {
       row->seconds += o.seconds;
     }
     if (verbose || o.bad()) {
-      std::cout << "case " << index << " " << c.surface->name << " " << c.method << " "
-                << o.termination << (o.bad() ? " BAD" : "") << " (" << o.seconds << " s, "
+      std::cout << "case " << index << " " << c.surface->name << " " << c.method << " step "
+                << c.step << " tolerance " << c.tolerance << " " << o.termination << (o.bad() ? " BAD" : "") << " (" << o.seconds << " s, "
                 << o.triangles << " triangles)"
                 << (verbose && !o.completed ? "\n    " + o.message : std::string()) << "\n";
     }

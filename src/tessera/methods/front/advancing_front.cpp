@@ -97,10 +97,10 @@ double FrontBuilder::priority(int v) {
   // layered advancing front, while gaps that need a merge are still closed at once.
   const double gap = smallest_gap(v);
   if (gap < options_.min_gap_angle) {
-    return gap;
+    return gap + deferral_penalty(v);
   }
   const int layer = static_cast<std::size_t>(v) < layer_.size() ? layer_[v] : 0;
-  return gap + kLayerWeight * layer;
+  return gap + kLayerWeight * layer + deferral_penalty(v);
 }
 
 const Eigen::MatrixXd* FrontBuilder::cached_tangent_near(int v) const {
@@ -164,7 +164,16 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
     build_initial_hexagon(start_point, start_frame);
     int processed = 0;
     while (auto center = next_frontal()) {
-      process(*center);
+      const FrontState::Checkpoint checkpoint = state_.checkpoint();
+      const int merges_before = merges_;
+      try {
+        process(*center);
+      } catch (const StopRun& stop) {
+        if (!defer(*center, checkpoint, merges_before, stop)) {
+          throw;
+        }
+        continue;
+      }
       if (options_.order == FrontOrder::SmallestGapFirst) {
         for (int v : state_.ring(*center, 1)) {
           refresh_priority(v);
@@ -199,6 +208,44 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
   summary.merges = merges_;
   summary.step_reductions = step_reductions_;
   summary.front_connections = connections_;
+}
+
+bool FrontBuilder::defer(int center, const FrontState::Checkpoint& checkpoint,
+                         int merges_before, const StopRun& stop) {
+  if (deferrals_.size() <= static_cast<std::size_t>(center)) {
+    deferrals_.resize(center + 1, 0);
+  }
+  if (stop.termination != CoveringTermination::FrontCollision || merges_ != merges_before ||
+      deferrals_[center] >= kMaxDeferrals) {
+    return false;
+  }
+  // The builder's per-vertex caches first (they are indexed by vertex), then the state.
+  for (int v = checkpoint.vertices; v < static_cast<int>(gap_key_.size()); ++v) {
+    if (!std::isnan(gap_key_[v])) {
+      by_gap_.erase({gap_key_[v], v});
+    }
+  }
+  const auto keep = [&](auto& per_vertex) {
+    if (per_vertex.size() > static_cast<std::size_t>(checkpoint.vertices)) {
+      per_vertex.resize(checkpoint.vertices);
+    }
+  };
+  keep(gap_key_);
+  keep(tangent_cache_);
+  keep(layer_);
+  keep(deferrals_);
+  std::vector<int> changed = state_.roll_back(checkpoint);
+  ++deferrals_[center];
+  ++deferred_steps_;
+  if (options_.order == FrontOrder::Fifo) {
+    state_.requeue(center);
+  }
+  const std::vector<int> around = state_.ring(center, 1);
+  changed.insert(changed.end(), around.begin(), around.end());
+  for (int v : changed) {
+    refresh_priority(v);
+  }
+  return true;
 }
 
 void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,

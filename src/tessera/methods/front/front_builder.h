@@ -28,6 +28,10 @@ constexpr double kMaxEdgeRatio = 1.5;
 // Radians added to a frontal vertex's priority key per layer (generation) it is away from the
 // start; see FrontBuilder::priority.
 constexpr double kLayerWeight = 0.05;
+// A frontal vertex whose step runs into the mesh is undone and tried again later, at most this
+// many times, its priority key raised by kDeferralWeight radians each time (see defer).
+constexpr int kMaxDeferrals = 3;
+constexpr double kDeferralWeight = 0.5;
 
 // Thrown inside the builder to stop the run; caught in triangulate_by_front, which keeps the
 // mesh built so far (it is valid: every step leaves a consistent partial mesh).
@@ -59,6 +63,12 @@ class FrontBuilder {
  private:
   void build_initial_hexagon(const Eigen::VectorXd& center, const Linearization& frame);
   void process(int center);
+  /// After `process(center)` stopped with a front collision: undoes its triangles and vertices
+  /// back to `checkpoint` and puts center back in the front with a later turn, so that its
+  /// neighbours change the front there first. False (nothing undone) if center was deferred
+  /// kMaxDeferrals times already, or the step merged vertices (a merge is not undone).
+  bool defer(int center, const FrontState::Checkpoint& checkpoint, int merges_before,
+             const StopRun& stop);
   std::vector<Gap> find_gaps(int center, const std::vector<FanChain>& chains,
                              const Eigen::MatrixXd& U) const;
   void close_gap(int center, const Linearization& frame, const Eigen::MatrixXd& U, const Gap& gap);
@@ -95,6 +105,10 @@ class FrontBuilder {
   /// The key of v in the smallest-gap-first order: the smallest gap, plus kLayerWeight per
   /// layer for gaps that need no merge (see docs/algorithms/front.md, *Order*).
   double priority(int v);
+  double deferral_penalty(int v) const {
+    return static_cast<std::size_t>(v) < deferrals_.size() ? kDeferralWeight * deferrals_[v]
+                                                           : 0.0;
+  }
   /// Frees v's cached tangent basis (2n doubles) once v is finished: the cache then holds
   /// only the front, not the whole mesh.
   void release_tangent(int v) {
@@ -117,6 +131,8 @@ class FrontBuilder {
   int merges_ = 0;
   int step_reductions_ = 0;
   int connections_ = 0;
+  int deferred_steps_ = 0;
+  std::vector<int> deferrals_;  // per vertex: how often its step was undone and deferred
   // Set once reopen_bridges has reopened a vertex: only then are small gaps at exterior
   // vertices closed (close_small_gap_outside), so runs without a band are as before.
   bool bridged_ = false;

@@ -72,12 +72,49 @@ int FrontState::add_triangle(int a, int b, int c) {
 }
 
 void FrontState::set_type(int v, VertexType type) {
+  type_log_.emplace_back(v, types_[v]);
   if (type == VertexType::Frontal && types_[v] != VertexType::Frontal) {
     queue_.push_back(v);
   }
   frontal_vertices_ +=
       (type == VertexType::Frontal ? 1 : 0) - (types_[v] == VertexType::Frontal ? 1 : 0);
   types_[v] = type;
+}
+
+FrontState::Checkpoint FrontState::checkpoint() {
+  type_log_.clear();
+  return {static_cast<int>(types_.size()), static_cast<int>(triangles_.size())};
+}
+
+std::vector<int> FrontState::roll_back(const Checkpoint& checkpoint) {
+  for (int t = static_cast<int>(triangles_.size()) - 1; t >= checkpoint.triangles; --t) {
+    if (triangles_[t][0] >= 0) {
+      remove_triangle(t);
+    }
+  }
+  triangles_.resize(checkpoint.triangles);
+  // Types first (a vertex added since may be in the log), then the added vertices.
+  std::vector<int> restored;
+  for (auto it = type_log_.rbegin(); it != type_log_.rend(); ++it) {
+    const auto [v, before] = *it;
+    if (v < checkpoint.vertices) {
+      set_type(v, before);
+      restored.push_back(v);
+    }
+  }
+  for (int v = static_cast<int>(types_.size()) - 1; v >= checkpoint.vertices; --v) {
+    grid_.remove(v, point(v));
+    frontal_vertices_ -= types_[v] == VertexType::Frontal ? 1 : 0;
+    live_vertices_ -= types_[v] == VertexType::Removed ? 0 : 1;
+  }
+  coordinates_.resize(checkpoint.vertices);
+  types_.resize(checkpoint.vertices);
+  incident_.resize(checkpoint.vertices);
+  std::erase_if(queue_, [&](int v) { return v >= checkpoint.vertices; });
+  type_log_.clear();
+  std::sort(restored.begin(), restored.end());
+  restored.erase(std::unique(restored.begin(), restored.end()), restored.end());
+  return restored;
 }
 
 std::optional<int> FrontState::pop_frontal() {

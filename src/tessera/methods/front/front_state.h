@@ -88,6 +88,20 @@ class FrontState {
   /// the pinch made every face's clipping fail its validation. Returns the copies made.
   int split_pinched_exterior_vertices();
 
+  /// What the state was when a step began, to undo the step: its vertices and triangles, and
+  /// the vertex types changed since (logged until the next checkpoint).
+  struct Checkpoint {
+    int vertices = 0;
+    int triangles = 0;
+  };
+  Checkpoint checkpoint();
+  /// Undoes everything since `checkpoint` was taken: triangles added are removed, vertices
+  /// added are forgotten, types changed are restored. \pre no vertices were identified since
+  /// (identify is not undone). Returns the vertices whose type was restored.
+  std::vector<int> roll_back(const Checkpoint& checkpoint);
+  /// Puts a frontal vertex at the back of the FIFO queue again.
+  void requeue(int v) { queue_.push_back(v); }
+
   /// The live part as a compact TriangleMesh (unreferenced vertices dropped). The points are
   /// handed over, compacted in place, not copied: the state has none afterwards.
   TriangleMesh take_mesh();
@@ -107,6 +121,7 @@ class FrontState {
   int live_vertices_ = 0;
   int live_triangles_ = 0;
   int frontal_vertices_ = 0;
+  std::vector<std::pair<int, VertexType>> type_log_;  // (vertex, type before) since checkpoint
   void remove_triangle(int t);
 };
 
