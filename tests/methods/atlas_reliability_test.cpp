@@ -155,6 +155,28 @@ TEST(AtlasReliability, Bratu2dBandCompletesAtCoarseSteps) {
   EXPECT_TRUE(noted);
 }
 
+TEST(AtlasReliability, Bratu2dChartsThatCannotReachTheirCornersAreShrunk) {
+  // At steps of 0.7–1.0 on bratu2d a chart of the full radius near a fold or on the face ε = 0
+  // could not be closed: its child either drifted beyond the disk (Gauss–Newton where the chord
+  // failed) or, at the rim, landed on another sheet, and the same useless child came back until
+  // the children bound stopped the run ("could not be closed", N = 10 at 0.8, N = 20 at 0.7).
+  // Such a chart is now shrunk, as where pointOnDisk fails on its rim.
+  struct Case {
+    int grid;
+    double step;
+  };
+  for (const Case& c : {Case{10, 0.8}, Case{20, 0.7}}) {
+    ReliabilityRun run;
+    run.setup = make_catalogue_problem("bratu2d:N=" + std::to_string(c.grid));
+    AtlasOptions options;
+    options.step = c.step;
+    options.tolerance = 0.3;
+    run.result = cover_by_atlas(*run.setup.problem, run.setup.start, run.setup.domain, options);
+    expect_complete_and_sound(
+        run, "bratu2d:N=" + std::to_string(c.grid) + " at step " + std::to_string(c.step));
+  }
+}
+
 TEST(AtlasReliability, CoarseRadiiAreCappedByTheCurvatureAndTheSummarySaysSo) {
   const ReliabilityRun run = run_atlas(thin_genus2(), 0.03);
   ASSERT_TRUE(run.result.summary.is_complete()) << run.result.summary.message;

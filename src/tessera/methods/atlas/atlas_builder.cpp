@@ -30,6 +30,11 @@ constexpr int kMaxChildrenPerChart = 64;
 constexpr int kMaxCrossingTestDimension = 200;
 // A chart whose own disk boundary cannot be reached by pointOnDisk is shrunk by this factor.
 constexpr double kShrinkFactor = 0.7;
+// A child centre farther than this many radii from its parent's centre, in the parent's tangent
+// plane, is no child: the parent's disk does not reach it (see the children's loop).
+constexpr double kMaxRimOvershoot = 1.02;
+// Children in a row that leave their corner open before the chart is shrunk instead.
+constexpr int kMaxRepeatedTargets = 3;
 
 }  // namespace
 
@@ -538,6 +543,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     const Eigen::VectorXd xc = center(c);
     int children = 0;
     Eigen::Vector2d last_target(std::nan(""), std::nan(""));
+    int repeats = 0;  // children in a row that did not remove their corner
     double smallest_child = charts_[c].radius;
     for (int vertex = next_open_vertex(c); vertex >= 0 && !stopped_; vertex = next_open_vertex(c)) {
       if (chart_count() >= options_.max_vertices) {
@@ -564,6 +570,18 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       // placed where the corner asks, unsnapped.
       const bool target_repeated = Eigen::Vector2d(v.s, v.t).isApprox(last_target, 1e-12);
       last_target = Eigen::Vector2d(v.s, v.t);
+      repeats = target_repeated ? repeats + 1 : 0;
+      if (repeats >= kMaxRepeatedTargets && charts_[c].radius > 4.0 * min_radius_) {
+        // Neither the child aimed at the corner nor Henderson's on the rim removed it: the
+        // rim there is out of reach (bratu2d:N=32 at step 0.7: a chart of radius 0.7 at the
+        // ignition fold, whose rim child lies on another sheet, placed the same inner child
+        // 746 times before failing). Henderson's cap "where the mapping exists": shrink.
+        shrink_radius(c, kShrinkFactor * charts_[c].radius);
+        smallest_child = std::min(smallest_child, charts_[c].radius);
+        repeats = 0;
+        last_target = Eigen::Vector2d(std::nan(""), std::nan(""));
+        continue;
+      }
       // The new centre goes on the disk boundary towards the uncovered corner (pointOnDisk:
       // projected orthogonally to this chart's tangent plane). Where that fails, or lands on a
       // singular point, nearer and farther points are tried.
@@ -576,7 +594,14 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       for (double fraction : {1.0, 0.85, 1.1, 0.7, 0.5, 0.35, 0.25}) {
         const Eigen::Vector2d s = fraction * target;
         y = xc + Tc * s;
-        if (!project(at_center, s.norm(), y)) {
+        // A projection that drifted beyond the disk (Gauss–Newton, where the chord failed,
+        // may move along the tangent plane) gives a child that may not overlap this chart, so
+        // its cut cannot remove the corner: the same child came back 1800 times on bratu2d:N=10
+        // at step 0.7 (0.7503 from a chart of radius 0.7, its own radius 0.025).
+        const bool projected = project(at_center, s.norm(), y);
+        const bool beyond_disk =
+            projected && (Tc.transpose() * (y - xc)).norm() > kMaxRimOvershoot * charts_[c].radius;
+        if (!projected || beyond_disk) {
           if (fraction == 1.0 && charts_[c].radius > 4.0 * min_radius_ &&
               s.norm() >= 0.99 * charts_[c].radius) {
             // pointOnDisk fails on the chart's own disk: M is no graph over it in this
