@@ -473,8 +473,10 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
       if (!refusal.empty()) {
         fail(summary, CoveringTermination::ProjectionFailed, refusal);
       } else if (summary.termination != CoveringTermination::Interrupted) {
+        // Up to 5 boundary edge lengths: at coarse steps on bratu2d (0.8 for N = 20, 316) the
+        // notch next to the face λ = 0.5 needs an edge of 4.6 (refinement then splits it).
         const NotchClosing notches = close_boundary_notches(problem, domain, result.mesh,
-                                                            2.0 * context.boundary_edge_length);
+                                                            5.0 * context.boundary_edge_length);
         if (notches.added_triangles > 0) {
           summary.notes.push_back(
               "closed " + std::to_string(notches.added_triangles) +
