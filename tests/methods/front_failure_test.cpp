@@ -83,6 +83,53 @@ TEST(FrontFailure, AHoleOfMInsideSSmallerThanTheStepIsNotCoveredOver) {
   EXPECT_NE(result.summary.message.find("y <= 0.97"), std::string::npos) << result.summary.message;
 }
 
+// The same run on the sparse path (the sphere seen through its sparse Jacobian, as a PDE's
+// problem is), with a tolerance: there the check looks only within twice the tolerance of a
+// face. Here refinement reaches the cap first (the run stops: 2 triangles 0.042 from M after 3
+// rounds of bisection; at tolerances 0.05-0.2 the final check removes overlapping triangles);
+// what must never happen is a completed run with a hole covered over.
+TEST(FrontFailure, OnTheSparsePathAHoleIsNeverCoveredOverSilently) {
+  class SparseView final : public ImplicitProblem {
+   public:
+    explicit SparseView(const ImplicitProblem& inner) : inner_(inner) {}
+    int ambient_dimension() const override { return inner_.ambient_dimension(); }
+    void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                  Eigen::Ref<Eigen::VectorXd> F) const override {
+      inner_.evaluate(x, F);
+    }
+    void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                  Eigen::Ref<Eigen::MatrixXd> J) const override {
+      inner_.jacobian(x, J);
+    }
+    bool has_sparse_jacobian() const override { return true; }
+    void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
+                         Eigen::SparseMatrix<double>& J) const override {
+      Eigen::MatrixXd dense(ambient_dimension() - 2, ambient_dimension());
+      inner_.jacobian(x, dense);
+      J = dense.sparseView();
+    }
+
+   private:
+    const ImplicitProblem& inner_;
+  };
+  const ProblemSetup setup =
+      load_problem_file(testing::source_path("tests/stress/problems/sphere_box.tsr"));
+  const SparseView sparse(*setup.problem);
+  FrontOptions options;
+  options.step = 0.49324898681853396;
+  options.tolerance = 0.02;
+  const Eigen::Vector3d start(0.84977847491860048, -0.44724862996100495, 0.12033287592431689);
+  const CoveringResult result = triangulate_by_front(sparse, start, setup.domain, options);
+  const MeshValidation validation = validate(result.mesh);
+  ASSERT_TRUE(validation.is_valid()) << validation.report();
+  // Either the run says where M ∩ S was covered over, or its mesh has all six holes.
+  if (result.summary.is_complete()) {
+    EXPECT_EQ(validation.euler_characteristic, -4) << "a hole covered over, not reported";
+  } else {
+    EXPECT_NE(result.summary.message.find("("), std::string::npos) << result.summary.message;
+  }
+}
+
 // With the paper's FIFO order, tessera refuses to create the overlaps PITMAN would leave to
 // later merges; wherever such a run stops, the partial mesh must still be valid (connections
 // to the front that were not yet glued are undone).

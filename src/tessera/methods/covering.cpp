@@ -126,15 +126,24 @@ void check_coverage(const Domain& domain, double step, CoveringResult& result) {
 // a triangle with all corners strictly inside S and one within `snap_distance` of a face and a
 // quarter of its longest edge (clipping snaps vertices that near onto the face unless that
 // would fold a triangle, as it would around such a hole). Each centroid is projected by the
-// chord from a factorisation at its corner nearest the face. Dense problems only: where M meets
-// a face at a shallow angle many triangles qualify (bvp:points=60 near ε = 0.3: 3566 of them,
-// 0.21 factorisations per vertex), which costs nothing at n = 3 and too much for a PDE's n;
-// there the Euler characteristic, where known, catches a hole covered over.
+// chord from a factorisation at its corner nearest the face. On sparse problems, where M meets
+// a face at a shallow angle, many triangles qualify (bvp:points=60 near ε = 0.3: 3566 of them,
+// 0.21 factorisations per vertex), which costs nothing at n = 3 and too much at a PDE's n.
+// There the check needs a tolerance and looks only within twice of it from the face: a
+// triangle whose corners are all farther than d from the face, and under which M crosses the
+// face, is at least d from M there, which refinement to the tolerance does not leave. Without
+// a tolerance, the Euler characteristic, where known, catches a hole covered over.
 void check_holes_covered_over(const ImplicitProblem& problem, const Domain& domain,
-                              double snap_distance, const CorrectorOptions& corrector,
-                              CoveringResult& result) {
-  if (!result.summary.is_complete() || domain.is_unbounded() || problem.has_sparse_jacobian()) {
+                              double snap_distance, double tolerance,
+                              const CorrectorOptions& corrector, CoveringResult& result) {
+  if (!result.summary.is_complete() || domain.is_unbounded()) {
     return;
+  }
+  if (problem.has_sparse_jacobian()) {
+    if (tolerance <= 0) {
+      return;
+    }
+    snap_distance = std::min(snap_distance, 2.0 * tolerance);
   }
   const TriangleMesh& mesh = result.mesh;
   const int faces = static_cast<int>(domain.half_spaces().size());
@@ -568,7 +577,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
   check_coverage(domain, options.step, result);
   check_holes_covered_over(problem, domain,
                            context.boundary_snap_fraction * context.boundary_edge_length,
-                           options.corrector, result);
+                           options.tolerance, options.corrector, result);
   if (!result.patches.empty() &&
       (result.mesh.triangle_count() != triangles_built || summary.refined_edges > 0 ||
        summary.removed_triangles > 0 ||
