@@ -31,7 +31,7 @@ constexpr int kMaxCrossingTestDimension = 200;
 // A chart whose own disk boundary cannot be reached by pointOnDisk is shrunk by this factor.
 constexpr double kShrinkFactor = 0.7;
 // A child centre farther than this many radii from its parent's centre, in the parent's tangent
-// plane, is no child: the parent's disk does not reach it (see the children's loop).
+// plane, is no child: the parent's disk need not reach it (see the children's loop).
 constexpr double kMaxRimOvershoot = 1.02;
 // Children in a row that leave their corner open before the chart is shrunk instead.
 constexpr int kMaxRepeatedTargets = 3;
@@ -599,8 +599,11 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
         // its cut cannot remove the corner: the same child came back 1800 times on bratu2d:N=10
         // at step 0.7 (0.7503 from a chart of radius 0.7, its own radius 0.025).
         const bool projected = project(at_center, s.norm(), y);
+        // Disk placement only: hexagonal placement aims up to 1.9 R on purpose, and its own
+        // geometry decides (the rule changed the crossing's hexagonal mesh beyond its bound).
         const bool beyond_disk =
-            projected && (Tc.transpose() * (y - xc)).norm() > kMaxRimOvershoot * charts_[c].radius;
+            projected && options_.placement == AtlasPlacement::Disk &&
+            (Tc.transpose() * (y - xc)).norm() > kMaxRimOvershoot * charts_[c].radius;
         if (!projected || beyond_disk) {
           if (fraction == 1.0 && charts_[c].radius > 4.0 * min_radius_ &&
               s.norm() >= 0.99 * charts_[c].radius) {
