@@ -19,6 +19,7 @@
 #include "geometry/mesh_examples.h"
 #include "geometry/validation_expectations.h"
 #include "support/front_run.h"
+#include "support/sparse_view.h"
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_topology.h"
@@ -134,35 +135,15 @@ TEST(GeometricValidation, FindsAFlippedTriangleInR4) {
 
 // The same through the sparse linearisation (bordered LU, oriented by the BFS parent's basis).
 TEST(GeometricValidation, FindsAFlippedTriangleWithASparseJacobian) {
-  class SparseSphere final : public ImplicitProblem {
-   public:
-    int ambient_dimension() const override { return 3; }
-    void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
-                  Eigen::Ref<Eigen::VectorXd> F) const override {
-      sphere_.evaluate(x, F);
-    }
-    void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
-                  Eigen::Ref<Eigen::MatrixXd> J) const override {
-      sphere_.jacobian(x, J);
-    }
-    bool has_sparse_jacobian() const override { return true; }
-    void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
-                         Eigen::SparseMatrix<double>& J) const override {
-      Eigen::MatrixXd dense(1, 3);
-      sphere_.jacobian(x, dense);
-      J = dense.sparseView();
-    }
-
-   private:
-    Sphere sphere_{1.0};
-  };
+  const Sphere sphere(1.0);
+  const testing::SparseView sparse_sphere(sphere);
   TriangleMesh mesh = examples::icosphere(3);
-  expect_geometrically_valid(validate(mesh, SparseSphere(), Domain()));
+  expect_geometrically_valid(validate(mesh, sparse_sphere, Domain()));
   const int t = 300;
   const Triangle tri = mesh.triangle(t);
   mesh.mutable_point(tri[0]) =
       (mesh.point(tri[1]) + mesh.point(tri[2]) - mesh.point(tri[0])).normalized();
-  const MeshValidation validation = validate(mesh, SparseSphere(), Domain(), all_examples());
+  const MeshValidation validation = validate(mesh, sparse_sphere, Domain(), all_examples());
   EXPECT_TRUE(contains(validation.flipped_triangles, t)) << validation.report();
   EXPECT_EQ(validation.flipped_triangles, validate(mesh, Sphere(1.0), Domain()).flipped_triangles)
       << "dense and sparse linearisations agree";

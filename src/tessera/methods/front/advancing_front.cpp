@@ -208,6 +208,11 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
   summary.merges = merges_;
   summary.step_reductions = step_reductions_;
   summary.front_connections = connections_;
+  if (deferred_steps_ > 0) {
+    summary.notes.push_back(std::to_string(deferred_steps_) +
+                            " step(s) ran into the mesh and were undone, their vertices tried "
+                            "again after their neighbours");
+  }
 }
 
 bool FrontBuilder::defer(int center, const FrontState::Checkpoint& checkpoint,

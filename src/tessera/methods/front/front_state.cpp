@@ -94,8 +94,11 @@ std::vector<int> FrontState::roll_back(const Checkpoint& checkpoint) {
   }
   triangles_.resize(checkpoint.triangles);
   // Types first (a vertex added since may be in the log), then the added vertices.
+  // set_type logs again: walk a moved-out copy of the log, not the vector it appends to.
+  const std::vector<std::pair<int, VertexType>> log = std::move(type_log_);
+  type_log_.clear();
   std::vector<int> restored;
-  for (auto it = type_log_.rbegin(); it != type_log_.rend(); ++it) {
+  for (auto it = log.rbegin(); it != log.rend(); ++it) {
     const auto [v, before] = *it;
     if (v < checkpoint.vertices) {
       set_type(v, before);
