@@ -376,6 +376,28 @@ TEST(BezierContinuation, DischargeBvpCompletesAtItsSuggestedStep) {
   EXPECT_GT(run.result.mesh.vertex_count(), 200);
 }
 
+TEST(BezierContinuation, Bratu2dConnectsAlongTheBoundaryOnlyWithinTwoSteps) {
+  // At the ignition fold of bratu2d (N = 10, λ ≈ 6.9, near the face ε = 0) one vertex used to
+  // connect to front neighbours ever farther along the face (new edges 2.1, 3.0, 3.6, 4.3, 5.1
+  // with steps ≤ 0.8) until an edge too long to realise stopped the run.
+  const BezierRun run = run_bezier("bratu2d:N=10");
+  ASSERT_TRUE(run.result.summary.is_complete()) << run.result.summary.message;
+  expect_invariants(run, "bratu2d");
+  EXPECT_EQ(validate(run.result.mesh).euler_characteristic, 1);
+  // Edge lengths in the metric the method works in (the u block weighted by h): the fan's
+  // reached 5.1; edges grown from the steps stay near twice the largest step 0.8 (1.67 now).
+  const TriangleMesh& mesh = run.result.mesh;
+  const Eigen::VectorXd weights = metric_weights(*run.setup.problem);
+  double longest = 0.0;
+  for (const Triangle& t : mesh.triangles()) {
+    for (int e = 0; e < 3; ++e) {
+      const Eigen::VectorXd edge = mesh.point(t[e]) - mesh.point(t[(e + 1) % 3]);
+      longest = std::max(longest, weights.cwiseProduct(edge).norm());
+    }
+  }
+  EXPECT_LT(longest, 2.0);
+}
+
 TEST(BezierContinuation, RefusesBadOptionsNamingThem) {
   const ProblemSetup setup = make_catalogue_problem("sphere");
   BezierOptions options;

@@ -79,6 +79,9 @@ constexpr double kPi = std::numbers::pi;
 // An edge whose imaginary triangle could not be realised is retried after the other edges
 // (their triangles may resolve the conflict); after this many failures the run stops.
 constexpr int kMaxEdgeFailures = 3;
+// A connection to a front neighbour along the domain's boundary makes a new edge of at most
+// this many times the larger step of its ends.
+constexpr double kMaxBoundaryConnection = 2.0;
 }  // namespace
 
 double BezierBuilder::predicted_step(int a, int b) const {
@@ -341,6 +344,21 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
       const double min_cosine = is_neighbour
                                     ? std::cos(2.0 * std::acos(options_.min_tangent_cosine))
                                     : options_.min_tangent_cosine;
+      if (is_neighbour) {
+        // A front neighbour along the domain's boundary (the edge to it lies on a face) can lie
+        // far ahead: connecting it then makes a sliver whose long new edge is the next free
+        // edge, and one vertex fans out along the face with ever longer edges (bratu2d N = 10
+        // at its ignition fold near ε = 0: 2.1, 3.0, 3.6, 4.3, 5.1 with steps ≤ 0.8, until an
+        // edge too long to realise stops the run). Such a connection is taken only while its
+        // new edge is at most kMaxBoundaryConnection times the steps of its ends.
+        const int shared = v == next ? b : a;
+        const int other = shared == b ? a : b;
+        const double local_step = std::max(vertices_[other].step, vertices_[v].step);
+        if (is_boundary_edge(shared, v) &&
+            (vertices_[other].x - yv).norm() > kMaxBoundaryConnection * local_step) {
+          continue;
+        }
+      }
       bool compatible = true;
       for (int end : {a, b}) {
         if (has_edge(v, end) || has_edge(end, v)) {
