@@ -105,6 +105,11 @@ TEST(LargeN, AtlasFactorisationBudgetChangesTheWorkNotTheMesh) {
   EXPECT_EQ(bounded.mesh.triangles(), unbounded.mesh.triangles());
   EXPECT_LT((bounded.mesh.points() - unbounded.mesh.points()).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_GT(bounded.summary.factorisations, unbounded.summary.factorisations);
+  // The open boundary's memory (kept factorisations and the bases of charts not retired) is
+  // reported, and the budget lowers it: at least one tangent basis (2n numbers) is held.
+  const double basis_bytes = 16.0 * setup.problem->ambient_dimension();
+  EXPECT_GE(bounded.summary.boundary_peak_bytes, basis_bytes);
+  EXPECT_LT(bounded.summary.boundary_peak_bytes, unbounded.summary.boundary_peak_bytes);
   const auto& notes = bounded.summary.notes;
   EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& note) {
     return note.find("max_factorisation_bytes") != std::string::npos;

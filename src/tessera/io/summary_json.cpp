@@ -143,7 +143,8 @@ std::string to_json(const MeshReport& report) {
                            {"max_chart_radius", r.max_chart_radius},
                            {"singular_crossings", r.singular_crossings},
                            {"sheet_rejections", r.sheet_rejections},
-                           {"filled_holes", r.filled_holes}};
+                           {"filled_holes", r.filled_holes},
+                           {"boundary_peak_bytes", r.boundary_peak_bytes}};
     }
     nlohmann::json phases = nlohmann::json::array();
     for (const PhaseWork& p : r.work_by_phase) {

@@ -62,6 +62,11 @@ struct CoveringSummary {
   int singular_crossings = 0;  ///< continuation steps that crossed a singular curve of M
   int sheet_rejections = 0;    ///< overlapping charts kept apart because they lie on other sheets
   int filled_holes = 0;        ///< places where the charts' polygons disagreed, closed afterwards
+  /// The largest memory the atlas's open boundary held at once: the factorisations kept for
+  /// queued charts and the tangent bases of charts not yet retired (bytes; the vertices' own
+  /// coordinates are not counted). What issue 9's memory bound calls "what the active boundary
+  /// needs".
+  double boundary_peak_bytes = 0.0;
   int refined_edges = 0;       ///< edges bisected on M to keep the distance bound
   /// Largest distance to M of the points sampled by the tolerance check (centroids, edge
   /// midpoints, circumcentres) after refinement; −1 if no check was made (tolerance 0).

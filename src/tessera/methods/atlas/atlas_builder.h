@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <deque>
 #include <string>
@@ -132,6 +133,14 @@ class AtlasBuilder {
   };
   std::unordered_map<int, KeptFactorisation> factored_;
   std::size_t kept_bytes_ = 0;
+  // Tangent bases held (charts not retired) and the boundary's largest bytes so far.
+  mutable int held_tangents_ = 0;  // restore_tangent (const) brings one back
+  double boundary_peak_bytes_ = 0.0;
+  void note_boundary_bytes() {
+    boundary_peak_bytes_ =
+        std::max(boundary_peak_bytes_, static_cast<double>(kept_bytes_) +
+                                           16.0 * static_cast<double>(n_) * held_tangents_);
+  }
   int refactored_charts_ = 0;  // charts whose factorisation was dropped (over the budget)
   void keep_factorisation(int c, Linearization&& linearization);
   // A few factorisations of processed charts, reused (fewer allocations at small n).
