@@ -234,11 +234,6 @@ std::vector<double> chord_distance_bounds(const ImplicitProblem& problem,
       } else if (correction == 0.0) {
         bound[s] = 0.0;  // the point lies on M
         continue;
-      } else if (displacement + 7.0 * correction <= clear_below) {
-        // A clear pass after one step (see the header): 8‖dx₀‖ bounds the distance to the
-        // chord's limit for any θ ≤ 7/8, above the largest θ a bound accepts at all.
-        bound[s] = displacement + 7.0 * correction;
-        continue;
       }
       previous[s] = correction;
       still.push_back(j);

@@ -18,9 +18,8 @@ namespace {
 // Sampled distances are measured to this fraction of the refinement threshold: enough to
 // decide "split or not", and a bound from above, so the decision errs towards splitting.
 constexpr double kDistanceAccuracy = 0.02;
-// A sample whose one- or two-step bound (chord_distance_bound) is below this fraction of the
-// threshold passes without more steps: most samples of a mesh sized for the tolerance lie well
-// inside.
+// A sample whose two-step bound (chord_distance_bound) is below this fraction of the threshold
+// passes without a third step: most samples of a mesh sized for the tolerance lie well inside.
 constexpr double kClearPass = 0.75;
 
 std::uint64_t edge_key(int a, int b) {
@@ -157,7 +156,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   // third vertex or so, instead of several per Gauss–Newton projection: for sparse problems
   // factorisations are the cost). The chord lands on M, so its displacement bounds the
   // distance from above: the estimate errs towards splitting. It is only needed to a small
-  // fraction of the threshold, which one to three chord steps give (chord_distance_bound).
+  // fraction of the threshold, which two or three chord steps give (chord_distance_bound).
   const double accuracy = kDistanceAccuracy * threshold;
   const double clear_below = kClearPass * threshold;
   const bool is_sparse = problem.has_sparse_jacobian();
