@@ -13,4 +13,10 @@ namespace tessera {
 /// parameters of a discretised problem come last.
 std::string describe_point(const Eigen::Ref<const Eigen::VectorXd>& x, int shown = 4);
 
+class AmbientSpace;
+/// The same for a point given by this rank's rows of a distributed space (the coordinates shown
+/// are gathered: a collective call, made on every rank). In one process, describe_point(x).
+std::string describe_point(const Eigen::Ref<const Eigen::VectorXd>& x, const AmbientSpace& space,
+                           int shown = 4);
+
 }  // namespace tessera

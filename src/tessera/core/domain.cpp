@@ -72,14 +72,60 @@ void Domain::add_half_space(const Eigen::VectorXd& normal, const Eigen::VectorXd
   half_spaces_.push_back(std::move(half_space));
 }
 
-double Domain::signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const {
+Domain Domain::distributed(std::shared_ptr<const AmbientSpace> space) const {
+  TESSERA_CHECK(space && (half_spaces_.empty() || space->dimension() == dimension_),
+                "Domain::distributed: the domain is in R^" << dimension_ << ", the space in R^"
+                                                           << (space ? space->dimension() : 0));
+  Domain rows(space->local_rows());
+  const int first = space->first_row();
+  const int count = space->local_rows();
+  for (const HalfSpace& h : half_spaces_) {
+    HalfSpace local{h.normal.segment(first, count), h.point.segment(first, count), h.label, {}};
+    for (int i : h.support) {
+      if (space->holds_row(i)) {
+        local.support.push_back(i - first);
+      }
+    }
+    // A sparse normal none of whose entries lies here: keep a support (empty rows sum to 0),
+    // marked by an index past the end, so that the dense dot is not taken instead.
+    if (!h.support.empty() && local.support.empty()) {
+      local.support.push_back(-1);
+    }
+    rows.half_spaces_.push_back(std::move(local));
+  }
+  rows.space_ = std::move(space);
+  return rows;
+}
+
+double Domain::local_signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const {
   const HalfSpace& h = half_spaces_[k];
   if (h.support.empty()) {
     return h.normal.dot(x - h.point);
   }
   double distance = 0.0;
   for (int i : h.support) {
-    distance += h.normal(i) * (x(i) - h.point(i));
+    if (i >= 0) {
+      distance += h.normal(i) * (x(i) - h.point(i));
+    }
+  }
+  return distance;
+}
+
+std::vector<double> Domain::signed_distances(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  std::vector<double> distances(half_spaces_.size());
+  for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
+    distances[static_cast<std::size_t>(k)] = local_signed_distance(k, x);
+  }
+  if (space_ && !distances.empty()) {
+    space_->sum(distances.data(), static_cast<int>(distances.size()));
+  }
+  return distances;
+}
+
+double Domain::signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  double distance = local_signed_distance(k, x);
+  if (space_) {
+    space_->sum(&distance, 1);
   }
   return distance;
 }
@@ -87,8 +133,9 @@ double Domain::signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x
 BoundaryDistance Domain::boundary_distance(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   BoundaryDistance result;
   result.signed_distance = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
-    const double d = signed_distance(k, x);
+  const std::vector<double> distances = signed_distances(x);
+  for (int k = 0; k < static_cast<int>(distances.size()); ++k) {
+    const double d = distances[static_cast<std::size_t>(k)];
     if (d < result.signed_distance) {
       result.signed_distance = d;
       result.nearest_half_space = k;
@@ -98,6 +145,11 @@ BoundaryDistance Domain::boundary_distance(const Eigen::Ref<const Eigen::VectorX
 }
 
 bool Domain::contains(const Eigen::Ref<const Eigen::VectorXd>& x, double tolerance) const {
+  if (space_) {
+    const std::vector<double> distances = signed_distances(x);
+    return std::none_of(distances.begin(), distances.end(),
+                        [&](double d) { return d < -tolerance; });
+  }
   for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
     if (signed_distance(k, x) < -tolerance) {
       return false;
@@ -113,9 +165,11 @@ bool Domain::segment_meets_interior(const Eigen::Ref<const Eigen::VectorXd>& x,
   // each face keeps the part of t ∈ [0, 1] where d_k(t) > margin.
   double lower = 0.0;
   double upper = 1.0;
+  const std::vector<double> from = signed_distances(x);
+  const std::vector<double> to = signed_distances(y);
   for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
-    const double at_x = signed_distance(k, x) - margin;
-    const double at_y = signed_distance(k, y) - margin;
+    const double at_x = from[static_cast<std::size_t>(k)] - margin;
+    const double at_y = to[static_cast<std::size_t>(k)] - margin;
     if (at_x <= 0 && at_y <= 0) {
       return false;
     }
@@ -143,20 +197,38 @@ double Domain::band_width(const Eigen::Ref<const Eigen::VectorXd>& x,
     Eigen::Vector2d inward;    // unit, in T's coordinates
   };
   std::vector<NearFace> near;
-  for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
+  const int K = static_cast<int>(half_spaces_.size());
+  // Tᵀb_k of every face (summed over the ranks at once when distributed).
+  std::vector<double> projections(2 * static_cast<std::size_t>(K), 0.0);
+  const std::vector<double> distances = signed_distances(x);
+  for (int k = 0; k < K; ++k) {
     const HalfSpace& face = half_spaces_[k];
-    const double d = std::max(0.0, signed_distance(k, x));
-    if (d > reach) {
-      continue;  // within the plane it is at least as far
+    if (!space_ && distances[static_cast<std::size_t>(k)] > reach) {
+      continue;  // not needed below (a distributed domain sums them all at once)
     }
     Eigen::Vector2d projected = Eigen::Vector2d::Zero();
     if (face.support.empty()) {
       projected = T.transpose() * face.normal;
     } else {
       for (int i : face.support) {
-        projected += face.normal(i) * T.row(i).transpose();
+        if (i >= 0) {
+          projected += face.normal(i) * T.row(i).transpose();
+        }
       }
     }
+    projections[2 * static_cast<std::size_t>(k)] = projected(0);
+    projections[2 * static_cast<std::size_t>(k) + 1] = projected(1);
+  }
+  if (space_ && K > 0) {
+    space_->sum(projections.data(), 2 * K);
+  }
+  for (int k = 0; k < K; ++k) {
+    const double d = std::max(0.0, distances[static_cast<std::size_t>(k)]);
+    if (d > reach) {
+      continue;  // within the plane it is at least as far
+    }
+    const Eigen::Vector2d projected(projections[2 * static_cast<std::size_t>(k)],
+                                    projections[2 * static_cast<std::size_t>(k) + 1]);
     const double length = projected.norm();
     if (length < kMinCrossing || d / length > reach) {
       continue;

@@ -3,8 +3,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "tessera/core/ambient_space.h"
 
 namespace tessera {
 
@@ -39,7 +42,14 @@ class Domain {
   void add_half_space(const Eigen::VectorXd& normal, const Eigen::VectorXd& point,
                       std::string label = {});
 
+  /// The rows of each normal and point: n, or this rank's rows of a distributed domain.
   int ambient_dimension() const { return dimension_; }
+  /// This rank's rows of the domain, for points split over the ranks of `space` (SPMD): the
+  /// normals and points cut to the rows held, every distance summed over the ranks (a
+  /// collective call, made on every rank, the same bits everywhere). \pre a domain in R^n
+  /// with n = space->dimension().
+  Domain distributed(std::shared_ptr<const AmbientSpace> space) const;
+  bool is_distributed() const { return space_ != nullptr; }
   bool is_unbounded() const { return half_spaces_.empty(); }
   const std::vector<HalfSpace>& half_spaces() const { return half_spaces_; }
 
@@ -72,8 +82,14 @@ class Domain {
   std::string describe() const;
 
  private:
+  // Each half-space's partial signed distance over the rows held here.
+  double local_signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // All signed distances of x, summed over the ranks once (distributed domains).
+  std::vector<double> signed_distances(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
   int dimension_ = 0;
   std::vector<HalfSpace> half_spaces_;
+  std::shared_ptr<const AmbientSpace> space_;  // null: in one process
 };
 
 }  // namespace tessera

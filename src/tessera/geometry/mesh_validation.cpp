@@ -87,11 +87,12 @@ int corner(const std::vector<Triangle>& triangles, int t, int v) {
 // collinear triangle an area of ~1e-8 L^2). Instead the apex is projected onto the longest
 // edge u: area = |u| |w| / 2 with w = v - (u.v / u.u) u, whose error is a few ulp * L^2.
 std::pair<double, double> area_and_longest_squared(const Eigen::Map<const Eigen::MatrixXd>& points,
-                                                   const Triangle& tri) {
+                                                   const Triangle& tri, const AmbientSpace& space) {
   std::array<double, 3> squared_length;  // edge k joins tri[k] and tri[(k + 1) % 3]
   for (int k = 0; k < 3; ++k) {
     squared_length[k] = (points.col(tri[(k + 1) % 3]) - points.col(tri[k])).squaredNorm();
   }
+  space.sum(squared_length.data(), 3);  // over the ranks of a split mesh (else nothing)
   const int k = static_cast<int>(std::max_element(squared_length.begin(), squared_length.end()) -
                                  squared_length.begin());
   const double uu = squared_length[k];
@@ -101,8 +102,10 @@ std::pair<double, double> area_and_longest_squared(const Eigen::Map<const Eigen:
   const auto base = points.col(tri[k]);
   const auto u = points.col(tri[(k + 1) % 3]) - base;
   const auto v = points.col(tri[(k + 2) % 3]) - base;
-  const double s = u.dot(v) / uu;
-  const double ww = (v - s * u).squaredNorm();
+  // (In one process Eigen's own reductions, as before the split: the same bits.)
+  const double s = (space.is_distributed() ? space.dot(u, v) : u.dot(v)) / uu;
+  const double ww =
+      space.is_distributed() ? space.squared_norm(v - s * u) : (v - s * u).squaredNorm();
   return {0.5 * std::sqrt(uu * ww), uu};
 }
 
@@ -226,21 +229,23 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
   const int vertex_count = mesh.vertex_count();
   const std::vector<Triangle>& triangles = mesh.triangles();
   const auto points = mesh.points();
-  result.ambient_dimension = mesh.ambient_dimension();
+  // A split mesh (SPMD): every rank holds its rows of the points and reduces through the space.
+  const AmbientSpace& space = mesh.space();
+  result.ambient_dimension = space.dimension();
   result.vertex_count = vertex_count;
   result.triangle_count = mesh.triangle_count();
   // " near (x, y, z)": the mean of the given vertices that exist and are finite, so that every
   // message names a place, not only indices ("" if there is none).
   auto near = [&](std::initializer_list<int> vertices) -> std::string {
-    Eigen::VectorXd sum = Eigen::VectorXd::Zero(result.ambient_dimension);
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.ambient_dimension());
     int used = 0;
     for (int v : vertices) {
-      if (v >= 0 && v < vertex_count && points.col(v).allFinite()) {
+      if (v >= 0 && v < vertex_count && space.all_finite(points.col(v))) {
         sum += points.col(v);
         ++used;
       }
     }
-    return used == 0 ? std::string() : " near " + describe_point(sum / used);
+    return used == 0 ? std::string() : " near " + describe_point(sum / used, space);
   };
 
   // Malformed triangles (index out of range, repeated index) have no well-defined edges; they
@@ -313,13 +318,25 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
 
   const auto is_measured = [&](int v) { return measured == nullptr || (*measured)[v] != 0; };
   std::vector<std::uint8_t> is_finite(vertex_count, 1);
+  // Which vertices have a coordinate that is not finite, on any rank (one reduction for all).
+  std::vector<double> not_finite(static_cast<std::size_t>(vertex_count), 0.0);
   for (int v = 0; v < vertex_count; ++v) {
-    if (is_measured(v) && !points.col(v).allFinite()) {
+    not_finite[static_cast<std::size_t>(v)] = is_measured(v) && !points.col(v).allFinite();
+  }
+  if (space.is_distributed() && vertex_count > 0) {
+    space.sum(not_finite.data(), vertex_count);
+  }
+  for (int v = 0; v < vertex_count; ++v) {
+    if (not_finite[static_cast<std::size_t>(v)] > 0) {
       is_finite[v] = 0;
       recorder.record(Kind::NonFiniteCoordinate, [&] {
         std::ostringstream out;
-        out << "vertex " << v << " = (" << index_list(points.col(v), [](double x) { return x; })
-            << ")";
+        out << "vertex " << v << " = ";
+        if (space.is_distributed()) {
+          out << describe_point(points.col(v), space);
+        } else {
+          out << "(" << index_list(points.col(v), [](double x) { return x; }) << ")";
+        }
         return out.str();
       });
     }
@@ -327,7 +344,7 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
   for (int v = 0; v < vertex_count; ++v) {
     if (!is_referenced[v]) {
       recorder.record(Kind::UnreferencedVertex, [&] {
-        return "vertex " + std::to_string(v) + " at " + describe_point(points.col(v)) +
+        return "vertex " + std::to_string(v) + " at " + describe_point(points.col(v), space) +
                " is in no triangle";
       });
     }
@@ -449,7 +466,7 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
     if (!is_measured(tri[0]) && !is_measured(tri[1]) && !is_measured(tri[2])) {
       continue;  // unchanged since it was found well shaped
     }
-    const auto [area, longest_squared] = area_and_longest_squared(points, tri);
+    const auto [area, longest_squared] = area_and_longest_squared(points, tri, space);
     shapes.area[t] = area;
     shapes.longest_edge[t] = std::sqrt(longest_squared);
     shapes.is_degenerate[t] = area <= options.degenerate_area_ratio * longest_squared ? 1 : 0;
@@ -531,13 +548,33 @@ MeshValidation validate(const TriangleMesh& mesh, const ImplicitProblem& problem
   TESSERA_CHECK(options.domain_tolerance_ratio >= 0,
                 "ValidationOptions::domain_tolerance_ratio = " << options.domain_tolerance_ratio
                                                                << " must be >= 0");
-  TESSERA_CHECK(mesh.ambient_dimension() == problem.ambient_dimension(),
-                "the mesh is in R^" << mesh.ambient_dimension() << " but problem '"
+  TESSERA_CHECK(mesh.space().dimension() == problem.ambient_dimension(),
+                "the mesh is in R^" << mesh.space().dimension() << " but problem '"
                                     << problem.name() << "' is in R^"
                                     << problem.ambient_dimension());
   TESSERA_CHECK(domain.is_unbounded() || domain.ambient_dimension() == mesh.ambient_dimension(),
                 "the domain (" << domain.describe() << ") is in R^" << domain.ambient_dimension()
                                << " but the mesh is in R^" << mesh.ambient_dimension());
+  if (problem.space()->is_distributed()) {
+    // SPMD: each rank holds its rows of the points, the domain and the problem's vectors.
+    TESSERA_CHECK(mesh.space().is_distributed() &&
+                      mesh.space().local_rows() == problem.space()->local_rows() &&
+                      mesh.space().first_row() == problem.space()->first_row(),
+                  "validate: problem '" << problem.name()
+                                        << "' is distributed; the mesh must hold this rank's "
+                                           "rows of its points (TriangleMesh::set_space)");
+    TESSERA_CHECK(domain.is_unbounded() || domain.is_distributed(),
+                  "validate: problem '" << problem.name()
+                                        << "' is distributed; so must the domain be "
+                                           "(Domain::distributed)");
+    TESSERA_CHECK(metric_weights(problem).size() == 0,
+                  "validate: the distributed problem '"
+                      << problem.name()
+                      << "' has a metric; validate it in the metric's coordinates "
+                         "(petsc::ScaledPetscProblem)");
+    const GeometricInput geometry{problem, domain};
+    return validate_mesh(mesh, options, &geometry);
+  }
   const Eigen::VectorXd weights = metric_weights(problem);
   if (weights.size() > 0) {
     // Judged in the metric's coordinates y = W x, as the covering methods built the mesh: the

@@ -44,9 +44,13 @@ double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 // two planes in R³, the product of the cosines of the two principal angles in R^n, with the
 // sign of the orientation. |s| ≤ 1.
 double oriented_cosine(const Eigen::Map<const Eigen::MatrixXd>& points, const Triangle& tri,
-                       double area, const Eigen::MatrixXd& T) {
-  const Eigen::Vector2d a = T.transpose() * (points.col(tri[1]) - points.col(tri[0]));
-  const Eigen::Vector2d b = T.transpose() * (points.col(tri[2]) - points.col(tri[0]));
+                       double area, const Eigen::MatrixXd& T, const AmbientSpace& space) {
+  Eigen::Matrix2d ab;
+  ab.col(0) = T.transpose() * (points.col(tri[1]) - points.col(tri[0]));
+  ab.col(1) = T.transpose() * (points.col(tri[2]) - points.col(tri[0]));
+  space.sum(ab.data(), 4);  // over the ranks of a split mesh (else nothing)
+  const Eigen::Vector2d a = ab.col(0);
+  const Eigen::Vector2d b = ab.col(1);
   return std::clamp((a.x() * b.y() - a.y() * b.x()) / (2.0 * area), -1.0, 1.0);
 }
 
@@ -86,6 +90,7 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
   const std::vector<Triangle>& triangles = topology.triangles();
   TriangleShapes& shapes = view.shapes;
   const auto points = view.mesh.points();
+  const AmbientSpace& space = view.mesh.space();
   const int count = topology.triangle_count();
   const int vertex_count = view.mesh.vertex_count();
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -96,7 +101,7 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
     for (int t : topology.vertex_triangles(v)) {
       if (is_judged(t)) {
         const int k = triangles[t][0] == v ? 0 : (triangles[t][1] == v ? 1 : 2);
-        corner_cosine[t][k] = oriented_cosine(points, triangles[t], shapes.area[t], T);
+        corner_cosine[t][k] = oriented_cosine(points, triangles[t], shapes.area[t], T, space);
       }
     }
   };
@@ -224,9 +229,9 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
     recorder.record(MeshDefectKind::FlippedTriangle, [&] {
       std::ostringstream out;
       out.precision(3);
-      const int n = view.mesh.ambient_dimension();
+      const int n = space.dimension();
       out << triangle_name(view.original[t], triangles[t]) << " near "
-          << describe_point(centroid(points, triangles[t])) << ": ";
+          << describe_point(centroid(points, triangles[t]), space) << ": ";
       if (flipped[t]) {
         out << "folded over its neighbour(s) across " << folds[t] << " of its " << interior_edges[t]
             << " inner edges";
@@ -256,15 +261,18 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
   const std::vector<Triangle>& triangles = topology.triangles();
   const TriangleShapes& shapes = view.shapes;
   const auto points = view.mesh.points();
+  const AmbientSpace& space = view.mesh.space();
+  const bool split = space.is_distributed();  // SPMD: reduce over the ranks
   const int count = topology.triangle_count();
-  const int n = view.mesh.ambient_dimension();
+  const int n = view.mesh.ambient_dimension();  // rows held here
   std::vector<double> margins(count, -1.0);
   for (int t = 0; t < count; ++t) {
     if (shapes.is_finite[t] && !shapes.is_degenerate[t]) {
       margins[t] = 0.25 * shapes.longest_edge[t];
     }
   }
-  std::vector<std::pair<int, int>> pairs = nearby_triangle_pairs(points, triangles, margins);
+  std::vector<std::pair<int, int>> pairs = nearby_triangle_pairs(
+      points, triangles, margins, split ? view.mesh.shared_space() : nullptr);
   std::sort(pairs.begin(), pairs.end());
   // The barycentric slack for "q₂ lies in the second triangle": the overlap's centroid lies
   // inside both projections, and lifting along M's normal at p instead of the reference
@@ -304,23 +312,32 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
     // Orthonormal basis of the reference plane from its longest edge and the apex's offset
     // from that edge (accurate for thin triangles; see area_and_longest_squared).
     const Triangle& r = triangles[reference];
+    std::array<double, 3> squared_length;
+    for (int j = 0; j < 3; ++j) {
+      squared_length[j] = (points.col(r[(j + 1) % 3]) - points.col(r[j])).squaredNorm();
+    }
+    if (split) {
+      space.sum(squared_length.data(), 3);
+    }
     int k = 0;
     for (int j = 1; j < 3; ++j) {
-      if ((points.col(r[(j + 1) % 3]) - points.col(r[j])).squaredNorm() >
-          (points.col(r[(k + 1) % 3]) - points.col(r[k])).squaredNorm()) {
+      if (squared_length[j] > squared_length[k]) {
         k = j;
       }
     }
     frame.origin = points.col(r[k]);
     frame.U.resize(n, 2);
     d = points.col(r[(k + 1) % 3]) - frame.origin;
-    frame.U.col(0) = d / d.norm();
+    frame.U.col(0) = d / (split ? space.norm(d) : d.norm());
     d = points.col(r[(k + 2) % 3]) - frame.origin;  // the apex
-    d -= d.dot(frame.U.col(0)) * frame.U.col(0);
-    frame.U.col(1) = d / d.norm();
+    d -= (split ? space.dot(d, frame.U.col(0)) : d.dot(frame.U.col(0))) * frame.U.col(0);
+    frame.U.col(1) = d / (split ? space.norm(d) : d.norm());
     for (int j = 0; j < 3; ++j) {
       d = points.col(r[j]) - frame.origin;
       frame.corners.col(j).noalias() = frame.U.transpose() * d;
+    }
+    if (split) {
+      space.sum(frame.corners.data(), 6);
     }
     return frame;
   };
@@ -352,6 +369,9 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
         const auto q = points.col(v);
         frame.projected[k] = {(U.col(0).array() * (q - o).array()).sum(),
                               (U.col(1).array() * (q - o).array()).sum()};
+        if (split) {
+          space.sum(frame.projected[k].data(), 2);
+        }
         frame.projected_for[k] = reference;
       }
       b.col(j) = frame.projected[k];
@@ -372,11 +392,17 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
     Eigen::MatrixXd E(n, 2);
     E.col(0) = points.col(o_tri[1]) - b0;
     E.col(1) = points.col(o_tri[2]) - b0;
-    const Eigen::Matrix2d TE = T.transpose() * E;
+    Eigen::Matrix<double, 2, 3> products;  // [TᵀE, Tᵀ(p − b₀)]
+    products.leftCols(2) = T.transpose() * E;
+    products.col(2) = T.transpose() * (p - b0);
+    if (split) {
+      space.sum(products.data(), 6);
+    }
+    const Eigen::Matrix2d TE = products.leftCols(2);
     if (std::abs(TE.determinant()) <= 1e-3 * 2.0 * shapes.area[other]) {
       continue;  // the other triangle stands across M at p (a flipped triangle if anything)
     }
-    const Eigen::Vector2d w = TE.inverse() * (T.transpose() * (p - b0));
+    const Eigen::Vector2d w = TE.inverse() * products.col(2);
     if (std::min({1.0 - w.x() - w.y(), w.x(), w.y()}) < -barycentric_slack) {
       continue;  // M's normal at p misses the other triangle: it does not cover p
     }
@@ -386,8 +412,8 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
       continue;
     }
     // The floor is the projection's accuracy (1e-13·(1 + ‖x‖)) with a margin.
-    const double floor = 1e-10 * (1.0 + p.lpNorm<Eigen::Infinity>());
-    if ((p2 - p).norm() > options.overlap_same_point_ratio * (q2 - p).norm() + floor) {
+    const double floor = 1e-10 * (1.0 + space.maximum(p.lpNorm<Eigen::Infinity>()));
+    if (space.distance(p2, p) > options.overlap_same_point_ratio * space.distance(q2, p) + floor) {
       continue;  // another sheet of M (close sheets, the far side of a thin tube)
     }
     result.overlapping_triangle_pairs.emplace_back(view.original[s], view.original[t]);
@@ -396,7 +422,7 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
       out.precision(3);
       out << triangle_name(view.original[s], triangles[s]) << " and "
           << triangle_name(view.original[t], triangles[t]) << " both cover M near "
-          << describe_point(p) << ": overlap " << 100.0 * overlap.area / smaller_area
+          << describe_point(p, space) << ": overlap " << 100.0 * overlap.area / smaller_area
           << "% of the smaller" << (shared == 1 ? " (they share one vertex: a folded fan)" : "");
       return out.str();
     });
@@ -414,12 +440,14 @@ void check_domain(const MeshView& view, const GeometricInput& geometry,
     return;
   }
   const auto points = view.mesh.points();
+  const AmbientSpace& space = view.mesh.space();
   for (int v = 0; v < view.mesh.vertex_count(); ++v) {
     if (!view.is_finite_vertex[v]) {
       continue;  // reported as a non-finite coordinate
     }
     const auto x = points.col(v);
-    const double tolerance = options.domain_tolerance_ratio * (1.0 + x.lpNorm<Eigen::Infinity>());
+    const double tolerance =
+        options.domain_tolerance_ratio * (1.0 + space.maximum(x.lpNorm<Eigen::Infinity>()));
     if (domain.contains(x, tolerance)) {
       continue;
     }
@@ -429,7 +457,7 @@ void check_domain(const MeshView& view, const GeometricInput& geometry,
       const HalfSpace& face = domain.half_spaces()[nearest.nearest_half_space];
       std::ostringstream out;
       out.precision(3);
-      out << "vertex " << v << " at " << describe_point(x) << " is " << -nearest.signed_distance
+      out << "vertex " << v << " at " << describe_point(x, space) << " is " << -nearest.signed_distance
           << " outside the domain ("
           << (face.label.empty() ? "half-space " + std::to_string(nearest.nearest_half_space)
                                  : face.label)

@@ -4,6 +4,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
+
+#include "tessera/core/ambient_space.h"
 
 namespace tessera {
 
@@ -19,6 +22,9 @@ class PrincipalView {
   explicit PrincipalView(int ambient_dimension);
   /// Fitted to the columns of `points` (n × N).
   PrincipalView(int ambient_dimension, const Eigen::Ref<const Eigen::MatrixXd>& points);
+  /// For points given by this rank's rows of a distributed space (SPMD): the same view on every
+  /// rank and in one process (the directions are the rows of the same n×3 start).
+  explicit PrincipalView(std::shared_ptr<const AmbientSpace> space);
 
   /// Refits to the points' principal directions; a degenerate cloud keeps the current view.
   void fit(const Eigen::Ref<const Eigen::MatrixXd>& points);
@@ -35,7 +41,8 @@ class PrincipalView {
   void orthonormalise();
 
   int n_;
-  Eigen::MatrixXd directions_;  // n×3, orthonormal columns (n > 3 only)
+  Eigen::MatrixXd directions_;  // n×3, orthonormal columns (n > 3 only); the local rows if split
+  std::shared_ptr<const AmbientSpace> space_;  // null: in one process
 };
 
 template <typename PointFunction>
@@ -45,7 +52,7 @@ void PrincipalView::fit_sample(int count, PointFunction point) {
     return;
   }
   const int stride = (count + kMaxSample - 1) / kMaxSample;
-  Eigen::MatrixXd sample(n_, (count + stride - 1) / stride);
+  Eigen::MatrixXd sample(directions_.rows(), (count + stride - 1) / stride);
   for (int i = 0, column = 0; i < count; i += stride, ++column) {
     sample.col(column) = point(i);
   }

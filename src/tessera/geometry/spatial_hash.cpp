@@ -118,14 +118,16 @@ class CellTable {
 
 std::vector<std::pair<int, int>> nearby_triangle_pairs(
     const Eigen::Ref<const Eigen::MatrixXd>& points, std::span<const Triangle> triangles,
-    std::span<const double> margins) {
+    std::span<const double> margins, std::shared_ptr<const AmbientSpace> space) {
   TESSERA_CHECK(margins.size() == triangles.size(),
                 "nearby_triangle_pairs: " << margins.size() << " margins for " << triangles.size()
                                           << " triangles");
   const int triangle_count = static_cast<int>(triangles.size());
   // The view is fitted to a sample of the points (the spread is what the grid needs) and every
   // vertex is projected once: at large n these are the O(n) parts of the search.
-  PrincipalView view(static_cast<int>(points.rows()));
+  PrincipalView view = space && space->is_distributed()
+                           ? PrincipalView(space)
+                           : PrincipalView(static_cast<int>(points.rows()));
   view.fit_sample(static_cast<int>(points.cols()), [&](int v) { return points.col(v); });
   const Eigen::Matrix3Xd projected = view.project(points);
   std::vector<ViewBox> boxes(triangle_count);
@@ -221,6 +223,10 @@ std::vector<std::pair<int, int>> nearby_triangle_pairs(
     }
   }
 
+  // A split mesh: each rank tests its rows of the ambient boxes, and a pair is kept where no
+  // rank separates it (one reduction over all candidates at the end).
+  const bool split = space != nullptr && space->is_distributed();
+  std::vector<double> separated;  // per candidate pair (split meshes): ranks that separate it
   std::vector<std::pair<int, int>> pairs;
   std::vector<int> last_seen_by(triangle_count, -1);  // dedupes cells that share a key
   for (int s = 0; s < triangle_count; ++s) {
@@ -239,13 +245,30 @@ std::vector<std::pair<int, int>> nearby_triangle_pairs(
             continue;
           }
           last_seen_by[t] = s;
-          if (boxes_overlap(boxes[s], boxes[t]) &&
-              ambient_boxes_overlap(points, triangles[s], margins[s], triangles[t], margins[t])) {
+          if (!boxes_overlap(boxes[s], boxes[t])) {
+            continue;
+          }
+          const bool overlap =
+              ambient_boxes_overlap(points, triangles[s], margins[s], triangles[t], margins[t]);
+          if (split) {
+            pairs.emplace_back(std::min(s, t), std::max(s, t));
+            separated.push_back(overlap ? 0.0 : 1.0);
+          } else if (overlap) {
             pairs.emplace_back(std::min(s, t), std::max(s, t));
           }
         }
       });
     }
+  }
+  if (split && !pairs.empty()) {
+    space->sum(separated.data(), static_cast<int>(separated.size()));
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      if (separated[k] == 0.0) {
+        pairs[kept++] = pairs[k];
+      }
+    }
+    pairs.resize(kept);
   }
   return pairs;
 }

@@ -5,10 +5,12 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/geometry/triangle_mesh.h"
 
 namespace tessera {
@@ -34,9 +36,11 @@ namespace tessera {
 /// \param points n×V vertex coordinates; the vertices of the included triangles must be finite.
 /// \param triangles vertex indices, all in range for the included triangles.
 /// \param margins one per triangle, ≥ 0; a negative margin leaves the triangle out.
+/// \param space where the points live: this rank's rows of a distributed space give the same
+///        pairs on every rank (null: R^n in one process).
 /// \throw InvalidArgument if margins.size() != triangles.size().
 std::vector<std::pair<int, int>> nearby_triangle_pairs(
     const Eigen::Ref<const Eigen::MatrixXd>& points, std::span<const Triangle> triangles,
-    std::span<const double> margins);
+    std::span<const double> margins, std::shared_ptr<const AmbientSpace> space = nullptr);
 
 }  // namespace tessera

@@ -16,6 +16,23 @@ TriangleMesh::TriangleMesh(const Eigen::Ref<const Eigen::MatrixXd>& points,
   }
 }
 
+const AmbientSpace& TriangleMesh::space() const { return *shared_space(); }
+
+std::shared_ptr<const AmbientSpace> TriangleMesh::shared_space() const {
+  if (!space_ || (!space_->is_distributed() && space_->dimension() != ambient_dimension())) {
+    space_ = std::make_shared<AmbientSpace>(ambient_dimension());
+  }
+  return space_;
+}
+
+void TriangleMesh::set_space(std::shared_ptr<const AmbientSpace> space) {
+  TESSERA_CHECK(space && space->local_rows() == ambient_dimension(),
+                "TriangleMesh::set_space: the space holds "
+                    << (space ? space->local_rows() : 0) << " rows of each point, the mesh "
+                    << ambient_dimension());
+  space_ = std::move(space);
+}
+
 int TriangleMesh::add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x) {
   TESSERA_CHECK(x.size() == ambient_dimension(), "vertex has " << x.size()
                                                               << " coordinates, mesh is in R^"

@@ -4,8 +4,10 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <vector>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/point_storage.h"
 
 namespace tessera {
@@ -27,7 +29,18 @@ class TriangleMesh {
   TriangleMesh(PointStorage points, std::vector<Triangle> triangles)
       : points_(std::move(points)), triangles_(std::move(triangles)) {}
 
+  /// The rows of each stored point: n in one process; this rank's rows of a mesh whose points
+  /// are split over the ranks of a distributed problem (SPMD, see set_space), whose n is then
+  /// space().dimension().
   int ambient_dimension() const { return points_.dimension(); }
+  /// Where the points live and how they are measured (AmbientSpace): R^n in one process unless
+  /// set_space gave the split of a distributed problem. Geometry on the mesh (validate) reduces
+  /// through it, so that every rank of a split mesh computes the same numbers.
+  const AmbientSpace& space() const;
+  std::shared_ptr<const AmbientSpace> shared_space() const;
+  /// Declares the points to be this rank's rows of a distributed space.
+  /// \pre space->local_rows() == ambient_dimension().
+  void set_space(std::shared_ptr<const AmbientSpace> space);
   int vertex_count() const { return points_.size(); }
   int triangle_count() const { return static_cast<int>(triangles_.size()); }
 
@@ -55,6 +68,8 @@ class TriangleMesh {
 
  private:
   PointStorage points_;  // column-major n×N
+  // Null: R^n in one process (made on first use; copies share it).
+  mutable std::shared_ptr<const AmbientSpace> space_;
   std::vector<Triangle> triangles_;
 };
 
