@@ -104,8 +104,62 @@ namespace {
 // The shape measures of the mesh whose vertex v is at point(v): the mesh's own points, or
 // their images in a problem's metric (computed on the fly: a scaled copy of the mesh would
 // double the memory of a large-n run at its end).
+// A split mesh (SPMD, each rank its rows of every vertex): every measure of a triangle comes from
+// its Gram matrix (|u|², |v|², u·v for u = b − a, v = c − a), summed over the ranks at once.
+MeshQuality shape_of_split(const TriangleMesh& mesh) {
+  MeshQuality quality;
+  const int count = mesh.triangle_count();
+  std::vector<double> gram(3 * static_cast<std::size_t>(count));
+  for (int t = 0; t < count; ++t) {
+    const Triangle& tri = mesh.triangle(t);
+    const auto u = mesh.point(tri[1]) - mesh.point(tri[0]);
+    const auto v = mesh.point(tri[2]) - mesh.point(tri[0]);
+    gram[3 * static_cast<std::size_t>(t)] = u.squaredNorm();
+    gram[3 * static_cast<std::size_t>(t) + 1] = v.squaredNorm();
+    gram[3 * static_cast<std::size_t>(t) + 2] = u.dot(v);
+  }
+  if (count > 0) {
+    mesh.space().sum(gram.data(), 3 * count);
+  }
+  double min_angle = std::numeric_limits<double>::infinity();
+  double max_angle = 0.0;
+  double min_edge = std::numeric_limits<double>::infinity();
+  double max_edge = 0.0;
+  long below = 0;
+  for (int t = 0; t < count; ++t) {
+    const double uu = gram[3 * static_cast<std::size_t>(t)];
+    const double vv = gram[3 * static_cast<std::size_t>(t) + 1];
+    const double uv = gram[3 * static_cast<std::size_t>(t) + 2];
+    const double wedge = std::sqrt(std::max(0.0, uu * vv - uv * uv));  // twice the area
+    quality.area += 0.5 * wedge;
+    // Corner a: u, v; corner b: a − b = −u, c − b = v − u; corner c: a − c = −v, b − c = u − v.
+    const std::array<double, 3> dots = {uv, uu - uv, vv - uv};
+    for (double dot : dots) {
+      const double angle = std::atan2(wedge, dot) * 180.0 / std::numbers::pi;
+      min_angle = std::min(min_angle, angle);
+      max_angle = std::max(max_angle, angle);
+      below += angle < 30.0 ? 1 : 0;
+    }
+    for (double squared : {uu, vv, std::max(0.0, uu + vv - 2.0 * uv)}) {
+      min_edge = std::min(min_edge, std::sqrt(squared));
+      max_edge = std::max(max_edge, std::sqrt(squared));
+    }
+  }
+  if (count > 0) {
+    quality.min_angle_degrees = min_angle;
+    quality.max_angle_degrees = max_angle;
+    quality.fraction_angles_below_30 = static_cast<double>(below) / (3.0 * count);
+    quality.min_edge_length = min_edge;
+    quality.max_edge_length = max_edge;
+  }
+  return quality;
+}
+
 template <class PointOf>
 MeshQuality shape_of(const TriangleMesh& mesh, const PointOf& point) {
+  if (mesh.space().is_distributed()) {
+    return shape_of_split(mesh);  // (point is the mesh's own: split meshes have no metric)
+  }
   MeshQuality quality;
   double min_angle = std::numeric_limits<double>::infinity();
   double max_angle = 0.0;
@@ -164,12 +218,27 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
 
 MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem,
                             const QualityOptions& options) {
-  TESSERA_CHECK(mesh.ambient_dimension() == problem.ambient_dimension(),
-                "the mesh is in R^" << mesh.ambient_dimension() << " but problem '"
+  TESSERA_CHECK(mesh.space().dimension() == problem.ambient_dimension(),
+                "the mesh is in R^" << mesh.space().dimension() << " but problem '"
                                     << problem.name() << "' is in R^"
                                     << problem.ambient_dimension());
   TESSERA_CHECK(options.max_samples >= 0,
                 "QualityOptions::max_samples = " << options.max_samples << " must be >= 0");
+  if (problem.space()->is_distributed()) {
+    // SPMD: the mesh holds this rank's rows of its points (see validate).
+    TESSERA_CHECK(mesh.space().is_distributed() &&
+                      mesh.space().local_rows() == problem.space()->local_rows() &&
+                      mesh.space().first_row() == problem.space()->first_row(),
+                  "measure_quality: problem '" << problem.name()
+                                               << "' is distributed; the mesh must hold this "
+                                                  "rank's rows of its points (TriangleMesh::set_space)");
+    TESSERA_CHECK(metric_weights(problem).size() == 0,
+                  "measure_quality: the distributed problem '"
+                      << problem.name()
+                      << "' has a metric; measure in the metric's coordinates "
+                         "(petsc::ScaledPetscProblem)");
+    return quality_of(mesh, [&mesh](int v) { return mesh.point(v); }, problem, options);
+  }
   const Eigen::VectorXd weights = metric_weights(problem);
   if (weights.size() > 0) {
     // In the metric's coordinates y = W x, where lengths are the problem's own.
@@ -187,15 +256,19 @@ template <class PointOf>
 MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
                        const ImplicitProblem& problem, const QualityOptions& options) {
   MeshQuality quality = shape_of(mesh, point);
-  const int n = problem.ambient_dimension();
-  Eigen::VectorXd F(n - 2);
+  // A split mesh reduces through its space (in one process these are Eigen's own reductions).
+  const AmbientSpace& space = *problem.space();
+  Eigen::VectorXd F(space.local_equations());
   Linearization workspace;
   // Sparse problems: the chord from the factorisation at a corner of the sample's triangle or
   // edge (kept for the samples around it), converged like P: a few solves per sample instead
   // of Gauss–Newton's three or four factorisations (the report of bvp at ε = 10⁻⁴ took 300 s,
   // longer than the covering). The chord's offset is normal to the corner's tangent plane, so
   // it measures the distance to the same order as P; where it does not converge, P does.
-  const bool is_sparse = problem.has_sparse_jacobian();
+  // (A split mesh's corner chord has no tangent_basis_near to correct its foot with, so its
+  // samples are projected by Gauss–Newton, normal to M at the foot, as the serial estimate is
+  // after its correction.)
+  const bool is_sparse = problem.has_sparse_jacobian() && !space.is_distributed();
   FactorisationCache corners(32, std::size_t{512} << 20);
   CorrectorOptions chord;
   chord.tolerance = 1e-13;
@@ -236,11 +309,11 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
       ++quality.failed_projections;
       return;
     }
-    accumulate(statistic, (y - x).norm());
+    accumulate(statistic, space.distance(y, x));
   };
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     problem.evaluate(point(v), F);
-    accumulate(quality.vertex_residual, F.norm());
+    accumulate(quality.vertex_residual, space.norm(F));
   }
   quality.vertex_residual.population = mesh.vertex_count();
   const MeshTopology topology(mesh);
