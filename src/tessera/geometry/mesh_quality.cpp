@@ -199,6 +199,26 @@ MeshQuality measure_shape(const TriangleMesh& mesh) {
 
 double surface_area(const TriangleMesh& mesh) { return measure_shape(mesh).area; }
 
+void check_mesh_of_problem(const TriangleMesh& mesh, const ImplicitProblem& problem,
+                           const char* caller) {
+  TESSERA_CHECK(mesh.space().dimension() == problem.ambient_dimension(),
+                caller << ": the mesh is in R^" << mesh.space().dimension() << " but problem '"
+                       << problem.name() << "' is in R^" << problem.ambient_dimension());
+  if (!problem.space()->is_distributed()) {
+    return;
+  }
+  TESSERA_CHECK(mesh.space().is_distributed() &&
+                    mesh.space().local_rows() == problem.space()->local_rows() &&
+                    mesh.space().first_row() == problem.space()->first_row(),
+                caller << ": problem '" << problem.name()
+                       << "' is distributed; the mesh must hold this rank's rows of its points "
+                          "(TriangleMesh::set_space)");
+  TESSERA_CHECK(metric_weights(problem).size() == 0,
+                caller << ": the distributed problem '" << problem.name()
+                       << "' has a metric; work in the metric's coordinates "
+                          "(petsc::ScaledPetscProblem)");
+}
+
 bool project_onto_manifold(const ImplicitProblem& problem, Eigen::Ref<Eigen::VectorXd> x,
                            Linearization& workspace) {
   CorrectorOptions options;
@@ -218,25 +238,10 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
 
 MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem,
                             const QualityOptions& options) {
-  TESSERA_CHECK(mesh.space().dimension() == problem.ambient_dimension(),
-                "the mesh is in R^" << mesh.space().dimension() << " but problem '"
-                                    << problem.name() << "' is in R^"
-                                    << problem.ambient_dimension());
+  check_mesh_of_problem(mesh, problem, "measure_quality");
   TESSERA_CHECK(options.max_samples >= 0,
                 "QualityOptions::max_samples = " << options.max_samples << " must be >= 0");
   if (problem.space()->is_distributed()) {
-    // SPMD: the mesh holds this rank's rows of its points (see validate).
-    TESSERA_CHECK(mesh.space().is_distributed() &&
-                      mesh.space().local_rows() == problem.space()->local_rows() &&
-                      mesh.space().first_row() == problem.space()->first_row(),
-                  "measure_quality: problem '" << problem.name()
-                                               << "' is distributed; the mesh must hold this "
-                                                  "rank's rows of its points (TriangleMesh::set_space)");
-    TESSERA_CHECK(metric_weights(problem).size() == 0,
-                  "measure_quality: the distributed problem '"
-                      << problem.name()
-                      << "' has a metric; measure in the metric's coordinates "
-                         "(petsc::ScaledPetscProblem)");
     return quality_of(mesh, [&mesh](int v) { return mesh.point(v); }, problem, options);
   }
   const Eigen::VectorXd weights = metric_weights(problem);

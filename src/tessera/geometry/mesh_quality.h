@@ -72,6 +72,13 @@ struct MeshQuality {
 MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem,
                             const QualityOptions& options = {});
 
+/// Checks that `mesh` lives where `problem` does: the same n and, for a distributed problem,
+/// this rank's rows of every point (TriangleMesh::set_space) in a Euclidean metric (a
+/// distributed problem's metric is the PETSc problem's business: petsc::ScaledPetscProblem).
+/// \throw InvalidArgument naming `caller` and what is wrong.
+void check_mesh_of_problem(const TriangleMesh& mesh, const ImplicitProblem& problem,
+                           const char* caller);
+
 /// P(x): the projection onto M that measure_quality() and validate() use, Gauss–Newton with
 /// minimum-norm steps to ‖dx‖ ≤ 1e-13·(1 + ‖x‖) and ‖F‖ ≤ 1e-11 (distances down to ~1e-12 must
 /// be resolved). The offset x − P(x) is normal to M up to O(‖x − P(x)‖²).

@@ -14,6 +14,7 @@
 #include "tessera/core/error.h"
 #include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/detail/mesh_validation_checks.h"
+#include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 
 namespace tessera {
@@ -548,30 +549,16 @@ MeshValidation validate(const TriangleMesh& mesh, const ImplicitProblem& problem
   TESSERA_CHECK(options.domain_tolerance_ratio >= 0,
                 "ValidationOptions::domain_tolerance_ratio = " << options.domain_tolerance_ratio
                                                                << " must be >= 0");
-  TESSERA_CHECK(mesh.space().dimension() == problem.ambient_dimension(),
-                "the mesh is in R^" << mesh.space().dimension() << " but problem '"
-                                    << problem.name() << "' is in R^"
-                                    << problem.ambient_dimension());
+  check_mesh_of_problem(mesh, problem, "validate");
   TESSERA_CHECK(domain.is_unbounded() || domain.ambient_dimension() == mesh.ambient_dimension(),
                 "the domain (" << domain.describe() << ") is in R^" << domain.ambient_dimension()
                                << " but the mesh is in R^" << mesh.ambient_dimension());
   if (problem.space()->is_distributed()) {
     // SPMD: each rank holds its rows of the points, the domain and the problem's vectors.
-    TESSERA_CHECK(mesh.space().is_distributed() &&
-                      mesh.space().local_rows() == problem.space()->local_rows() &&
-                      mesh.space().first_row() == problem.space()->first_row(),
-                  "validate: problem '" << problem.name()
-                                        << "' is distributed; the mesh must hold this rank's "
-                                           "rows of its points (TriangleMesh::set_space)");
     TESSERA_CHECK(domain.is_unbounded() || domain.is_distributed(),
                   "validate: problem '" << problem.name()
                                         << "' is distributed; so must the domain be "
                                            "(Domain::distributed)");
-    TESSERA_CHECK(metric_weights(problem).size() == 0,
-                  "validate: the distributed problem '"
-                      << problem.name()
-                      << "' has a metric; validate it in the metric's coordinates "
-                         "(petsc::ScaledPetscProblem)");
     const GeometricInput geometry{problem, domain};
     return validate_mesh(mesh, options, &geometry);
   }
