@@ -132,7 +132,7 @@ MeshQuality shape_of_split(const TriangleMesh& mesh) {
     const double uv = gram[3 * static_cast<std::size_t>(t) + 2];
     const double wedge = std::sqrt(std::max(0.0, uu * vv - uv * uv));  // twice the area
     quality.area += 0.5 * wedge;
-    // Corner a: u, v; corner b: a − b = −u, c − b = v − u; corner c: a − c = −v, b − c = u − v.
+    // Corners a: u, v; b: a − b = −u, c − b = v − u; c: a − c = −v, b − c = u − v.
     const std::array<double, 3> dots = {uv, uu - uv, vv - uv};
     for (double dot : dots) {
       const double angle = std::atan2(wedge, dot) * 180.0 / std::numbers::pi;

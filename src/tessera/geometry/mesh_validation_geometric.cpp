@@ -457,7 +457,8 @@ void check_domain(const MeshView& view, const GeometricInput& geometry,
       const HalfSpace& face = domain.half_spaces()[nearest.nearest_half_space];
       std::ostringstream out;
       out.precision(3);
-      out << "vertex " << v << " at " << describe_point(x, space) << " is " << -nearest.signed_distance
+      out << "vertex " << v << " at " << describe_point(x, space) << " is "
+          << -nearest.signed_distance
           << " outside the domain ("
           << (face.label.empty() ? "half-space " + std::to_string(nearest.nearest_half_space)
                                  : face.label)

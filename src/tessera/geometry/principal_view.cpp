@@ -25,7 +25,8 @@ PrincipalView::PrincipalView(std::shared_ptr<const AmbientSpace> space)
     : PrincipalView(space->dimension()) {
   if (space->is_distributed()) {
     if (n_ > 3) {
-      directions_ = Eigen::MatrixXd(directions_.middleRows(space->first_row(), space->local_rows()));
+      directions_ =
+          Eigen::MatrixXd(directions_.middleRows(space->first_row(), space->local_rows()));
     }
     space_ = std::move(space);  // the rows of an orthonormal start: orthonormal over the ranks
   }
@@ -61,8 +62,9 @@ void PrincipalView::fit(const Eigen::Ref<const Eigen::MatrixXd>& points) {
                     Eigen::VectorXd::Ones(points.cols()) * (mean.transpose() * directions_);
     }
     next = points * coordinates - mean * coordinates.colwise().sum();
-    const bool degenerate = space_ ? !space_->all_finite(next) || space_->frobenius_norm(next) == 0.0
-                                   : !next.allFinite() || next.norm() == 0.0;
+    const bool degenerate =
+        space_ ? !space_->all_finite(next) || space_->frobenius_norm(next) == 0.0
+               : !next.allFinite() || next.norm() == 0.0;
     if (degenerate) {
       return;  // degenerate cloud: keep the last orthonormal directions
     }

@@ -68,7 +68,8 @@ class TriangleMesh {
 
  private:
   PointStorage points_;  // column-major n×N
-  // Null: R^n in one process (made on first use; copies share it).
+  // Null: R^n in one process (made on first use, which is not thread-safe: the coverings run
+  // in one thread; copies share it).
   mutable std::shared_ptr<const AmbientSpace> space_;
   std::vector<Triangle> triangles_;
 };

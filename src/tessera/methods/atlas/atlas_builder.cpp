@@ -594,7 +594,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     retire_finished_charts(c);
     if (n_ >= kReleaseHeapDimension && chart_count() >= next_heap_release) {
       // The bases of retired charts and the factorisations used: to the system, so that the
-      // resident memory follows what the atlas holds (bvp:points=10000: peak 673 → 588 MB).
+      // resident memory follows what the atlas holds (bvp:points=10000: peak 673 → 569 MB).
       next_heap_release = chart_count() + kReleaseHeapCharts;
       release_free_heap();
     }
