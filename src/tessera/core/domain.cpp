@@ -133,9 +133,9 @@ double Domain::signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x
 BoundaryDistance Domain::boundary_distance(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   BoundaryDistance result;
   result.signed_distance = std::numeric_limits<double>::infinity();
-  const std::vector<double> distances = signed_distances(x);
-  for (int k = 0; k < static_cast<int>(distances.size()); ++k) {
-    const double d = distances[static_cast<std::size_t>(k)];
+  const std::vector<double> summed = space_ ? signed_distances(x) : std::vector<double>();
+  for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
+    const double d = space_ ? summed[static_cast<std::size_t>(k)] : local_signed_distance(k, x);
     if (d < result.signed_distance) {
       result.signed_distance = d;
       result.nearest_half_space = k;
@@ -145,13 +145,10 @@ BoundaryDistance Domain::boundary_distance(const Eigen::Ref<const Eigen::VectorX
 }
 
 bool Domain::contains(const Eigen::Ref<const Eigen::VectorXd>& x, double tolerance) const {
-  if (space_) {
-    const std::vector<double> distances = signed_distances(x);
-    return std::none_of(distances.begin(), distances.end(),
-                        [&](double d) { return d < -tolerance; });
-  }
+  const std::vector<double> summed = space_ ? signed_distances(x) : std::vector<double>();
   for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
-    if (signed_distance(k, x) < -tolerance) {
+    const double d = space_ ? summed[static_cast<std::size_t>(k)] : local_signed_distance(k, x);
+    if (d < -tolerance) {
       return false;
     }
   }
@@ -165,11 +162,12 @@ bool Domain::segment_meets_interior(const Eigen::Ref<const Eigen::VectorXd>& x,
   // each face keeps the part of t ∈ [0, 1] where d_k(t) > margin.
   double lower = 0.0;
   double upper = 1.0;
-  const std::vector<double> from = signed_distances(x);
-  const std::vector<double> to = signed_distances(y);
+  const std::vector<double> from = space_ ? signed_distances(x) : std::vector<double>();
+  const std::vector<double> to = space_ ? signed_distances(y) : std::vector<double>();
   for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
-    const double at_x = from[static_cast<std::size_t>(k)] - margin;
-    const double at_y = to[static_cast<std::size_t>(k)] - margin;
+    const auto j = static_cast<std::size_t>(k);
+    const double at_x = (space_ ? from[j] : local_signed_distance(k, x)) - margin;
+    const double at_y = (space_ ? to[j] : local_signed_distance(k, y)) - margin;
     if (at_x <= 0 && at_y <= 0) {
       return false;
     }
@@ -200,7 +198,7 @@ double Domain::band_width(const Eigen::Ref<const Eigen::VectorXd>& x,
   const int K = static_cast<int>(half_spaces_.size());
   // Tᵀb_k of every face (summed over the ranks at once when distributed).
   std::vector<double> projections(2 * static_cast<std::size_t>(K), 0.0);
-  const std::vector<double> distances = signed_distances(x);
+  const std::vector<double> distances = signed_distances(x);  // each face's, once
   for (int k = 0; k < K; ++k) {
     const HalfSpace& face = half_spaces_[k];
     if (!space_ && distances[static_cast<std::size_t>(k)] > reach) {

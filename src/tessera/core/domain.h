@@ -84,7 +84,8 @@ class Domain {
  private:
   // Each half-space's partial signed distance over the rows held here.
   double local_signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const;
-  // All signed distances of x, summed over the ranks once (distributed domains).
+  // All signed distances of x, summed over the ranks once (distributed domains; one process
+  // asks local_signed_distance face by face, without allocating).
   std::vector<double> signed_distances(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   int dimension_ = 0;

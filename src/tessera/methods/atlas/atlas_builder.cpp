@@ -193,6 +193,7 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   const Eigen::MatrixXd& T = linearization.tangent_basis();
   tangents_.push_back(T);
   ++held_tangents_;
+  note_boundary_bytes();
   frames_.push_back(frame_signature(T));
   connect_neighbours(k);
   index_.insert(k, x, radius);
