@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "solver_backend.h"
 
+#include <algorithm>
+#include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -9,6 +12,8 @@
 #include "tessera/problems/examples.h"
 
 #if defined(TESSERA_CLI_HAS_PETSC)
+#include "tessera/core/scaled_problem.h"
+#include "tessera/petsc/distributed_problem.h"
 #include "tessera/petsc/petsc_bratu.h"
 #include "tessera/petsc/petsc_support.h"
 #include "tessera/petsc/replicated_problem.h"
@@ -64,7 +69,8 @@ struct SolverBackend::Petsc {
     session = std::make_unique<petsc::Session>(&argc, &argv);
   }
   ~Petsc() {
-    problem.reset();  // before PETSc ends
+    scaled.reset();  // before PETSc ends
+    problem.reset();
     session.reset();
   }
 
@@ -74,6 +80,13 @@ struct SolverBackend::Petsc {
   char** argv = nullptr;
   std::unique_ptr<petsc::Session> session;
   std::unique_ptr<petsc::PetscArrheniusBratu> problem;
+  // Split states: the problem in its metric's coordinates (what the atlas covers), this rank's
+  // rows of the metric's weights, and the problem and domain in x for restore_coordinates.
+  std::unique_ptr<petsc::ScaledPetscProblem> scaled;
+  Eigen::VectorXd local_weights;
+  bool split = false;
+  std::unique_ptr<ImplicitProblem> unscaled;
+  Domain unscaled_domain;
 };
 
 SolverBackend::SolverBackend(const std::string& name, const std::vector<std::string>& petsc_options)
@@ -96,7 +109,7 @@ bool SolverBackend::any_rank(bool value) const {
   return petsc_ ? petsc::any_rank(value, petsc_->session->communicator()) : value;
 }
 
-void SolverBackend::adopt(ProblemSetup& setup) {
+void SolverBackend::adopt(ProblemSetup& setup, bool split_states) {
   if (!petsc_) {
     return;
   }
@@ -118,6 +131,10 @@ void SolverBackend::adopt(ProblemSetup& setup) {
                        "docs/cluster.md)");
   petsc_->problem = std::make_unique<petsc::PetscArrheniusBratu>(
       petsc_->session->communicator(), spatial_dimension, grid_size);
+  if (split_states) {
+    adopt_split(setup);
+    return;
+  }
   auto distributed =
       std::make_unique<petsc::ReplicatedProblem>(*petsc_->problem, serial.coordinate_names());
   // The two implementations must describe the same M: compare F at the start.
@@ -132,6 +149,61 @@ void SolverBackend::adopt(ProblemSetup& setup) {
                             std::to_string((F_serial - F_petsc).norm()) + "); please report this");
   }
   setup.problem = std::move(distributed);
+}
+
+// The same problem on split states: the covering sees y = W x (ScaledPetscProblem), this rank's
+// rows of it (DistributedProblem), and the start and domain's rows in y.
+void SolverBackend::adopt_split(ProblemSetup& setup) {
+  const ImplicitProblem& serial = *setup.problem;
+  const int n = serial.ambient_dimension();
+  Eigen::VectorXd weights = metric_weights(serial);
+  if (weights.size() == 0) {
+    weights = Eigen::VectorXd::Ones(n);
+  }
+  petsc_->scaled = std::make_unique<petsc::ScaledPetscProblem>(*petsc_->problem);
+  auto covering =
+      std::make_unique<petsc::DistributedProblem>(*petsc_->scaled, serial.coordinate_names());
+  const std::shared_ptr<const AmbientSpace> space = covering->space();
+  const int first = space->first_row();
+  const int rows = space->local_rows();
+  // The two implementations must describe the same M: compare F at the start (each rank its
+  // rows of the residual; the distributed one keeps zeros in the border rows n − 2, n − 1).
+  Eigen::VectorXd F_serial(n - 2);
+  serial.evaluate(setup.start, F_serial);
+  const Eigen::VectorXd start = weights.cwiseProduct(setup.start).segment(first, rows);
+  Eigen::VectorXd F_split(space->local_equations());
+  covering->evaluate(start, F_split);
+  const int held = std::max(0, std::min(rows, n - 2 - first));
+  std::array<double, 2> sums = {(F_split.head(held) - F_serial.segment(first, held)).squaredNorm(),
+                                F_serial.segment(first, held).squaredNorm()};
+  space->sum(sums.data(), 2);
+  if (!(std::sqrt(sums[0]) <= 1e-10 * (1.0 + std::sqrt(sums[1])))) {
+    throw ComputationFailed("--backend petsc: the PETSc implementation of '" + serial.name() +
+                            "' disagrees with the serial one at the start point (|ΔF| = " +
+                            std::to_string(std::sqrt(sums[0])) + "); please report this");
+  }
+  petsc_->local_weights = weights.segment(first, rows);
+  petsc_->unscaled =
+      std::make_unique<petsc::DistributedProblem>(*petsc_->problem, serial.coordinate_names());
+  petsc_->unscaled_domain = setup.domain.distributed(space);
+  setup.domain = scale_domain(setup.domain, weights).distributed(space);
+  setup.start = start;
+  setup.problem = std::move(covering);
+  petsc_->split = true;
+}
+
+bool SolverBackend::splits_states() const { return petsc_ && petsc_->split; }
+
+void SolverBackend::restore_coordinates(ProblemSetup& setup, TriangleMesh& mesh) {
+  if (!splits_states() || !petsc_->unscaled) {
+    return;
+  }
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    mesh.mutable_point(v).array() /= petsc_->local_weights.array();
+  }
+  setup.problem = std::move(petsc_->unscaled);
+  setup.domain = petsc_->unscaled_domain;
+  // (setup.start stays in y: nothing after the covering uses it.)
 }
 
 void SolverBackend::abort(int code) const {
@@ -163,7 +235,11 @@ int SolverBackend::ranks() const { return 1; }
 
 bool SolverBackend::any_rank(bool value) const { return value; }
 
-void SolverBackend::adopt(ProblemSetup& /*setup*/) {}
+void SolverBackend::adopt(ProblemSetup& /*setup*/, bool /*split_states*/) {}
+
+bool SolverBackend::splits_states() const { return false; }
+
+void SolverBackend::restore_coordinates(ProblemSetup& /*setup*/, TriangleMesh& /*mesh*/) {}
 
 void SolverBackend::abort(int code) const { std::exit(code); }
 

@@ -2,13 +2,16 @@
 // `tessera mesh --backend`: where the linear algebra runs. "serial": tessera's own sparse LU or
 // dense QR in this process. "petsc": F, DF and the factorisations of the bordered Jacobian on
 // PETSc's distributed objects (MUMPS by default) over the ranks of mpirun, every rank running
-// the same covering (petsc::ReplicatedProblem, docs/cluster.md).
+// the same covering. The atlas runs on split states (each rank holds its rows of every vertex,
+// petsc::DistributedProblem); the other methods on whole ones (petsc::ReplicatedProblem).
+// docs/cluster.md.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "tessera/geometry/triangle_mesh.h"
 #include "tessera/problems/problem_setup.h"
 
 namespace tessera::app {
@@ -41,14 +44,24 @@ class SolverBackend {
   bool any_rank(bool value) const;
   /// Puts setup's problem on this backend (PETSc: the catalogue's bvp and bratu2d), with the
   /// same start, domain and coordinate names. The backend must outlive the setup's problem.
+  /// With `split_states` (the atlas), every rank holds its rows of every n-vector: setup's
+  /// problem is then the problem in its metric's coordinates y = W x (what the covering
+  /// measures lengths in), its start and domain this rank's rows of them in y;
+  /// restore_coordinates turns the result back.
   /// \throw InvalidArgument if the problem has no implementation on the backend.
-  void adopt(ProblemSetup& setup);
+  void adopt(ProblemSetup& setup, bool split_states = false);
+  /// Whether adopt split the states.
+  bool splits_states() const;
+  /// After a covering on split states: the mesh's rows back in the problem's coordinates x, and
+  /// setup's problem and domain those of x (their rows), for the report and the output.
+  void restore_coordinates(ProblemSetup& setup, TriangleMesh& mesh);
   /// Ends every rank with `code` (MPI_Abort): after an error on some ranks, the others may wait
   /// in a collective call forever. The serial backend exits.
   [[noreturn]] void abort(int code) const;
 
  private:
   struct Petsc;
+  void adopt_split(ProblemSetup& setup);
   std::string name_;
   std::unique_ptr<Petsc> petsc_;
 };

@@ -72,7 +72,7 @@ TEST(PrincipalView, IndexesFindEveryOverlapAcrossRefits) {
   const int n = 300;
   const Eigen::MatrixXd centers = surface_points(n, 300, 5);
   const double radius = 0.08;
-  ChartIndex index(n);
+  ChartIndex index(std::make_shared<const AmbientSpace>(n));
   PointGrid grid(n, 2 * radius);
   std::vector<int> candidates;
   for (int c = 0; c < centers.cols(); ++c) {
@@ -102,7 +102,7 @@ TEST(PrincipalView, IndexesFindEveryOverlapAcrossRefits) {
 // and must still find every overlapping disk, and only nearby ones.
 TEST(ChartIndex, LargeQueryAmongSmallDisksFindsEveryOverlap) {
   const int n = 5;
-  ChartIndex index(n);
+  ChartIndex index(std::make_shared<const AmbientSpace>(n));
   Eigen::MatrixXd centers(n, 400);
   std::vector<double> radii(400);
   for (int c = 0; c < 400; ++c) {

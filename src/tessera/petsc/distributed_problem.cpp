@@ -120,7 +120,13 @@ class DistributedBackend final : public LinearizationBackend {
 
 }  // namespace
 
-DistributedProblem::DistributedProblem(const PetscProblem& problem) : problem_(problem) {
+DistributedProblem::DistributedProblem(const PetscProblem& problem,
+                                       std::vector<std::string> coordinate_names)
+    : problem_(problem), coordinate_names_(std::move(coordinate_names)) {
+  TESSERA_CHECK(coordinate_names_.empty() ||
+                    coordinate_names_.size() == static_cast<std::size_t>(problem.ambient_dimension()),
+                "DistributedProblem: " << coordinate_names_.size() << " coordinate names for n = "
+                                       << problem.ambient_dimension());
   Owned<Vec> layout = problem.create_vector();
   PetscInt first = 0;
   PetscInt end = 0;
@@ -160,6 +166,10 @@ void DistributedProblem::sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>
 
 std::vector<CoordinateBlock> DistributedProblem::coordinate_blocks() const {
   return problem_.coordinate_blocks();
+}
+
+std::vector<std::string> DistributedProblem::coordinate_names() const {
+  return coordinate_names_.empty() ? ImplicitProblem::coordinate_names() : coordinate_names_;
 }
 
 std::unique_ptr<LinearizationBackend> DistributedProblem::make_linearization_backend() const {

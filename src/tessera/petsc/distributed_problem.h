@@ -5,6 +5,8 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "tessera/core/ambient_space.h"
 #include "tessera/core/implicit_problem.h"
@@ -37,7 +39,10 @@ class DistributedSpace final : public AmbientSpace {
 /// (wrap it in a ScaledPetscProblem first): tessera's ScaledProblem refuses distributed problems.
 class DistributedProblem final : public ImplicitProblem {
  public:
-  explicit DistributedProblem(const PetscProblem& problem);
+  /// `coordinate_names`: one per coordinate (the serial problem's, for views and messages);
+  /// empty: x0 … x{n−1}.
+  explicit DistributedProblem(const PetscProblem& problem,
+                              std::vector<std::string> coordinate_names = {});
 
   int ambient_dimension() const override { return static_cast<int>(problem_.ambient_dimension()); }
   void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
@@ -51,6 +56,7 @@ class DistributedProblem final : public ImplicitProblem {
                        Eigen::SparseMatrix<double>& J) const override;
   std::string name() const override { return problem_.name(); }
   std::vector<CoordinateBlock> coordinate_blocks() const override;
+  std::vector<std::string> coordinate_names() const override;
   std::shared_ptr<const AmbientSpace> space() const override { return space_; }
   std::unique_ptr<LinearizationBackend> make_linearization_backend() const override;
 
@@ -58,6 +64,7 @@ class DistributedProblem final : public ImplicitProblem {
 
  private:
   const PetscProblem& problem_;
+  std::vector<std::string> coordinate_names_;
   std::shared_ptr<const DistributedSpace> space_;
   Owned<Vec> x_;  // wrappers of the caller's arrays (VecPlaceArray)
   Owned<Vec> F_;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/petsc/petsc_linearization.h"
 
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -157,10 +158,18 @@ bool DistributedLinearization::factor(Vec x, const TangentPair* reference) {
   const TangentPair* guide = reference != nullptr ? reference : (has_basis_ ? &tangent_ : nullptr);
   PetscInt i = n_ - 2;
   PetscInt j = n_ - 1;
+  PetscInt best_i = i;
+  PetscInt best_j = j;
   if (guide != nullptr) {
-    choose_border(*guide, i, j);
+    choose_border(*guide, i, j, best_i, best_j);
   }
   bool is_regular = factor_with_border(i, j);
+  if (is_regular && (i != best_i || j != best_j)) {
+    // A kept border gives another basis of the same plane; the basis is the frame of the
+    // atlas's charts (their polygons, the directions of their radius probes), so it must not
+    // depend on which border the factorisation kept: it is made the serial backend's.
+    is_regular = express_in_coordinates(best_i, best_j);
+  }
   if (!is_regular && (i != n_ - 2 || j != n_ - 1)) {
     is_regular = factor_with_border(n_ - 2, n_ - 1);
   }
@@ -186,8 +195,8 @@ bool DistributedLinearization::factor(Vec x, const TangentPair* reference) {
   return true;
 }
 
-void DistributedLinearization::choose_border(const TangentPair& guide, PetscInt& i,
-                                             PetscInt& j) const {
+void DistributedLinearization::choose_border(const TangentPair& guide, PetscInt& i, PetscInt& j,
+                                             PetscInt& best_i, PetscInt& best_j) const {
   PetscInt first = 0;
   PetscInt end = 0;
   check(VecGetOwnershipRange(guide[0], &first, &end), "VecGetOwnershipRange");
@@ -218,6 +227,8 @@ void DistributedLinearization::choose_border(const TangentPair& guide, PetscInt&
   }
   const ValueAndIndex best_pair = largest_over_ranks(best, communicator);
   j = best_pair.index;
+  best_i = i;
+  best_j = j;
   // Keep the current border while it is not much worse conditioned than the best one: a
   // new border column is a new pattern, and MUMPS's analysis of it costs several numerical
   // factorisations (bratu2d N = 316: 5–17 s against 0.24 s).
@@ -234,6 +245,70 @@ void DistributedLinearization::choose_border(const TangentPair& guide, PetscInt&
   }
   check(VecRestoreArrayRead(guide[0], &t0), "VecRestoreArrayRead");
   check(VecRestoreArrayRead(guide[1], &t1), "VecRestoreArrayRead");
+}
+
+// The basis of the same plane whose rows i and j are those of the identity, orthonormalised as
+// factor_with_border does (coordinate_tangent_basis in one process): what the border (e_i, e_j)
+// would have given, without its factorisation.
+// Modified Gram–Schmidt, twice for stability.
+bool DistributedLinearization::orthonormalise_tangent() {
+  for (int pass = 0; pass < 2; ++pass) {
+    PetscReal length = 0.0;
+    check(VecNormalize(tangent_[0], &length), "VecNormalize");
+    if (!std::isfinite(length) || length == 0.0) {
+      last_failure_ = "the tangent is not finite";
+      return false;
+    }
+    PetscScalar overlap = 0.0;
+    check(VecDot(tangent_[0], tangent_[1], &overlap), "VecDot");
+    check(VecAXPY(tangent_[1], -overlap, tangent_[0]), "VecAXPY");
+    check(VecNormalize(tangent_[1], &length), "VecNormalize");
+    if (!std::isfinite(length) || length == 0.0) {
+      last_failure_ = "the tangent basis is degenerate";
+      return false;
+    }
+  }
+  return true;
+}
+
+bool DistributedLinearization::express_in_coordinates(PetscInt i, PetscInt j) {
+  PetscInt first = 0;
+  PetscInt end = 0;
+  check(VecGetOwnershipRange(tangent_[0], &first, &end), "VecGetOwnershipRange");
+  std::array<double, 4> rows{};  // T(i, 0), T(i, 1), T(j, 0), T(j, 1)
+  for (int k = 0; k < 2; ++k) {
+    const PetscScalar* t = nullptr;
+    check(VecGetArrayRead(tangent_[static_cast<std::size_t>(k)], &t), "VecGetArrayRead");
+    rows[static_cast<std::size_t>(k)] = i >= first && i < end ? t[i - first] : 0.0;
+    rows[static_cast<std::size_t>(2 + k)] = j >= first && j < end ? t[j - first] : 0.0;
+    check(VecRestoreArrayRead(tangent_[static_cast<std::size_t>(k)], &t), "VecRestoreArrayRead");
+  }
+  for (double& value : rows) {
+    value = sum_over_ranks(value, problem_.communicator());
+  }
+  const double det = rows[0] * rows[3] - rows[1] * rows[2];
+  if (!(std::abs(det) > 1e-12)) {  // T is orthonormal: the pair is (nearly) blind to the plane
+    last_failure_ = "the tangent plane is not a graph over the border's coordinates";
+    return false;
+  }
+  // T (rows of (i, j))⁻¹, column by column, into unit_ and rhs_ (free here).
+  const double inverse[2][2] = {{rows[3] / det, -rows[1] / det}, {-rows[2] / det, rows[0] / det}};
+  Vec basis[2] = {unit_, rhs_};
+  for (int c = 0; c < 2; ++c) {
+    check(VecAXPBY(basis[c], inverse[0][c], 0.0, tangent_[0]), "VecAXPBY");
+    check(VecAXPY(basis[c], inverse[1][c], tangent_[1]), "VecAXPY");
+  }
+  check(VecSetValue(basis[0], i, 1.0, INSERT_VALUES), "VecSetValue");
+  check(VecSetValue(basis[0], j, 0.0, INSERT_VALUES), "VecSetValue");
+  check(VecSetValue(basis[1], i, 0.0, INSERT_VALUES), "VecSetValue");
+  check(VecSetValue(basis[1], j, 1.0, INSERT_VALUES), "VecSetValue");
+  for (Vec v : basis) {
+    check(VecAssemblyBegin(v), "VecAssemblyBegin");
+    check(VecAssemblyEnd(v), "VecAssemblyEnd");
+  }
+  check(VecCopy(basis[0], tangent_[0]), "VecCopy");
+  check(VecCopy(basis[1], tangent_[1]), "VecCopy");
+  return orthonormalise_tangent();
 }
 
 bool DistributedLinearization::factor_with_border(PetscInt i, PetscInt j) {
@@ -302,22 +377,8 @@ bool DistributedLinearization::factor_with_border(PetscInt i, PetscInt j) {
       return false;
     }
   }
-  // Orthonormalise (modified Gram–Schmidt, twice for stability).
-  for (int pass = 0; pass < 2; ++pass) {
-    PetscReal length = 0.0;
-    check(VecNormalize(tangent_[0], &length), "VecNormalize");
-    if (!std::isfinite(length) || length == 0.0) {
-      last_failure_ = "the tangent is not finite";
-      return false;
-    }
-    PetscScalar overlap = 0.0;
-    check(VecDot(tangent_[0], tangent_[1], &overlap), "VecDot");
-    check(VecAXPY(tangent_[1], -overlap, tangent_[0]), "VecAXPY");
-    check(VecNormalize(tangent_[1], &length), "VecNormalize");
-    if (!std::isfinite(length) || length == 0.0) {
-      last_failure_ = "the tangent basis is degenerate";
-      return false;
-    }
+  if (!orthonormalise_tangent()) {
+    return false;
   }
   // The basis must lie in ker DF to 1e-8 relative to ‖DF‖ (a border nearly blind to the tangent
   // plane gives an inaccurate one). ‖DF‖²_F = ‖A‖²_F − 2: the border holds two ones.

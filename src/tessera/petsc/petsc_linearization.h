@@ -71,7 +71,12 @@ class DistributedLinearization {
 
  private:
   bool factor_with_border(PetscInt i, PetscInt j);
-  void choose_border(const TangentPair& guide, PetscInt& i, PetscInt& j) const;
+  // (i, j): the border to factor with; (best_i, best_j): the serial backend's choice, which a
+  // kept border may differ from.
+  void choose_border(const TangentPair& guide, PetscInt& i, PetscInt& j, PetscInt& best_i,
+                     PetscInt& best_j) const;
+  bool express_in_coordinates(PetscInt i, PetscInt j);
+  bool orthonormalise_tangent();
   void make_solver();
 
   const PetscProblem& problem_;

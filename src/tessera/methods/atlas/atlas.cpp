@@ -93,7 +93,8 @@ void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringRe
 
   // The mesh: the dual of the polygons, with the places where the charts disagree closed.
   AtlasCells cells;
-  cells.ambient_dimension = context.problem.ambient_dimension();
+  cells.ambient_dimension = builder.space()->local_rows();
+  cells.space = builder.space();
   cells.chart_count = builder.chart_count();
   cells.center = [&builder](int c) { return Eigen::VectorXd(builder.center(c)); };
   cells.tangent = [&builder](int c) { return Eigen::MatrixXd(builder.tangent(c)); };

@@ -48,12 +48,14 @@ AtlasBuilder::AtlasBuilder(const ImplicitProblem& problem, const Domain& domain,
       domain_(domain),
       options_(options),
       n_(problem.ambient_dimension()),
-      index_(problem.ambient_dimension()),
+      space_(problem.space()),
+      rows_(space_->local_rows()),
+      index_(space_),
       watch_crossings_(!problem.has_sparse_jacobian() &&
                        problem.ambient_dimension() <= kMaxCrossingTestDimension),
       first_step_probes_(problem.has_sparse_jacobian()),
-      centers_(problem.ambient_dimension()),
-      frame_view_(problem.ambient_dimension()) {}
+      centers_(rows_),
+      frame_view_(space_) {}
 
 void AtlasBuilder::evaluate_jacobian(const Eigen::VectorXd& x) {
   jacobian_.resize(n_ - 2, n_);
@@ -103,7 +105,7 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
     return -1;  // DF lost rank: a singular point; the caller moves the centre
   }
   if (parent >= 0 &&
-      std::abs((parent_tangent.transpose() * linearization.tangent_basis()).determinant()) <
+      std::abs(space_->products(parent_tangent, linearization.tangent_basis()).determinant()) <
           options_.min_sheet_cosine) {
     return -1;  // the projection jumped to another sheet; the caller tries another point
   }
@@ -119,7 +121,7 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
     trial = std::min(trial, options_.radius_growth * charts_[parent].radius);
     index_.candidates(x, trial, candidates_);
     for (int m : candidates_) {
-      const double distance = (center(m) - x).norm();
+      const double distance = space_->distance(center(m), x);
       if (distance < trial + charts_[m].radius) {
         trial = std::min(trial, charts_[m].radius + slope * distance);
       }
@@ -153,16 +155,17 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   std::vector<int> too_close;
   for (int m : candidates_) {
     const Eigen::VectorXd offset = center(m) - x;
-    const double distance = offset.norm();
+    const double distance = space_->norm(offset);
     if (m == parent || distance >= radius + charts_[m].radius || distance == 0.0) {
       continue;
     }
-    const Eigen::Matrix2d cosines = tangent(m).transpose() * linearization.tangent_basis();
+    const Eigen::Matrix2d cosines = space_->products(tangent(m), linearization.tangent_basis());
     if (std::abs(cosines.determinant()) < options_.min_sheet_cosine) {
       continue;  // a transversal crossing (section 8), kept apart by the sheet test
     }
-    const Eigen::Vector2d along = linearization.tangent_basis().transpose() * offset;
-    const double normal_part = std::sqrt(std::max(0.0, offset.squaredNorm() - along.squaredNorm()));
+    const Eigen::Vector2d along = space_->tangent_coordinates(linearization.tangent_basis(), offset);
+    const double normal_part =
+        std::sqrt(std::max(0.0, space_->squared_norm(offset) - along.squaredNorm()));
     if (normal_part > 0.5 * along.norm()) {
       if (0.5 * distance < radius) {
         radius = 0.5 * distance;
@@ -201,7 +204,7 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
     index_.refit(centers_.matrix());
   }
   for (int m : too_close) {
-    const double half = 0.5 * (center(m) - center(k)).norm();
+    const double half = 0.5 * space_->distance(center(m), center(k));
     if (charts_[m].radius > half && half >= min_radius_) {
       shrink_radius(m, half);
     }
@@ -224,12 +227,13 @@ bool AtlasBuilder::same_sheet(int a, int b, const Eigen::VectorXd& offset) const
   // Charts on one sheet have nearly parallel tangent planes and each centre lies close to the
   // other's tangent plane; charts of two sheets that cross (section 8) fail the first test,
   // charts of two nearby parallel sheets the second.
-  const Eigen::Matrix2d cosines = tangent(a).transpose() * tangent(b);
+  const Eigen::Matrix2d cosines = space_->products(tangent(a), tangent(b));
   if (std::abs(cosines.determinant()) < options_.min_sheet_cosine) {
     return false;
   }
-  const Eigen::Vector2d along = tangent(a).transpose() * offset;
-  const double normal_part = std::sqrt(std::max(0.0, offset.squaredNorm() - along.squaredNorm()));
+  const Eigen::Vector2d along = space_->tangent_coordinates(tangent(a), offset);
+  const double normal_part =
+      std::sqrt(std::max(0.0, space_->squared_norm(offset) - along.squaredNorm()));
   return normal_part <= 0.5 * along.norm();
 }
 
@@ -242,7 +246,7 @@ void AtlasBuilder::connect_neighbours(int k) {
   for (int m : candidates_) {
     const double rm = charts_[m].radius;
     offset = center(m) - ck;
-    const double distance = offset.norm();
+    const double distance = space_->norm(offset);
     if (distance >= rk + rm || distance == 0.0) {
       continue;
     }
@@ -251,8 +255,8 @@ void AtlasBuilder::connect_neighbours(int k) {
       continue;
     }
     // Power bisector in each chart's own tangent coordinates: |p|² − R_k² ≤ |p − p_m|² − R_m².
-    const Eigen::Vector2d pk = tangent(k).transpose() * offset;
-    const Eigen::Vector2d pm = tangent(m).transpose() * (-offset);
+    const Eigen::Vector2d pk = space_->tangent_coordinates(tangent(k), offset);
+    const Eigen::Vector2d pm = space_->tangent_coordinates(tangent(m), -offset);
     if (pk.norm() > 0) {
       charts_[k].polygon.cut(pk(0) / pk.norm(), pk(1) / pk.norm(),
                              (pk.squaredNorm() + rk * rk - rm * rm) / (2.0 * pk.norm()), m);
@@ -280,14 +284,14 @@ void AtlasBuilder::rebuild_polygon(int k) {
   for (int m : candidates) {
     const double rm = charts_[m].radius;
     offset = center(m) - ck;
-    const double distance = offset.norm();
+    const double distance = space_->norm(offset);
     if (m == k || distance >= rk + rm || distance == 0.0) {
       continue;
     }
     if (!same_sheet(k, m, offset) && m != charts_[k].parent && charts_[m].parent != k) {
       continue;
     }
-    const Eigen::Vector2d pk = tangent(k).transpose() * offset;
+    const Eigen::Vector2d pk = space_->tangent_coordinates(tangent(k), offset);
     if (pk.norm() > 0) {
       charts_[k].polygon.cut(pk(0) / pk.norm(), pk(1) / pk.norm(),
                              (pk.squaredNorm() + rk * rk - rm * rm) / (2.0 * pk.norm()), m);
@@ -307,7 +311,7 @@ void AtlasBuilder::shrink_radius(int c, double radius) {
   std::vector<int> neighbours;
   index_.candidates(center(c), old_radius, neighbours);
   for (int m : neighbours) {
-    if (m == c || (center(m) - center(c)).norm() >= old_radius + charts_[m].radius) {
+    if (m == c || space_->distance(center(m), center(c)) >= old_radius + charts_[m].radius) {
       continue;
     }
     rebuild_polygon(m);
@@ -334,9 +338,10 @@ bool AtlasBuilder::is_eligible(int c) const {
   const auto x = center(c);
   for (int k = 0; k < static_cast<int>(domain_.half_spaces().size()); ++k) {
     const double d = domain_.signed_distance(k, x);
+    const Eigen::VectorXd& normal = domain_.half_spaces()[k].normal;
     // (The tangent plane only where it matters: a retired chart's is recomputed.)
     if (d < -margin ||
-        (d < 0 && d < -margin * (tangent(c).transpose() * domain_.half_spaces()[k].normal).norm())) {
+        (d < 0 && d < -margin * space_->tangent_coordinates(tangent(c), normal).norm())) {
       return false;
     }
   }
@@ -362,7 +367,7 @@ Eigen::Matrix<double, 2, 3> AtlasBuilder::frame_signature(const Eigen::MatrixXd&
 void AtlasBuilder::restore_tangent(int c) const {
   Linearization linearization;
   TESSERA_CHECK(linearization.factor(problem_, center(c)),
-                "atlas: the tangent plane of the chart at " << describe_point(center(c))
+                "atlas: the tangent plane of the chart at " << describe_point(center(c), *space_)
                                                            << " cannot be computed again");
   const Eigen::MatrixXd& restored = linearization.tangent_basis();
   const Eigen::Matrix<double, 2, 3> B = frame_signature(restored);
@@ -383,13 +388,15 @@ void AtlasBuilder::retire_finished_charts(int c) {
   std::vector<int> neighbours;
   for (int m : around) {
     if (tangents_[m].size() == 0 || charts_[m].queued || !is_closed(m) ||
-        (m != c && (center(m) - center(c)).norm() >= charts_[m].radius + charts_[c].radius)) {
+        (m != c &&
+         space_->distance(center(m), center(c)) >= charts_[m].radius + charts_[c].radius)) {
       continue;
     }
     index_.candidates(center(m), charts_[m].radius, neighbours);
     bool finished = true;
     for (int j : neighbours) {
-      if (j != m && (center(j) - center(m)).norm() < charts_[j].radius + charts_[m].radius &&
+      if (j != m &&
+          space_->distance(center(j), center(m)) < charts_[j].radius + charts_[m].radius &&
           (charts_[j].queued || !is_closed(j))) {
         finished = false;
         break;
@@ -429,7 +436,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     const int first = add_chart(start, -1, linearization);
     if (first < 0) {
       fail(summary, CoveringTermination::StartFailed,
-           "no chart can be centred at the start point " + describe_point(start) +
+           "no chart can be centred at the start point " + describe_point(start, *space_) +
                (first == -1 ? ": DF is singular there"
                             : ": the corrector does not converge even at radius " +
                                   std::to_string(min_radius_)));
@@ -440,7 +447,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
   }
   int next_progress = 1000;
   int next_heap_release = kReleaseHeapCharts;
-  Eigen::VectorXd y(n_);
+  Eigen::VectorXd y(rows_);
   while (!open_.empty() && !stopped_) {
     const int c = open_.front();
     open_.pop_front();
@@ -488,7 +495,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       // A chart next to much smaller ones needs about 2πR/r of them around its rim.
       if (++children > kMaxChildrenPerChart * std::max(1.0, charts_[c].radius / smallest_child)) {
         fail(summary, CoveringTermination::ProjectionFailed,
-             "the chart at " + describe_point(xc) +
+             "the chart at " + describe_point(xc, *space_) +
                  " could not be closed: its neighbours do not "
                  "cut away the uncovered corners of its polygon");
         break;
@@ -532,7 +539,8 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
         // geometry decides (the rule changed the crossing's hexagonal mesh beyond its bound).
         const bool beyond_disk =
             projected && options_.placement == AtlasPlacement::Disk &&
-            (Tc.transpose() * (y - xc)).norm() > kMaxRimOvershoot * charts_[c].radius;
+            space_->tangent_coordinates(Tc, y - xc).norm() >
+                kMaxRimOvershoot * charts_[c].radius;
         if (!projected || beyond_disk) {
           if (fraction == 1.0 && charts_[c].radius > 4.0 * min_radius_ &&
               s.norm() >= 0.99 * charts_[c].radius) {
@@ -563,7 +571,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
           if (across != charts_[c].orientation) {
             ++singular_crossings_;
             if (first_crossing_.empty()) {
-              first_crossing_ = describe_point(0.5 * (xc + y));
+              first_crossing_ = describe_point(0.5 * (xc + y), *space_);
             }
           }
         }
@@ -582,7 +590,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       }
       if (child < 0) {
         fail(summary, CoveringTermination::ProjectionFailed,
-             "no chart could be centred beyond " + describe_point(xc) +
+             "no chart could be centred beyond " + describe_point(xc, *space_) +
                  " in the direction of its uncovered corner: the corrector does not converge "
                  "or DF is singular there");
         break;

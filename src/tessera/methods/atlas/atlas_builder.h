@@ -56,6 +56,8 @@ class AtlasBuilder {
 
   int chart_count() const { return static_cast<int>(charts_.size()); }
   Eigen::Map<const Eigen::VectorXd> center(int c) const { return centers_.column(c); }
+  /// The split of R^n the centres and bases are rows of (R^n itself in one process).
+  const std::shared_ptr<const AmbientSpace>& space() const { return space_; }
   /// The centres of the charts `keep` marks, in chart order, handed over without a copy (they
   /// become the mesh's vertices). The builder's centres are gone afterwards.
   PointStorage take_centers(const std::vector<bool>& keep);
@@ -109,6 +111,11 @@ class AtlasBuilder {
   const Domain& domain_;
   const AtlasOptions& options_;
   const int n_;
+  // The rows of R^n this process holds (all n in one process): every n-vector below is sized by
+  // rows_, and every inner product between them is reduced through space_ (SPMD: the same
+  // calls on every rank; docs/cluster.md).
+  const std::shared_ptr<const AmbientSpace> space_;
+  const int rows_;
   ChartIndex index_;
   const bool watch_crossings_;
   // Radius probes by the chord's first step only (sparse problems, where solves are the cost).
@@ -139,7 +146,7 @@ class AtlasBuilder {
   void note_boundary_bytes() {
     boundary_peak_bytes_ =
         std::max(boundary_peak_bytes_, static_cast<double>(kept_bytes_) +
-                                           16.0 * static_cast<double>(n_) * held_tangents_);
+                                           16.0 * static_cast<double>(rows_) * held_tangents_);
   }
   int refactored_charts_ = 0;  // charts whose factorisation was dropped (over the budget)
   void keep_factorisation(int c, Linearization&& linearization);

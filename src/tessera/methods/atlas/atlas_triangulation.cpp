@@ -77,7 +77,11 @@ class HoleFiller {
   /// looked for only at suspect charts, where all triangles are present.
   HoleFiller(const AtlasCells& cells, std::vector<Triangle>& triangles,
              const std::vector<bool>& suspect)
-      : cells_(cells), triangles_(triangles), suspect_(suspect) {}
+      : cells_(cells),
+        triangles_(triangles),
+        suspect_(suspect),
+        space_(cells.space ? cells.space
+                           : std::make_shared<const AmbientSpace>(cells.ambient_dimension)) {}
 
   /// Fills the holes bounded by closed charts; returns the number filled, and sets `message`
   /// for the first hole that could not be filled.
@@ -92,9 +96,12 @@ class HoleFiller {
   bool triangulate(const std::vector<int>& loop, std::vector<Triangle>& added,
                    bool require_counter_clockwise) const;
 
+  const AmbientSpace& space() const { return *space_; }
+
   const AtlasCells& cells_;
   std::vector<Triangle>& triangles_;
   const std::vector<bool>& suspect_;
+  std::shared_ptr<const AmbientSpace> space_;  // the centres' rows and their reductions
   std::vector<std::uint64_t> directed_;
   std::vector<std::uint64_t> undirected_;
 };
@@ -182,7 +189,7 @@ int HoleFiller::fill(std::string& message) {
       if (!triangulate(simple, added, true)) {
         if (message.empty()) {
           message = "the charts' polygons leave a hole of " + std::to_string(simple.size()) +
-                    " vertices near " + describe_point(cells_.center(simple.front())) +
+                    " vertices near " + describe_point(cells_.center(simple.front()), space()) +
                     " that cannot be triangulated";
         }
         continue;
@@ -205,7 +212,7 @@ bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>
   for (int i = 0; i < k; ++i) {
     X.col(i) = cells_.center(loop[i]) - origin;
   }
-  const Eigen::MatrixXd gram = X.transpose() * X;
+  const Eigen::MatrixXd gram = space().products(X, X);
   Eigen::MatrixXd distance(k, k);
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) {
@@ -216,7 +223,7 @@ bool HoleFiller::triangulate(const std::vector<int>& loop, std::vector<Triangle>
   // agree: where M turns fast, one far tangent plane can misjudge it); angles in R^n.
   std::vector<Eigen::MatrixXd> plane(k);  // 2 × k: the loop in corner i's tangent coordinates
   for (int i = 0; i < k; ++i) {
-    plane[i] = cells_.tangent(loop[i]).transpose() * X;
+    plane[i] = space().products(cells_.tangent(loop[i]), X);
   }
   auto quality = [&](int a, int b, int c) {
     for (int corner : {a, b, c}) {
@@ -462,6 +469,9 @@ AtlasTriangulation triangulate_atlas(const AtlasCells& cells) {
     }
   }
   result.mesh = TriangleMesh(std::move(points), std::move(triangles));
+  if (cells.space && cells.space->is_distributed()) {
+    result.mesh.set_space(cells.space);
+  }
   return result;
 }
 

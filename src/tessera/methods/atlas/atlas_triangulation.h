@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,9 @@ namespace tessera {
 /// Read access to the charts of an atlas (kept abstract so that the triangulation can be
 /// tested on hand-made polygons).
 struct AtlasCells {
-  int ambient_dimension = 0;
+  int ambient_dimension = 0;  ///< rows of a centre (this rank's, when `space` is distributed)
+  /// The split of R^n the centres and bases are rows of; null: R^n in one process.
+  std::shared_ptr<const AmbientSpace> space;
   int chart_count = 0;
   std::function<Eigen::VectorXd(int)> center;   ///< n-vector on M
   std::function<Eigen::MatrixXd(int)> tangent;  ///< n×2 orthonormal basis of the chart's plane

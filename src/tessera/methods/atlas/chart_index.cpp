@@ -2,10 +2,11 @@
 #include "tessera/methods/atlas/chart_index.h"
 
 #include <cmath>
+#include <utility>
 
 namespace tessera {
 
-ChartIndex::ChartIndex(int ambient_dimension) : view_(ambient_dimension) {}
+ChartIndex::ChartIndex(std::shared_ptr<const AmbientSpace> space) : view_(std::move(space)) {}
 
 std::int64_t ChartIndex::key(std::int64_t i, std::int64_t j, std::int64_t k) {
   // 21 bits per axis: far cells may collide, which costs a distance check, never a miss.

@@ -17,7 +17,9 @@ namespace tessera {
 /// parts of M carry large ones. The view is refitted to the centres as the atlas grows.
 class ChartIndex {
  public:
-  explicit ChartIndex(int ambient_dimension);
+  /// For centres given as this rank's rows of `space` (all of R^n in one process): the view of a
+  /// centre is then a reduction, the same on every rank.
+  explicit ChartIndex(std::shared_ptr<const AmbientSpace> space);
 
   void insert(int chart, const Eigen::Ref<const Eigen::VectorXd>& center, double radius);
 

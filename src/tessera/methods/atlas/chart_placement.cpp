@@ -37,7 +37,7 @@ void AtlasBuilder::snap_to_domain_boundary(Eigen::VectorXd& y, double radius,
   }
   index_.candidates(snapped, 0.1 * radius, candidates_);
   for (int m : candidates_) {
-    if ((center(m) - snapped).norm() < 0.2 * radius) {
+    if (space_->distance(center(m), snapped) < 0.2 * radius) {
       return;
     }
   }
@@ -69,7 +69,7 @@ Eigen::Vector2d AtlasBuilder::child_position(int c, int vertex) const {
     p = at;
   } else if (before >= 0 || after >= 0) {
     const int a = before >= 0 ? before : after;
-    const Eigen::Vector2d pa = tangent(c).transpose() * (center(a) - center(c));
+    const Eigen::Vector2d pa = space_->tangent_coordinates(tangent(c), center(a) - center(c));
     const double spacing = pa.norm();
     const Eigen::Vector2d middle = 0.5 * pa;
     Eigen::Vector2d normal = Eigen::Vector2d(-pa(1), pa(0)).normalized();

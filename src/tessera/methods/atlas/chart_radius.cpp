@@ -49,7 +49,7 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
   Eigen::VectorXd& y = probe_;
   Eigen::VectorXd& predicted = predicted_;
   Eigen::MatrixXd& a = quadratic_;
-  a.resize(n_, 12);  // columns 0–5: a(θ_i) at r; 6–11: a(θ_i) at kInnerProbe·r
+  a.resize(rows_, 12);  // columns 0–5: a(θ_i) at r; 6–11: a(θ_i) at kInnerProbe·r
   // Sparse (large n) problems: each probe is the chord's first step only, −J⁺F at the predicted
   // point, which is the offset to second order; and the inner ring is left out. 6 evaluations of
   // F and 6 solves per measurement instead of 12 projections of 3–5 steps each: at large n a
@@ -64,13 +64,13 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
     bool is_graph = true;
     if (first_step_probes_) {
       // The six first steps share one multi-column solve.
-      F.resize(n_ - 2, 6);
-      step.resize(n_, 6);
+      F.resize(space_->local_equations(), 6);
+      step.resize(rows_, 6);
       for (int i = 0; i < 6 && is_graph; ++i) {
         const double theta = i * std::numbers::pi / 3.0;
         predicted = x + r * (T * Eigen::Vector2d(std::cos(theta), std::sin(theta)));
         problem_.evaluate(predicted, F.col(i));
-        is_graph = F.col(i).allFinite();
+        is_graph = space_->all_finite(F.col(i));
       }
       if (is_graph) {
         F = -F;
@@ -78,10 +78,10 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
       }
       for (int i = 0; i < 6 && is_graph; ++i) {
         // The offset: the chord's step is normal to the tangent plane.
-        const Eigen::Vector2d along = T.transpose() * step.col(i);
+        const Eigen::Vector2d along = space_->tangent_coordinates(T, step.col(i));
         a.col(i) = step.col(i) - T * along;
         // Slope above 1 across the disk: the probe found a far part of M, not a graph.
-        is_graph = a.col(i).norm() <= r;
+        is_graph = space_->norm(a.col(i)) <= r;
       }
     }
     for (int i = 0; i < probes && is_graph && !first_step_probes_; ++i) {  // full projections
@@ -91,10 +91,10 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
       y = predicted;
       is_graph = project(at_center, distance, y);
       y -= predicted;  // the offset; its tangential part is zero for the chord, not for GN
-      const Eigen::Vector2d along = T.transpose() * y;
+      const Eigen::Vector2d along = space_->tangent_coordinates(T, y);
       a.col(i) = y - T * along;
       // Slope above 1 across the disk: the projection found a far part of M, not a graph.
-      is_graph = is_graph && a.col(i).norm() <= distance;
+      is_graph = is_graph && space_->norm(a.col(i)) <= distance;
     }
     if (!is_graph) {
       r *= 0.5;
@@ -115,11 +115,24 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
       }
       return w;
     }();
-    // Largest ‖Q(θ)‖ over θ of the form through the values at three directions 60° apart.
+    // Largest ‖Q(θ)‖ over θ of the form through the values at three directions 60° apart
+    // (split over ranks: the 24 squared norms summed in one call).
     const auto largest = [&](const auto& q0, const auto& q1, const auto& q2) {
       double value = 0.0;
-      for (const auto& w : weights) {
-        value = std::max(value, (w[0] * q0 + w[1] * q1 + w[2] * q2).norm());
+      if (!space_->is_distributed()) {
+        for (const auto& w : weights) {
+          value = std::max(value, (w[0] * q0 + w[1] * q1 + w[2] * q2).norm());
+        }
+        return value;
+      }
+      std::array<double, 24> squares{};
+      for (std::size_t k = 0; k < weights.size(); ++k) {
+        const auto& w = weights[k];
+        squares[k] = (w[0] * q0 + w[1] * q1 + w[2] * q2).squaredNorm();
+      }
+      space_->sum(squares.data(), static_cast<int>(squares.size()));
+      for (double square : squares) {
+        value = std::max(value, std::sqrt(square));
       }
       return value;
     };
@@ -193,7 +206,8 @@ bool AtlasBuilder::project(const Linearization& at_center, double distance, Eige
   if (!project_gauss_newton(problem_, y, full, scratch_).is_success()) {
     return false;
   }
-  const Eigen::Vector2d drift = at_center.tangent_basis().transpose() * (y - predicted);
+  const Eigen::Vector2d drift =
+      space_->tangent_coordinates(at_center.tangent_basis(), y - predicted);
   return drift.norm() <= kMaxTangentialDrift * distance;
 }
 

@@ -22,6 +22,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/corrector.h"
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/describe.h"
@@ -640,6 +641,10 @@ CoveringResult triangulate_by_bezier_continuation(const ImplicitProblem& problem
                                                   const Domain& domain,
                                                   const BezierOptions& options) {
   options.validate();
+  // Its continuation works on whole n-vectors; only the atlas reduces over split points.
+  TESSERA_CHECK(!problem.space()->is_distributed(),
+                "method bezier: the problem's points are split over MPI ranks, which only method "
+                "atlas supports (docs/cluster.md); use --method atlas");
   return run_covering("bezier", problem, start, domain, options,
                       [&options](CoveringContext& context, CoveringResult& result) {
                         result.summary.step = options.step;

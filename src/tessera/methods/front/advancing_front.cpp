@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/corrector.h"
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/describe.h"
@@ -685,6 +686,10 @@ bool FrontBuilder::close_small_loop(int center, const Eigen::MatrixXd& U) {
 CoveringResult triangulate_by_front(const ImplicitProblem& problem, const Eigen::VectorXd& start,
                                     const Domain& domain, const FrontOptions& options) {
   options.validate();
+  // Its continuation works on whole n-vectors; only the atlas reduces over split points.
+  TESSERA_CHECK(!problem.space()->is_distributed(),
+                "method front: the problem's points are split over MPI ranks, which only method "
+                "atlas supports (docs/cluster.md); use --method atlas");
   return run_covering("front", problem, start, domain, options,
                       [&options](CoveringContext& context, CoveringResult& result) {
                         front_detail::FrontBuilder builder(context.problem, context.domain, options);

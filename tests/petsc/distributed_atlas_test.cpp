@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: MIT
+// The atlas's continuation on split points: every rank holds its rows of every chart's centre
+// and tangent basis, and the charts' geometry (distances, tangent coordinates, the radius
+// probes' norms) is reduced over the ranks (the SPMD design of docs/cluster.md). The charts and
+// their triangulation must be the one process's on any number of ranks.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include "tessera/core/counted_problem.h"
+#include "tessera/core/scaled_problem.h"
+#include "tessera/methods/atlas/atlas_builder.h"
+#include "tessera/methods/atlas/atlas_triangulation.h"
+#include "tessera/methods/start_point.h"
+#include "tessera/petsc/distributed_problem.h"
+#include "tessera/petsc/petsc_bratu.h"
+#include "tessera/problems/catalogue.h"
+
+namespace tessera::petsc {
+namespace {
+
+using detail::AtlasBuilder;
+
+AtlasTriangulation triangulate(AtlasBuilder& builder) {
+  AtlasCells cells;
+  cells.ambient_dimension = builder.space()->local_rows();
+  cells.space = builder.space();
+  cells.chart_count = builder.chart_count();
+  cells.center = [&builder](int c) { return Eigen::VectorXd(builder.center(c)); };
+  cells.tangent = [&builder](int c) { return Eigen::MatrixXd(builder.tangent(c)); };
+  cells.polygon = [&builder](int c) -> const ChartPolygon& { return builder.chart(c).polygon; };
+  cells.radius = [&builder](int c) { return builder.chart(c).radius; };
+  cells.is_closed = [&builder](int c) { return builder.is_closed(c); };
+  return triangulate_atlas(cells);
+}
+
+// bratu2d:N=6 in the metric's coordinates, where λ and ε lie within 0.1 of the start's, charts
+// of radius up to 0.2: the serial problem and the PETSc one split over the ranks build the same
+// charts (radii to rounding, centres to the corrector's tolerance) and the same triangles.
+TEST(DistributedAtlas, SplitChartsAreTheOneProcessCharts) {
+  ProblemSetup setup = make_catalogue_problem("bratu2d:N=6");
+  const int n = setup.problem->ambient_dimension();
+  for (const int coordinate : {n - 2, n - 1}) {
+    for (const double side : {-1.0, 1.0}) {
+      Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
+      normal(coordinate) = -side;
+      Eigen::VectorXd point = Eigen::VectorXd::Zero(n);
+      point(coordinate) = setup.start(coordinate) + 0.1 * side;
+      setup.domain.add_half_space(normal, point);
+    }
+  }
+  const Eigen::VectorXd weights = metric_weights(*setup.problem);
+  ASSERT_GT(weights.size(), 0);
+  const ScaledProblem scaled_serial(*setup.problem, weights);
+  const Domain serial_domain = scale_domain(setup.domain, weights);
+  const StartPoint start =
+      project_start_point(scaled_serial, weights.cwiseProduct(setup.start), serial_domain, 3.0);
+
+  AtlasOptions options;
+  options.step = 0.2;
+  options.tolerance = 0.01;
+  options.boundary_snap = 0.0;  // face projections are not the builder's (clipping's test)
+  AtlasBuilder serial(scaled_serial, serial_domain, options);
+  CoveringSummary serial_summary;
+  serial.run(start.x, serial_summary);
+  ASSERT_TRUE(serial_summary.is_complete()) << serial_summary.message;
+  ASSERT_GT(serial.chart_count(), 20);
+  const AtlasTriangulation serial_mesh = triangulate(serial);
+  ASSERT_TRUE(serial_mesh.message.empty()) << serial_mesh.message;
+
+  PetscArrheniusBratu bratu(PETSC_COMM_WORLD, 2, 6);
+  const ScaledPetscProblem scaled(bratu);
+  const DistributedProblem distributed(scaled);
+  const std::shared_ptr<const AmbientSpace> space = distributed.space();
+  const int first = space->first_row();
+  const int rows = space->local_rows();
+  const CountedProblem counted(distributed);  // as run_covering wraps it
+  const Domain split_domain = serial_domain.distributed(space);
+  AtlasBuilder split(counted, split_domain, options);
+  CoveringSummary split_summary;
+  split.run(start.x.segment(first, rows), split_summary);
+  ASSERT_TRUE(split_summary.is_complete()) << split_summary.message;
+
+  ASSERT_EQ(split.chart_count(), serial.chart_count());
+  for (int c = 0; c < serial.chart_count(); ++c) {
+    EXPECT_NEAR(split.chart(c).radius, serial.chart(c).radius, 1e-9) << "chart " << c;
+    // The frame: the serial backend's basis whatever border the distributed LU kept.
+    EXPECT_LE(space->frobenius_norm(split.tangent(c) - serial.tangent(c).middleRows(first, rows)),
+              1e-9)
+        << "chart " << c;
+    EXPECT_EQ(split.chart(c).parent, serial.chart(c).parent) << "chart " << c;
+    const Eigen::VectorXd difference = split.center(c) - serial.center(c).segment(first, rows);
+    EXPECT_LE(space->norm(difference), 1e-8) << "chart " << c;
+  }
+  EXPECT_EQ(split_summary.charts, serial_summary.charts);
+  EXPECT_EQ(split_summary.sheet_rejections, serial_summary.sheet_rejections);
+  EXPECT_EQ(split_summary.notes, serial_summary.notes);
+
+  const AtlasTriangulation split_mesh = triangulate(split);
+  EXPECT_TRUE(split_mesh.message.empty()) << split_mesh.message;
+  EXPECT_EQ(split_mesh.mesh.triangles(), serial_mesh.mesh.triangles());
+  EXPECT_EQ(split_mesh.filled_holes, serial_mesh.filled_holes);
+  ASSERT_EQ(split_mesh.mesh.vertex_count(), serial_mesh.mesh.vertex_count());
+  EXPECT_TRUE(split_mesh.mesh.space().is_distributed() == space->is_distributed());
+  EXPECT_EQ(split_mesh.mesh.ambient_dimension(), rows);
+}
+
+}  // namespace
+}  // namespace tessera::petsc
