@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "tessera/core/counted_problem.h"
@@ -21,6 +22,10 @@ namespace tessera::petsc {
 namespace {
 
 using detail::AtlasBuilder;
+
+const DistributedSpace& distributed_space(const AmbientSpace& space) {
+  return dynamic_cast<const DistributedSpace&>(space);
+}
 
 AtlasTriangulation triangulate(AtlasBuilder& builder) {
   AtlasCells cells;
@@ -79,8 +84,16 @@ TEST(DistributedAtlas, SplitChartsAreTheOneProcessCharts) {
   const Domain split_domain = serial_domain.distributed(space);
   AtlasBuilder split(counted, split_domain, options);
   CoveringSummary split_summary;
+  const long reductions_before = distributed_space(*space).reductions();
   split.run(start.x.segment(first, rows), split_summary);
   ASSERT_TRUE(split_summary.is_complete()) << split_summary.message;
+  // The covering logic's collective calls (the solver's own are PETSc's): a few hundred per
+  // chart, each of a few numbers.
+  const double per_chart = static_cast<double>(distributed_space(*space).reductions() -
+                                               reductions_before) /
+                           split.chart_count();
+  RecordProperty("reductions_per_chart", std::to_string(per_chart));
+  EXPECT_LE(per_chart, 400.0);
 
   ASSERT_EQ(split.chart_count(), serial.chart_count());
   for (int c = 0; c < serial.chart_count(); ++c) {

@@ -16,6 +16,7 @@ DistributedSpace::DistributedSpace(MPI_Comm communicator, int dimension, int fir
 }
 
 void DistributedSpace::sum(double* values, int count) const {
+  ++reductions_;
   thread_local std::vector<double> gathered;
   gathered.resize(static_cast<std::size_t>(count) * static_cast<std::size_t>(ranks_));
   MPI_Allgather(values, count, MPI_DOUBLE, gathered.data(), count, MPI_DOUBLE, communicator_);
@@ -29,6 +30,7 @@ void DistributedSpace::sum(double* values, int count) const {
 }
 
 double DistributedSpace::maximum(double value) const {
+  ++reductions_;
   double result = value;
   MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, MPI_MAX, communicator_);  // exact: no rounding
   return result;

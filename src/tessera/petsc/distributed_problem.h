@@ -24,10 +24,14 @@ class DistributedSpace final : public AmbientSpace {
   bool is_distributed() const override { return true; }
   void sum(double* values, int count) const override;
   double maximum(double value) const override;
+  /// Calls of sum and maximum so far (each one collective call): the covering logic's
+  /// communication, next to the solver's own.
+  long reductions() const { return reductions_; }
 
  private:
   MPI_Comm communicator_;
   int ranks_ = 1;
+  mutable long reductions_ = 0;
 };
 
 /// An ImplicitProblem over the local rows of a PetscProblem (which must outlive it).
