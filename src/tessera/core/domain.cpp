@@ -130,6 +130,21 @@ double Domain::signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x
   return distance;
 }
 
+Eigen::MatrixXd Domain::signed_distances(const Eigen::Ref<const Eigen::MatrixXd>& points,
+                                         const std::vector<int>& columns) const {
+  const int K = static_cast<int>(half_spaces_.size());
+  Eigen::MatrixXd distances(K, static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t j = 0; j < columns.size(); ++j) {
+    for (int k = 0; k < K; ++k) {
+      distances(k, static_cast<Eigen::Index>(j)) = local_signed_distance(k, points.col(columns[j]));
+    }
+  }
+  if (space_ && distances.size() > 0) {
+    space_->sum(distances.data(), static_cast<int>(distances.size()));
+  }
+  return distances;
+}
+
 BoundaryDistance Domain::boundary_distance(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   BoundaryDistance result;
   result.signed_distance = std::numeric_limits<double>::infinity();

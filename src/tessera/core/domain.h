@@ -57,6 +57,11 @@ class Domain {
   BoundaryDistance boundary_distance(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   /// Signed distance b_k·(x − p_k) to one bounding hyperplane.
   double signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  /// signed_distance(k, points.col(columns[j])) as entry (k, j) of a K × columns.size() matrix:
+  /// for a distributed domain summed over the ranks in one call, so that a pass over many
+  /// points costs one reduction (in one process the same numbers, face by face).
+  Eigen::MatrixXd signed_distances(const Eigen::Ref<const Eigen::MatrixXd>& points,
+                                   const std::vector<int>& columns) const;
   /// x ∈ S (closed), with a tolerance on the signed distances.
   bool contains(const Eigen::Ref<const Eigen::VectorXd>& x, double tolerance = 0.0) const;
   /// Whether the segment from x to y passes through the interior of S, by more than

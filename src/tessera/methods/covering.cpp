@@ -4,9 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
 #include <new>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/describe.h"
@@ -83,34 +86,76 @@ bool clip(const CoveringContext& context, const CoveringOptions& options, Coveri
 // from one face to the opposite one, and a missing row of triangles there cuts the mesh in two
 // with every boundary vertex on ∂S (seen on bvp:points=1000). Anything else is a hole in the
 // covering, reported with its place.
+//
+// A split mesh (each rank its rows of every vertex, the domain cut to them) measures in two
+// reductions: the endpoints' distances to the faces, then the angles between the faces that
+// the endpoints lie on; the verdict is taken on those sums, the same on every rank.
 void check_coverage(const Domain& domain, double step, CoveringResult& result) {
   if (!result.summary.is_complete() || result.mesh.triangle_count() == 0) {
     return;
   }
   const TriangleMesh& mesh = result.mesh;
+  const AmbientSpace& space = mesh.space();
   const MeshTopology topology(mesh);
   const double tolerance = 1e-6 * (1.0 + step);
   const int faces = domain.is_unbounded() ? 0 : static_cast<int>(domain.half_spaces().size());
-  for (int e : topology.boundary_edges()) {
-    const int v = topology.edge(e)[0];
-    const int w = topology.edge(e)[1];
+  const std::vector<int>& boundary = topology.boundary_edges();
+  // 1. Every boundary vertex's distance to every face (entry (k, 2i + j): endpoint j of the
+  //    boundary edge i).
+  std::vector<int> endpoints;
+  endpoints.reserve(2 * boundary.size());
+  for (int e : boundary) {
+    endpoints.push_back(topology.edge(e)[0]);
+    endpoints.push_back(topology.edge(e)[1]);
+  }
+  const Eigen::MatrixXd distance =
+      faces > 0 ? domain.signed_distances(mesh.points(), endpoints) : Eigen::MatrixXd();
+  const auto is_on = [&](int k, std::size_t i, int j) {
+    return std::abs(distance(k, static_cast<Eigen::Index>(2 * i + j))) <= tolerance;
+  };
+  // 2. For each pair of faces (k, l) that some edge's ends lie on, b_k·b_l and ‖b_k‖², ‖b_l‖².
+  std::map<std::pair<int, int>, int> pair_index;
+  for (std::size_t i = 0; i < boundary.size(); ++i) {
+    for (int k = 0; k < faces; ++k) {
+      for (int l = 0; l < faces && is_on(k, i, 0); ++l) {
+        if (is_on(l, i, 1)) {
+          pair_index.emplace(std::make_pair(k, l), 0);
+          pair_index.emplace(std::make_pair(k, k), 0);
+          pair_index.emplace(std::make_pair(l, l), 0);
+        }
+      }
+    }
+  }
+  std::vector<double> products;
+  for (auto& [pair, index] : pair_index) {
+    index = static_cast<int>(products.size());
+    const Eigen::VectorXd& nk = domain.half_spaces()[pair.first].normal;
+    const Eigen::VectorXd& nl = domain.half_spaces()[pair.second].normal;
+    // ‖b‖² as squaredNorm: its root is b.norm() to the bit, in one process.
+    products.push_back(pair.first == pair.second ? nk.squaredNorm() : nk.dot(nl));
+  }
+  if (!products.empty()) {
+    space.sum(products.data(), static_cast<int>(products.size()));
+  }
+  const auto product = [&](int k, int l) { return products[pair_index.at({k, l})]; };
+  for (std::size_t i = 0; i < boundary.size(); ++i) {
     // Never on two opposite faces (normals more than 120° apart).
     bool on_boundary = false;
     for (int k = 0; k < faces && !on_boundary; ++k) {
-      if (std::abs(domain.signed_distance(k, mesh.point(v))) > tolerance) {
+      if (!is_on(k, i, 0)) {
         continue;
       }
       for (int l = 0; l < faces && !on_boundary; ++l) {
-        const Eigen::VectorXd& nk = domain.half_spaces()[k].normal;
-        const Eigen::VectorXd& nl = domain.half_spaces()[l].normal;
-        on_boundary = std::abs(domain.signed_distance(l, mesh.point(w))) <= tolerance &&
-                      nk.dot(nl) > -0.5 * nk.norm() * nl.norm();
+        on_boundary = is_on(l, i, 1) && product(k, l) > -0.5 * std::sqrt(product(k, k)) *
+                                                           std::sqrt(product(l, l));
       }
     }
     if (!on_boundary) {
+      const int v = topology.edge(boundary[i])[0];
+      const int w = topology.edge(boundary[i])[1];
       fail(result.summary, CoveringTermination::TriangulationFailed,
-           "the mesh has a hole: its boundary edge from " + describe_point(mesh.point(v)) + " to " +
-               describe_point(mesh.point(w)) +
+           "the mesh has a hole: its boundary edge from " + describe_point(mesh.point(v), space) +
+               " to " + describe_point(mesh.point(w), space) +
                (domain.is_unbounded() ? " lies on M, which is closed"
                                       : " does not lie on one face of the domain"));
       return;
@@ -133,6 +178,10 @@ void check_coverage(const Domain& domain, double step, CoveringResult& result) {
 // triangle whose corners are all farther than d from the face, and under which M crosses the
 // face, is at least d from M there, which refinement to the tolerance does not leave. Without
 // a tolerance, the Euler characteristic, where known, catches a hole covered over.
+//
+// A split mesh measures the vertices' distances to the faces, their norms and the triangles'
+// edges first, in two reductions, and decides on those sums; only the centroids that qualify
+// are projected (collective calls, the same on every rank).
 void check_holes_covered_over(const ImplicitProblem& problem, const Domain& domain,
                               double snap_distance, double tolerance,
                               const CorrectorOptions& corrector, CoveringResult& result) {
@@ -146,20 +195,46 @@ void check_holes_covered_over(const ImplicitProblem& problem, const Domain& doma
     snap_distance = std::min(snap_distance, 2.0 * tolerance);
   }
   const TriangleMesh& mesh = result.mesh;
+  const AmbientSpace& space = mesh.space();
   const int faces = static_cast<int>(domain.half_spaces().size());
+  const int vertex_count = mesh.vertex_count();
+  const int triangle_count = mesh.triangle_count();
+  // Every vertex's distance to every face; then every vertex's ‖x‖² and every triangle's
+  // squared edges (their roots are Eigen's norms to the bit, in one process).
+  std::vector<int> vertices(static_cast<std::size_t>(vertex_count));
+  for (int v = 0; v < vertex_count; ++v) {
+    vertices[static_cast<std::size_t>(v)] = v;
+  }
+  const Eigen::MatrixXd distance = domain.signed_distances(mesh.points(), vertices);
+  std::vector<double> squared(static_cast<std::size_t>(vertex_count + 3 * triangle_count));
+  for (int v = 0; v < vertex_count; ++v) {
+    squared[static_cast<std::size_t>(v)] = mesh.point(v).squaredNorm();
+  }
+  for (int t = 0; t < triangle_count; ++t) {
+    const Triangle& tri = mesh.triangle(t);
+    for (int r = 0; r < 3; ++r) {
+      squared[static_cast<std::size_t>(vertex_count + 3 * t + r)] =
+          (mesh.point(tri[r]) - mesh.point(tri[(r + 1) % 3])).squaredNorm();
+    }
+  }
+  if (!squared.empty()) {
+    space.sum(squared.data(), static_cast<int>(squared.size()));
+  }
   FactorisationCache factorisations(8, std::size_t{64} << 20);
-  for (const Triangle& t : mesh.triangles()) {
+  for (int index = 0; index < triangle_count; ++index) {
+    const Triangle& t = mesh.triangle(index);
     double longest = 0.0;
     for (int r = 0; r < 3; ++r) {
-      longest = std::max(longest, (mesh.point(t[r]) - mesh.point(t[(r + 1) % 3])).norm());
+      longest = std::max(
+          longest, std::sqrt(squared[static_cast<std::size_t>(vertex_count + 3 * index + r)]));
     }
     for (int k = 0; k < faces; ++k) {
       int nearest = -1;
       double smallest = std::numeric_limits<double>::infinity();
       bool inside = true;
       for (int v : t) {
-        const double d = domain.signed_distance(k, mesh.point(v));
-        inside = inside && d > 1e-9 * (1.0 + mesh.point(v).norm());
+        const double d = distance(k, v);
+        inside = inside && d > 1e-9 * (1.0 + std::sqrt(squared[static_cast<std::size_t>(v)]));
         if (d < smallest) {
           smallest = d;
           nearest = v;
@@ -185,10 +260,11 @@ void check_holes_covered_over(const ImplicitProblem& problem, const Domain& doma
       if (beyond > 1e-3 * longest) {
         std::ostringstream message;
         message << "the mesh covers a part of M outside the domain: the triangle with corners "
-                << describe_point(mesh.point(t[0])) << ", " << describe_point(mesh.point(t[1]))
-                << ", " << describe_point(mesh.point(t[2])) << " lies inside the face '"
+                << describe_point(mesh.point(t[0]), space) << ", "
+                << describe_point(mesh.point(t[1]), space) << ", "
+                << describe_point(mesh.point(t[2]), space) << " lies inside the face '"
                 << domain.half_spaces()[k].label << "', but M under it reaches "
-                << describe_point(x) << ", " << beyond
+                << describe_point(x, space) << ", " << beyond
                 << " beyond it (M ∩ S has a hole there smaller than the triangle; try a "
                    "smaller step)";
         fail(result.summary, CoveringTermination::TriangulationFailed, message.str());
@@ -202,6 +278,15 @@ void check_holes_covered_over(const ImplicitProblem& problem, const Domain& doma
 // repair change triangles, and a patch depends only on its triangle's vertices and tangent
 // planes (Hohmann eq. 3.5), so patches of neighbours still share their edge curves.
 void rebuild_patches(const ImplicitProblem& problem, CoveringResult& result) {
+  if (problem.space()->is_distributed()) {
+    // A patch's control points are n-vectors and its interpolation reduces them with Eigen
+    // directly: on a split mesh each rank would build a patch of its own rows alone. The
+    // patches belong to the bezier method, which does not run split; the mesh stands without.
+    result.patches.clear();
+    result.summary.notes.push_back(
+        "no cubic patches: the problem is distributed, and patches are built in one process only");
+    return;
+  }
   const TriangleMesh& mesh = result.mesh;
   std::vector<Eigen::MatrixXd> tangents(mesh.vertex_count());
   Linearization linearization;
@@ -233,7 +318,7 @@ std::string describe_triangle(const TriangleMesh& mesh, int t) {
   const Triangle& triangle = mesh.triangle(t);
   const Eigen::VectorXd centroid =
       (mesh.point(triangle[0]) + mesh.point(triangle[1]) + mesh.point(triangle[2])) / 3.0;
-  return "near " + describe_point(centroid);
+  return "near " + describe_point(centroid, mesh.space());
 }
 
 // Step 7: geometric validation. Flipped and overlapping triangles are first repaired locally
@@ -387,30 +472,69 @@ void unscale(const Eigen::VectorXd& weights, CoveringResult& result) {
 CoveringResult run_covering(const std::string& method, const ImplicitProblem& user_problem,
                             const Eigen::VectorXd& user_start, const Domain& user_domain,
                             const CoveringOptions& options, const CoveringBuild& build) {
-  // 1. Input.
+  // 1. Input. A distributed problem (SPMD, docs/cluster.md) runs on this rank's rows: the start
+  //    and the mesh hold them, the domain is cut to them, and every rank runs this skeleton
+  //    alike.
   options.validate_common(method.c_str());
   const int n = user_problem.ambient_dimension();
-  TESSERA_CHECK(user_domain.is_unbounded() || user_domain.ambient_dimension() == n,
-                "domain is in R^" << user_domain.ambient_dimension()
-                                  << " but the problem is in R^" << n);
-  TESSERA_CHECK(user_start.size() == n,
-                "start point has " << user_start.size() << " coordinates, the problem n = " << n);
+  const std::shared_ptr<const AmbientSpace> space = user_problem.space();
+  const bool is_distributed = space->is_distributed();
+  const int rows = space->local_rows();
+  if (is_distributed) {
+    TESSERA_CHECK(user_domain.is_unbounded() ||
+                      (user_domain.is_distributed() ? user_domain.ambient_dimension() == rows
+                                                    : user_domain.ambient_dimension() == n),
+                  "domain has " << user_domain.ambient_dimension() << " rows, but the problem '"
+                                << user_problem.name() << "' is distributed: give its domain in R^"
+                                << n << " or this rank's " << rows << " rows of it "
+                                << "(Domain::distributed)");
+    TESSERA_CHECK(user_start.size() == rows,
+                  "start point has " << user_start.size() << " rows here, but the problem '"
+                                     << user_problem.name() << "' is distributed and holds "
+                                     << rows << " of its n = " << n << " on this rank");
+    // Its metric is its own business (petsc::ScaledPetscProblem presents the metric's
+    // coordinates): ScaledProblem cannot scale rows it does not hold.
+    TESSERA_CHECK(metric_weights(user_problem).size() == 0,
+                  "the distributed problem '" << user_problem.name()
+                      << "' has a metric; work in the metric's coordinates "
+                         "(petsc::ScaledPetscProblem) and give the start and the domain in them");
+  } else {
+    TESSERA_CHECK(user_domain.is_unbounded() || user_domain.ambient_dimension() == n,
+                  "domain is in R^" << user_domain.ambient_dimension()
+                                    << " but the problem is in R^" << n);
+    TESSERA_CHECK(user_start.size() == n,
+                  "start point has " << user_start.size() << " coordinates, the problem n = " << n);
+  }
   const auto clock_start = std::chrono::steady_clock::now();
   // 2. The problem's metric (CoordinateBlock): the methods cover M̃ = W M in y = W x, so that
   //    steps, radii, the tolerance and every distance are lengths in the metric, and counting.
-  const Eigen::VectorXd weights = metric_weights(user_problem);
+  //    (A distributed problem has none, checked above.)
+  const Eigen::VectorXd weights = is_distributed ? Eigen::VectorXd() : metric_weights(user_problem);
   const bool is_weighted = weights.size() > 0;
   std::optional<ScaledProblem> scaled;
   if (is_weighted) {
     scaled.emplace(user_problem, weights);
   }
-  const Domain scaled_domain = is_weighted ? scale_domain(user_domain, weights) : Domain();
-  const Domain& domain = is_weighted ? scaled_domain : user_domain;
+  // A distributed problem's domain given in R^n is cut to this rank's rows.
+  const bool cuts_domain =
+      is_distributed && !user_domain.is_unbounded() && !user_domain.is_distributed();
+  const Domain converted_domain = is_weighted  ? scale_domain(user_domain, weights)
+                               : cuts_domain ? user_domain.distributed(space)
+                                             : Domain();
+  const Domain& domain = is_weighted || cuts_domain ? converted_domain : user_domain;
   const Eigen::VectorXd start = is_weighted ? weights.cwiseProduct(user_start) : user_start;
   const CountedProblem problem(is_weighted ? static_cast<const ImplicitProblem&>(*scaled)
                                            : user_problem);
+  // The result's mesh: this rank's rows of its points for a distributed problem.
+  const auto empty_mesh = [&] {
+    TriangleMesh mesh(rows);
+    if (is_distributed) {
+      mesh.set_space(space);
+    }
+    return mesh;
+  };
   CoveringResult result;
-  result.mesh = TriangleMesh(n);
+  result.mesh = empty_mesh();
   CoveringSummary& summary = result.summary;
   // Each step's work is the counters' growth since the last step ended.
   std::vector<PhaseWork> phases;
@@ -471,7 +595,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
       if (clipped && !refusal.empty() && context.retry_if_clipping_fails) {
         context.attempt = 1;
         result = CoveringResult();
-        result.mesh = TriangleMesh(n);
+        result.mesh = empty_mesh();
         summary.method = method;
         build(context, result);
         clip(context, options, result, refusal);
@@ -508,7 +632,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
     end_phase("clip");
   } catch (const std::bad_alloc&) {
     // Whatever the build held is gone; the summary still says what happened.
-    result.mesh = TriangleMesh(n);
+    result.mesh = empty_mesh();
     result.patches.clear();
     fail(summary, CoveringTermination::ProjectionFailed,
          "out of memory (n = " + std::to_string(n) +
@@ -549,7 +673,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
       message << refined.remaining << " triangle(s) are still farther than the tolerance "
               << options.tolerance << " from M after " << refined.rounds
               << " rounds of bisection; the farthest sample, " << refined.max_distance
-              << " from M, is at " << describe_point(refined.worst_point);
+              << " from M, is at " << describe_point(refined.worst_point, *space);
       fail(summary, CoveringTermination::ProjectionFailed, message.str());
     }
     end_phase("refine");

@@ -85,6 +85,13 @@ using CoveringBuild = std::function<void(CoveringContext& context, CoveringResul
 /// \return a valid mesh whatever the termination; summary.message says where and why a run
 ///         that is not Completed stopped.
 /// \throw InvalidArgument for bad options or sizes.
+///
+/// A distributed problem (SPMD, docs/cluster.md) runs on this rank's rows: `start` holds them
+/// (problem.space()->local_rows()), `domain` is given in R^n or already cut to them
+/// (Domain::distributed), the mesh returned holds them (TriangleMesh::set_space), and every
+/// rank calls this alike. Such a problem presents its metric's coordinates itself
+/// (petsc::ScaledPetscProblem): one with a metric left is refused, not scaled a second time.
+/// Cubic patches are not built for it (a note says so).
 CoveringResult run_covering(const std::string& method, const ImplicitProblem& problem,
                             const Eigen::VectorXd& start, const Domain& domain,
                             const CoveringOptions& options, const CoveringBuild& build);

@@ -16,7 +16,9 @@ struct StartPoint {
   CorrectorSummary corrector;
 };
 
-/// Projects `guess` onto M with full Gauss–Newton (minimum-norm steps).
+/// Projects `guess` onto M with full Gauss–Newton (minimum-norm steps). For a distributed
+/// problem `guess` and the point found are this rank's rows, `domain` holds the same rows
+/// (Domain::distributed), and every rank calls this alike.
 /// \throw ComputationFailed with a message naming the guess and the reason when F is not finite
 ///        there, DF loses rank, the iteration does not converge, the projection moves farther
 ///        than `max_distance`, or the projected point lies outside `domain`.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "tessera/core/describe.h"
 #include "tessera/core/linearization.h"
@@ -23,9 +24,14 @@ double orient(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::V
 
 // Triangulates one hole: `loop` lists its vertices with the hole on the left (the orientation
 // of the triangles that filled it). Appends the new triangles, or returns a reason.
+//
+// A split mesh (each rank its rows of every vertex) takes the tangent coordinates of all the
+// vertices involved, and the lengths of all sides and diagonals of the hole, in one reduction
+// each; every decision is then taken on those sums, the same on every rank.
 std::string fill_hole(const ImplicitProblem& problem, const TriangleMesh& mesh,
                       const std::vector<int>& loop, const std::vector<Triangle>& outside_triangles,
                       std::vector<Triangle>& triangles) {
+  const AmbientSpace& space = mesh.space();
   const int k = static_cast<int>(loop.size());
   const int n = mesh.ambient_dimension();
   Eigen::VectorXd center = Eigen::VectorXd::Zero(n);
@@ -33,26 +39,44 @@ std::string fill_hole(const ImplicitProblem& problem, const TriangleMesh& mesh,
     center += mesh.point(v);
   }
   center /= k;
-  const std::string where = "the hole around " + describe_point(center);
+  // Only on failure (its coordinates are gathered from the ranks of a split mesh).
+  const auto where = [&] { return "the hole around " + describe_point(center, space); };
   Linearization linearization;
   Eigen::VectorXd on_m = center;
   if (!project_onto_manifold(problem, on_m, linearization) ||
       !linearization.factor(problem, on_m)) {
-    return where + " has no tangent plane: its centre could not be projected onto M";
+    return where() + " has no tangent plane: its centre could not be projected onto M";
   }
   const Eigen::MatrixXd& T = linearization.tangent_basis();
-  auto plane = [&](int v) -> Eigen::Vector2d { return T.transpose() * (mesh.point(v) - on_m); };
+  // The tangent coordinates of the loop's vertices and of the triangles around it, in that
+  // order (the triangles' corners may repeat loop vertices: a few columns more, no search).
+  const int around = static_cast<int>(outside_triangles.size());
+  Eigen::Matrix2Xd coordinates(2, k + 3 * around);
+  const auto project = [&](int column, int v) {
+    const Eigen::Vector2d q = T.transpose() * (mesh.point(v) - on_m);
+    coordinates.col(column) = q;
+  };
+  for (int i = 0; i < k; ++i) {
+    project(i, loop[i]);
+  }
+  for (int j = 0; j < around; ++j) {
+    for (int r = 0; r < 3; ++r) {
+      project(k + 3 * j + r, outside_triangles[j][r]);
+    }
+  }
+  space.sum(coordinates.data(), static_cast<int>(coordinates.size()));
   // M's orientation as the mesh sees it, from the triangles around the hole.
   double sense = 0.0;
-  for (const Triangle& t : outside_triangles) {
-    sense += orient(plane(t[0]), plane(t[1]), plane(t[2]));
+  for (int j = 0; j < around; ++j) {
+    sense += orient(coordinates.col(k + 3 * j), coordinates.col(k + 3 * j + 1),
+                    coordinates.col(k + 3 * j + 2));
   }
   if (sense == 0.0) {
-    return where + " has no oriented triangle around it";
+    return where() + " has no oriented triangle around it";
   }
   std::vector<Eigen::Vector2d> p(k);
   for (int i = 0; i < k; ++i) {
-    p[i] = plane(loop[i]);
+    p[i] = coordinates.col(i);
     if (sense < 0) {
       p[i].y() = -p[i].y();
     }
@@ -62,8 +86,30 @@ std::string fill_hole(const ImplicitProblem& problem, const TriangleMesh& mesh,
     area += cross(p[i], p[(i + 1) % k]);
   }
   if (area <= 0) {
-    return where + " folds over itself in M's tangent plane";
+    return where() + " folds over itself in M's tangent plane";
   }
+  // |loop[i] − loop[j]|² for i < j: every side an ear can have (sum_index(i, j)).
+  std::vector<double> squared(static_cast<std::size_t>(k) * (k - 1) / 2);
+  const auto sum_index = [&](int i, int j) {
+    if (i > j) {
+      std::swap(i, j);
+    }
+    return static_cast<std::size_t>(i) * (2 * k - i - 1) / 2 + (j - i - 1);
+  };
+  for (int i = 0; i < k; ++i) {
+    for (int j = i + 1; j < k; ++j) {
+      squared[sum_index(i, j)] = (mesh.point(loop[j]) - mesh.point(loop[i])).squaredNorm();
+    }
+  }
+  if (!squared.empty()) {
+    space.sum(squared.data(), static_cast<int>(squared.size()));
+  }
+  // min_angle of the triangle of loop vertices a, b, c (the same numbers, to the bit).
+  const auto ear_angle = [&](int a, int b, int c) {
+    return min_angle_of_sides(std::sqrt(squared[sum_index(a, b)]),
+                              std::sqrt(squared[sum_index(b, c)]),
+                              std::sqrt(squared[sum_index(c, a)]));
+  };
   // Ear clipping, the ear of largest smallest angle (measured in R^n) first.
   std::vector<int> polygon(k);
   for (int i = 0; i < k; ++i) {
@@ -90,21 +136,21 @@ std::string fill_hole(const ImplicitProblem& problem, const TriangleMesh& mesh,
       if (!empty) {
         continue;
       }
-      const double angle = min_angle(mesh, {loop[a], loop[b], loop[c]});
+      const double angle = ear_angle(a, b, c);
       if (angle > best_angle) {
         best_angle = angle;
         best = i;
       }
     }
     if (best < 0) {
-      return where + " is not a simple polygon in M's tangent plane";
+      return where() + " is not a simple polygon in M's tangent plane";
     }
     triangles.push_back(
         {loop[polygon[(best + m - 1) % m]], loop[polygon[best]], loop[polygon[(best + 1) % m]]});
     polygon.erase(polygon.begin() + best);
   }
   if (orient(p[polygon[0]], p[polygon[1]], p[polygon[2]]) <= tiny) {
-    return where + " leaves a flat last triangle";
+    return where() + " leaves a flat last triangle";
   }
   triangles.push_back({loop[polygon[0]], loop[polygon[1]], loop[polygon[2]]});
   return {};
@@ -115,6 +161,7 @@ std::string fill_hole(const ImplicitProblem& problem, const TriangleMesh& mesh,
 LocalRepair repair_locally(const ImplicitProblem& problem, TriangleMesh& mesh,
                            const std::vector<int>& defective, int rings) {
   LocalRepair repair;
+  check_mesh_of_problem(mesh, problem, "repair_locally");
   const int vertex_count = mesh.vertex_count();
   const int triangle_count = mesh.triangle_count();
   std::vector<std::vector<int>> fan(vertex_count);
@@ -164,7 +211,7 @@ LocalRepair repair_locally(const ImplicitProblem& problem, TriangleMesh& mesh,
       center += (mesh.point(t[0]) + mesh.point(t[1]) + mesh.point(t[2])) / (3.0 * part.size());
     }
     if (disk.boundary_loop_count() != 1 || disk.euler_characteristic() != 1) {
-      repair.message = "the defective triangles near " + describe_point(center) +
+      repair.message = "the defective triangles near " + describe_point(center, mesh.space()) +
                        " and their neighbours do not form a disk";
       return repair;
     }
@@ -173,7 +220,8 @@ LocalRepair repair_locally(const ImplicitProblem& problem, TriangleMesh& mesh,
     std::vector<int> sorted = loop;
     std::sort(sorted.begin(), sorted.end());
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end() || loop.size() < 3) {
-      repair.message = "the hole near " + describe_point(center) + " touches itself";
+      repair.message =
+          "the hole near " + describe_point(center, mesh.space()) + " touches itself";
       return repair;
     }
     // The triangles outside the region along its boundary tell M's orientation.

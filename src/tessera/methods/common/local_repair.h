@@ -30,6 +30,11 @@ struct LocalRepair {
 /// plane) the mesh is left unchanged and `message` says where. Interior points are not added:
 /// the new triangles may be larger than the removed ones, so the caller checks the distance
 /// bound and validity again.
+///
+/// A split mesh of a distributed problem (TriangleMesh::set_space) is repaired as in one
+/// process: each hole's tangent coordinates and side lengths are summed over the ranks at once,
+/// and the message's coordinates are gathered. \throw InvalidArgument if the mesh does not
+/// hold the problem's rows (check_mesh_of_problem).
 LocalRepair repair_locally(const ImplicitProblem& problem, TriangleMesh& mesh,
                            const std::vector<int>& defective, int rings = 1);
 

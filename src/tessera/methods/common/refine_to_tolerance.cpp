@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "tessera/core/error.h"
 #include "tessera/core/factorisation_cache.h"
 #include "tessera/core/linearization.h"
 #include "tessera/geometry/mesh_quality.h"
@@ -31,16 +34,75 @@ std::uint64_t edge_key(int a, int b) {
 }
 
 // The faces of the domain both endpoints lie on: the edge runs along their intersection.
-std::vector<int> shared_faces(const Domain& domain, const Eigen::VectorXd& a,
-                              const Eigen::VectorXd& b, double tolerance) {
+// `distance_a`, `distance_b`: every face's signed distance of the endpoints (Domain::
+// signed_distances, measured for all edges of a round at once).
+std::vector<int> shared_faces(const Eigen::Ref<const Eigen::VectorXd>& distance_a,
+                              const Eigen::Ref<const Eigen::VectorXd>& distance_b,
+                              double tolerance) {
   std::vector<int> faces;
-  for (int k = 0; k < static_cast<int>(domain.half_spaces().size()); ++k) {
-    if (std::abs(domain.signed_distance(k, a)) <= tolerance &&
-        std::abs(domain.signed_distance(k, b)) <= tolerance) {
+  for (int k = 0; k < static_cast<int>(distance_a.size()); ++k) {
+    if (std::abs(distance_a(k)) <= tolerance && std::abs(distance_b(k)) <= tolerance) {
       faces.push_back(k);
     }
   }
   return faces;
+}
+
+// Squared distances between pairs of mesh vertices, measured in one pass: each rank's partial
+// sums, then one reduction for all (in one process, (q − p).squaredNorm() as before, whose root
+// is (q − p).norm() to the bit).
+class PairLengths {
+ public:
+  int add(int p, int q) {
+    pairs_.emplace_back(p, q);
+    return static_cast<int>(pairs_.size()) - 1;
+  }
+  void measure(const TriangleMesh& mesh) {
+    squared_.resize(pairs_.size());
+    for (std::size_t i = 0; i < pairs_.size(); ++i) {
+      squared_[i] = (mesh.point(pairs_[i].second) - mesh.point(pairs_[i].first)).squaredNorm();
+    }
+    if (!squared_.empty()) {
+      mesh.space().sum(squared_.data(), static_cast<int>(squared_.size()));
+    }
+  }
+  double length(int i) const { return std::sqrt(squared_[static_cast<std::size_t>(i)]); }
+  /// The smallest angle of the triangle whose sides are the pairs i, j, k (min_angle).
+  double min_angle(int i, int j, int k) const {
+    return min_angle_of_sides(length(i), length(j), length(k));
+  }
+
+ private:
+  std::vector<std::pair<int, int>> pairs_;
+  std::vector<double> squared_;
+};
+
+// A triangle (a, b, c)'s Gram numbers: |b − a|², |c − a|², (b − a)·(c − a), and |c − b|² (for
+// its third edge's length to the bit).
+using Gram = std::array<double, 4>;
+
+// The Gram numbers of the triangles `which`, summed over the ranks at once, in `gram` (indexed by
+// triangle). In one process the expressions the samples used before, to the bit.
+void measure_gram(const TriangleMesh& mesh, const std::vector<int>& which,
+                  std::vector<Gram>& gram) {
+  gram.assign(static_cast<std::size_t>(mesh.triangle_count()), Gram{});
+  std::vector<double> values(4 * which.size());
+  for (std::size_t i = 0; i < which.size(); ++i) {
+    const Triangle& tri = mesh.triangle(which[i]);
+    const Eigen::VectorXd ab = mesh.point(tri[1]) - mesh.point(tri[0]);
+    const Eigen::VectorXd ac = mesh.point(tri[2]) - mesh.point(tri[0]);
+    values[4 * i] = ab.squaredNorm();
+    values[4 * i + 1] = ac.squaredNorm();
+    values[4 * i + 2] = ab.dot(ac);
+    values[4 * i + 3] = (mesh.point(tri[1]) - mesh.point(tri[2])).squaredNorm();
+  }
+  if (!values.empty()) {
+    mesh.space().sum(values.data(), static_cast<int>(values.size()));
+  }
+  for (std::size_t i = 0; i < which.size(); ++i) {
+    gram[static_cast<std::size_t>(which[i])] = {values[4 * i], values[4 * i + 1],
+                                                 values[4 * i + 2], values[4 * i + 3]};
+  }
 }
 
 // The triangles `candidates` in an order that lets few factorisations serve them all: each is
@@ -125,6 +187,15 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
                                         TriangleMesh& mesh, std::vector<int> candidates,
                                         const ToleranceRefinementOptions& options) {
   ToleranceRefinement summary;
+  check_mesh_of_problem(mesh, problem, "refine_to_tolerance");
+  TESSERA_CHECK(domain.is_unbounded() || domain.ambient_dimension() == mesh.ambient_dimension(),
+                "refine_to_tolerance: the domain's normals have " << domain.ambient_dimension()
+                    << " rows, the mesh's points " << mesh.ambient_dimension()
+                    << " (a split mesh needs Domain::distributed)");
+  // A split mesh (each rank its rows of every vertex) measures through its space: every
+  // decision below is taken on sums over the ranks, the same on every rank. In one process
+  // these are Eigen's own expressions.
+  const AmbientSpace& space = mesh.space();
   if (candidates.empty()) {
     for (int t = 0; t < mesh.triangle_count(); ++t) {
       candidates.push_back(t);
@@ -194,14 +265,24 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     if (!project_patiently(x)) {
       return std::numeric_limits<double>::infinity();
     }
-    return (x - point).norm();
+    return space.distance(x, point);
+  };
+  // Each rank's stop request is its own: the ranks stop together if any asks.
+  const auto is_stop_requested = [&] {
+    if (!options.stop_requested) {
+      return false;
+    }
+    const bool stop = options.stop_requested();
+    return space.is_distributed() ? space.maximum(stop ? 1.0 : 0.0) > 0.0 : stop;
   };
   // An edge's midpoint is sampled once for both triangles that share it (vertices never move,
   // so the distance stays valid across rounds).
   std::unordered_map<std::uint64_t, double> midpoint_distance;
-  // The largest sampled distance of triangle t to M, and where it is.
+  // The largest sampled distance of triangle t to M, and where it is. `gram` holds the Gram
+  // numbers of the triangles sampled (measure_gram, one reduction per pass).
   Eigen::VectorXd where;
   Eigen::MatrixXd samples;
+  std::vector<Gram> gram;
   auto sample = [&](int anchor, int t) {
     const Triangle tri = mesh.triangle(t);
     const Eigen::VectorXd a = mesh.point(tri[0]);
@@ -228,14 +309,15 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       }
     }
     bool has_circumcentre = false;
-    const Eigen::VectorXd ab = b - a;
-    const Eigen::VectorXd ac = c - a;
-    const double uu = ab.squaredNorm(), ww = ac.squaredNorm(), uw = ab.dot(ac);
+    const Gram& g = gram[static_cast<std::size_t>(t)];
+    const double uu = g[0], ww = g[1], uw = g[2];
     const double det = 2.0 * (uu * ww - uw * uw);
     if (det > 0) {
       const double beta = ww * (uu - uw) / det;
       const double gamma = uu * (ww - uw) / det;
       if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) {
+        const Eigen::VectorXd ab = b - a;
+        const Eigen::VectorXd ac = c - a;
         samples.col(count++) = a + beta * ab + gamma * ac;
         has_circumcentre = true;
       }
@@ -290,12 +372,14 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
        ++summary.rounds) {
     // 1. Which edges to split: the longest edge of every candidate that is too far from M.
     std::unordered_map<std::uint64_t, int> midpoint_of;  // edge → new vertex
-    std::vector<std::pair<int, int>> to_split;
+    // The edges to split, each with its length.
+    std::vector<std::pair<std::pair<int, int>, double>> to_split;
     std::vector<std::uint8_t> is_far(mesh.triangle_count(), 0);
+    measure_gram(mesh, candidates, gram);
     for (const auto& [anchor, t] : anchored(mesh, candidates, rings)) {
       // Checked here only, where nothing of the round has changed the mesh yet: at large n
       // the samples are minutes of chord steps, and a stopped run wants its mesh now.
-      if (options.stop_requested && options.stop_requested()) {
+      if (is_stop_requested()) {
         summary.interrupted = true;
         break;
       }
@@ -308,8 +392,10 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       is_far[t] = 1;
       int longest = 0;
       double length = -1.0;
+      const Gram& g = gram[static_cast<std::size_t>(t)];
+      const std::array<double, 3> squared = {g[0], g[3], g[1]};  // edges ab, bc, ca
       for (int e = 0; e < 3; ++e) {
-        const double l = (mesh.point(tri[e]) - mesh.point(tri[(e + 1) % 3])).norm();
+        const double l = std::sqrt(squared[static_cast<std::size_t>(e)]);
         if (l > length) {
           length = l;
           longest = e;
@@ -318,7 +404,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const int u = tri[longest];
       const int v = tri[(longest + 1) % 3];
       if (!unsplittable.contains(edge_key(u, v)) && midpoint_of.emplace(edge_key(u, v), -1).second) {
-        to_split.emplace_back(u, v);
+        to_split.push_back({{u, v}, length});
       }
     }
     if (summary.interrupted) {
@@ -338,13 +424,24 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     }
     // 2. The new vertices: midpoints projected onto M (∩ the faces the edge lies on).
     std::sort(to_split.begin(), to_split.end());
+    // The endpoints' distances to the faces, all at once.
+    std::vector<int> endpoints;
+    endpoints.reserve(2 * to_split.size());
+    for (const auto& [edge, length] : to_split) {
+      endpoints.push_back(edge.first);
+      endpoints.push_back(edge.second);
+    }
+    const Eigen::MatrixXd face_distance = domain.signed_distances(mesh.points(), endpoints);
     int made = 0;
-    for (const auto& [u, v] : to_split) {
+    for (std::size_t i = 0; i < to_split.size(); ++i) {
+      const auto [u, v] = to_split[i].first;
+      const double length = to_split[i].second;
       const Eigen::VectorXd a = mesh.point(u);
       const Eigen::VectorXd b = mesh.point(v);
       Eigen::VectorXd x = 0.5 * (a + b);
-      const double length = (a - b).norm();
-      const std::vector<int> faces = shared_faces(domain, a, b, options.face_tolerance);
+      const auto column = static_cast<Eigen::Index>(2 * i);
+      const std::vector<int> faces = shared_faces(
+          face_distance.col(column), face_distance.col(column + 1), options.face_tolerance);
       bool projected = false;
       if (faces.empty()) {
         // Sparse problems: the chord frozen at an endpoint first (the pairs are sorted, so one
@@ -359,10 +456,10 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
         }
         projected = is_sparse && frozen_ok &&
                     project_chord(problem, frozen, x, options.corrector).is_success() &&
-                    (x - start).norm() <= length;
+                    space.distance(x, start) <= length;
         if (!projected) {
           x = start;
-          projected = project_patiently(x) && (x - start).norm() <= length;
+          projected = project_patiently(x) && space.distance(x, start) <= length;
         }
       } else {
         projected = faces.size() <= 2 &&
@@ -380,21 +477,55 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       break;
     }
     // 3. Every triangle with split edges is subdivided; the new triangles are the next
-    //    round's candidates.
+    //    round's candidates. A triangle with two split edges leaves a quadrilateral, cut by
+    //    its diagonal of larger smallest angle: the sides of all of them are measured first,
+    //    in one pass (one reduction for a split mesh).
     std::vector<Triangle> triangles = mesh.triangles();
+    struct Subdivision {
+      std::array<int, 3> mid{-1, -1, -1};  // the new vertex on edge e, −1 if not split
+      int count = 0;                        // split edges
+      std::array<int, 4> quad{};            // count == 2: the quadrilateral q0 q1 q2 q3
+      std::array<int, 6> sides{};           // its sides q0q1, q1q2, q2q3, q3q0, q0q2, q1q3
+    };
+    std::vector<Subdivision> subdivision(triangles.size());
+    PairLengths lengths;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      const Triangle& tri = triangles[t];
+      Subdivision& sub = subdivision[t];
+      for (int e = 0; e < 3; ++e) {
+        const auto it = midpoint_of.find(edge_key(tri[e], tri[(e + 1) % 3]));
+        sub.mid[e] = it == midpoint_of.end() ? -1 : it->second;
+        sub.count += sub.mid[e] >= 0 ? 1 : 0;
+      }
+      if (sub.count != 2) {
+        continue;
+      }
+      // Rotated so that edge 0 (tri[0]→tri[1]) is split: the quadrilateral left beside the
+      // triangle cut off at the other split edge.
+      int r = 0;
+      while (sub.mid[r] < 0) {
+        ++r;
+      }
+      const int a = tri[r];
+      const int b = tri[(r + 1) % 3];
+      const int c = tri[(r + 2) % 3];
+      const int m = sub.mid[r];
+      const int m_bc = sub.mid[(r + 1) % 3];
+      const int m_ca = sub.mid[(r + 2) % 3];
+      sub.quad = m_bc >= 0 ? std::array<int, 4>{a, m, m_bc, c} : std::array<int, 4>{m, b, c, m_ca};
+      const std::array<int, 4>& q = sub.quad;
+      sub.sides = {lengths.add(q[0], q[1]), lengths.add(q[1], q[2]), lengths.add(q[2], q[3]),
+                   lengths.add(q[3], q[0]), lengths.add(q[0], q[2]), lengths.add(q[1], q[3])};
+    }
+    lengths.measure(mesh);
     std::vector<Triangle> result;
     result.reserve(triangles.size() + 3 * to_split.size());
     candidates.clear();
     for (std::size_t t = 0; t < triangles.size(); ++t) {
       const Triangle& tri = triangles[t];
-      int mid[3];
-      int count = 0;
-      for (int e = 0; e < 3; ++e) {
-        const auto it = midpoint_of.find(edge_key(tri[e], tri[(e + 1) % 3]));
-        mid[e] = it == midpoint_of.end() ? -1 : it->second;
-        count += mid[e] >= 0 ? 1 : 0;
-      }
-      if (count == 0) {
+      const Subdivision& sub = subdivision[t];
+      const std::array<int, 3>& mid = sub.mid;
+      if (sub.count == 0) {
         result.push_back(tri);
         if (is_far[t]) {
           // Too far, but its edge could not be split this round (the midpoint's projection
@@ -405,51 +536,44 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
         continue;
       }
       const std::size_t first = result.size();
-      if (count == 3) {
+      if (sub.count == 3) {
         result.push_back({tri[0], mid[0], mid[2]});
         result.push_back({mid[0], tri[1], mid[1]});
         result.push_back({mid[2], mid[1], tri[2]});
         result.push_back({mid[0], mid[1], mid[2]});
+      } else if (sub.count == 1) {
+        // Rotate so that edge 0 (tri[0]→tri[1]) is split; bisect it.
+        int r = 0;
+        while (mid[r] < 0) {
+          ++r;
+        }
+        result.push_back({tri[r], mid[r], tri[(r + 2) % 3]});
+        result.push_back({mid[r], tri[(r + 1) % 3], tri[(r + 2) % 3]});
       } else {
-        // Rotate so that edge 0 (tri[0]→tri[1]) is split; bisect it, then the rest.
+        // The triangle at the corner between the split edges, then the quadrilateral.
         int r = 0;
         while (mid[r] < 0) {
           ++r;
         }
         const int a = tri[r];
         const int b = tri[(r + 1) % 3];
-        const int c = tri[(r + 2) % 3];
         const int m = mid[r];
         const int m_bc = mid[(r + 1) % 3];
         const int m_ca = mid[(r + 2) % 3];
-        if (count == 1) {
-          result.push_back({a, m, c});
-          result.push_back({m, b, c});
-        } else if (m_bc >= 0) {
-          result.push_back({m, b, m_bc});
-          // The quadrilateral a, m, m_bc, c by its diagonal of larger smallest angle.
-          const double via_a =
-              std::min(min_angle(mesh, {a, m, m_bc}), min_angle(mesh, {a, m_bc, c}));
-          const double via_m = std::min(min_angle(mesh, {a, m, c}), min_angle(mesh, {m, m_bc, c}));
-          if (via_a >= via_m) {
-            result.push_back({a, m, m_bc});
-            result.push_back({a, m_bc, c});
-          } else {
-            result.push_back({a, m, c});
-            result.push_back({m, m_bc, c});
-          }
+        result.push_back(m_bc >= 0 ? Triangle{m, b, m_bc} : Triangle{a, m, m_ca});
+        const std::array<int, 4>& q = sub.quad;
+        const std::array<int, 6>& s = sub.sides;
+        // Cut by q0q2, or by q1q3.
+        const double via_q0 = std::min(lengths.min_angle(s[0], s[1], s[4]),
+                                       lengths.min_angle(s[4], s[2], s[3]));
+        const double via_q1 = std::min(lengths.min_angle(s[0], s[5], s[3]),
+                                       lengths.min_angle(s[1], s[2], s[5]));
+        if (via_q0 >= via_q1) {
+          result.push_back({q[0], q[1], q[2]});
+          result.push_back({q[0], q[2], q[3]});
         } else {
-          result.push_back({a, m, m_ca});
-          const double via_b = std::min(min_angle(mesh, {m, b, c}), min_angle(mesh, {m, c, m_ca}));
-          const double via_m =
-              std::min(min_angle(mesh, {m, b, m_ca}), min_angle(mesh, {b, c, m_ca}));
-          if (via_b >= via_m) {
-            result.push_back({m, b, c});
-            result.push_back({m, c, m_ca});
-          } else {
-            result.push_back({m, b, m_ca});
-            result.push_back({b, c, m_ca});
-          }
+          result.push_back({q[0], q[1], q[3]});
+          result.push_back({q[1], q[2], q[3]});
         }
       }
       for (std::size_t k = first; k < result.size(); ++k) {
@@ -462,6 +586,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   // once more, so that `remaining` and `max_distance` describe the mesh returned.
   if (exhausted) {
     double worst_remaining = -1.0;
+    measure_gram(mesh, candidates, gram);
     for (const auto& [anchor, t] : anchored(mesh, candidates, rings)) {
       const double worst = sample(anchor, t);
       summary.max_distance = std::max(summary.max_distance, worst);

@@ -52,6 +52,14 @@ struct ToleranceRefinement {
 /// midpoint projected onto M, or onto M ∩ face for an edge lying on a domain face, so the
 /// boundary stays on ∂S. Neighbours across a split edge are split with it (the mesh stays
 /// conforming, valid and oriented as it was).
+///
+/// A split mesh (TriangleMesh::set_space: this rank's rows of every vertex) of a distributed
+/// problem, with the domain cut to the same rows (Domain::distributed), is refined as in one
+/// process: every rank calls this alike, and each pass over the triangles reduces its
+/// measures at once (their Gram numbers, the faces' distances of the edges to split, the
+/// sides of the quadrilaterals to cut), so that every rank takes the same decisions.
+/// \throw InvalidArgument if the mesh does not hold the problem's rows (check_mesh_of_problem)
+///        or the domain not the mesh's.
 ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Domain& domain,
                                         TriangleMesh& mesh, std::vector<int> candidates,
                                         const ToleranceRefinementOptions& options);
