@@ -24,6 +24,7 @@
 #include "tessera/io/bezier_patches.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/npy.h"
+#include "tessera/io/split_mesh_output.h"
 #include "tessera/io/summary_json.h"
 #include "tessera/io/view_mesh.h"
 #include "tessera/methods/improvement/improve_mesh.h"
@@ -301,6 +302,8 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   }
   const ChosenView chosen = choose_view(command, setup);
   const View& view = chosen.view;
+  // A distributed problem makes a split mesh, whose whole points are not gathered at large n.
+  check_split_mesh_output(*setup.problem->space(), view);
   TESSERA_CHECK(!command.folds.empty() || command.folds_output.empty(),
                 "--folds-output " << command.folds_output
                                   << " needs --folds (the parameter plane, e.g. --folds lambda,mu)");
@@ -359,8 +362,11 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   file_options.comments = {"tessera mesh " + command.problem + ", method " + method.name};
   // An empty mesh (the start failed) is not written: it would replace a good file with nothing.
   const bool has_mesh = result.mesh.triangle_count() > 0;
+  // A split mesh (every rank its rows of the points) is written by every rank together: the
+  // view's reductions and the gathers are collective, rank 0 alone touches files.
+  const bool is_split = result.mesh.space().is_distributed();
   std::vector<std::string> written;
-  if (has_mesh && is_root && view.is_all_coordinates()) {
+  if (has_mesh && view.is_all_coordinates()) {
     // PLY keeps the standard names (x, y, z, x3, …) that readers look for; the problem's own
     // names go into a comment, and into the arrays of VTK files.
     const bool is_ply = std::filesystem::path(command.output).extension() == ".ply";
@@ -372,11 +378,16 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
       file_options.coordinate_names = setup.problem->coordinate_names();
     }
     file_options.comments.push_back("coordinates:" + names);
+  } else if (has_mesh) {
+    file_options.comments.push_back("a view of the states in R^" + std::to_string(n) + ": " +
+                                    describe_coordinates(*setup.problem));
+  }
+  if (has_mesh && is_split) {
+    written = write_mesh_output(result.mesh, {command.output, view, file_options, ""});
+  } else if (has_mesh && is_root && view.is_all_coordinates()) {
     write_mesh(command.output, result.mesh, file_options);
     written.push_back(command.output);
   } else if (has_mesh && is_root) {
-    file_options.comments.push_back("a view of the states in R^" + std::to_string(n) + ": " +
-                                    describe_coordinates(*setup.problem));
     write_mesh_in_view(command.output, result.mesh, view, file_options);
     written.push_back(command.output);
   }
@@ -428,8 +439,12 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
                    "those triangles are left out (summary: folds.singular_triangles)\n";
     }
   }
-  if (has_mesh && !command.states.empty() && is_root) {
-    write_states_npy(command.states, result.mesh);
+  if (has_mesh && !command.states.empty() && (is_root || is_split)) {
+    if (is_split) {
+      write_mesh_output(result.mesh, {"", view, {}, command.states});  // streamed to rank 0
+    } else {
+      write_states_npy(command.states, result.mesh);
+    }
     report.states = StatesReport{command.states,
                                  triangles_npy_path(command.states),
                                  result.mesh.vertex_count(),
@@ -439,7 +454,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     written.push_back(report.states->states_file);
     written.push_back(report.states->triangles_file);
   }
-  if (has_mesh && !command.picture.empty() && is_root) {
+  if (has_mesh && !command.picture.empty() && (is_root || is_split)) {
     PictureOptions picture;
     picture.edges = result.mesh.triangle_count() <= 20000;
     picture.title = command.problem + " (" + method.name + ")";
@@ -466,9 +481,13 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
         }
       }
     }
-    write_mesh_picture(command.picture, result.mesh, mesh_in_view(result.mesh, picture_view),
-                       coordinate_names_in_view(picture_view), fold_curves, "height", picture,
-                       &setup);
+    // Collective on a split mesh; drawn from the view alone (colour "height").
+    const TriangleMesh shown = mesh_in_view(result.mesh, picture_view);
+    if (is_root) {
+      write_mesh_picture(command.picture, result.mesh, shown,
+                         coordinate_names_in_view(picture_view), fold_curves, "height", picture,
+                         &setup);
+    }
     written.push_back(command.picture);
   }
   if (!command.summary.empty() && is_root) {

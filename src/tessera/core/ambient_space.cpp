@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/core/ambient_space.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "tessera/core/error.h"
@@ -16,6 +17,13 @@ AmbientSpace::AmbientSpace(int dimension, int first_row, int local_rows, int loc
       local_equations_(local_equations) {}
 
 void AmbientSpace::sum(double* /*values*/, int /*count*/) const {}
+
+void AmbientSpace::maximum(double* /*values*/, int /*count*/) const {}
+
+void AmbientSpace::gather_to_root(const double* local, int count, double* whole) const {
+  std::copy_n(local, static_cast<std::size_t>(local_rows_) * static_cast<std::size_t>(count),
+              whole);
+}
 
 double AmbientSpace::dot(const Eigen::Ref<const Eigen::VectorXd>& a,
                          const Eigen::Ref<const Eigen::VectorXd>& b) const {

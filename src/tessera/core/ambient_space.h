@@ -47,6 +47,18 @@ class AmbientSpace {
   virtual void sum(double* values, int count) const;
   /// The largest of the ranks' values.
   virtual double maximum(double value) const { return value; }
+  /// Replaces values[0 … count) by their maxima over the ranks, entry by entry (exact: no
+  /// rounding; a minimum is −maximum(−v)). One call for a pass's many maxima (a view's max:u of
+  /// every vertex).
+  virtual void maximum(double* values, int count) const;
+  /// Whether this is the rank that writes files (rank 0; true in one process).
+  virtual bool is_root() const { return true; }
+  /// Gathers `count` n-vectors to the root: `local` holds this rank's rows of them
+  /// (local_rows() × count, column-major), `whole` (n × count, column-major) receives all n
+  /// rows on the root and is not touched elsewhere (it may be null there). Collective; in one
+  /// process a copy. For output only (write_states_npy of a split mesh): the caller bounds
+  /// n × count to a few MB, so that the root never holds every vertex's n-vector.
+  virtual void gather_to_root(const double* local, int count, double* whole) const;
 
   // Reductions of local rows, built on `sum`.
   double dot(const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b) const;

@@ -2,11 +2,16 @@
 // write_npy: NPY format 1.0, https://numpy.org/doc/stable/reference/generated/numpy.lib.format.html
 #include "tessera/io/npy.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <exception>
+#include <optional>
+#include <vector>
 
 #include "tessera/core/error.h"
 #include "tessera/io/detail/file_buffer.h"
+#include "tessera/io/detail/root_writes.h"
 #include "tessera/io/detail/write_checks.h"
 
 namespace tessera {
@@ -75,9 +80,76 @@ std::string triangles_npy_path(const std::string& states_path) {
 }
 
 void write_states_npy(const std::string& path, const TriangleMesh& mesh) {
+  if (mesh.space().is_distributed()) {
+    write_split_states_npy(path, mesh);
+    return;
+  }
   io_detail::check_triangle_indices(mesh, path);
   write_npy(triangles_npy_path(path), mesh.triangles());
   write_npy(path, mesh.points());
+}
+
+void write_split_states_npy(const std::string& path, const TriangleMesh& mesh,
+                            std::size_t gather_bytes) {
+  const AmbientSpace& space = mesh.space();
+  if (!space.is_distributed()) {
+    write_states_npy(path, mesh);
+    return;
+  }
+  io_detail::check_triangle_indices(mesh, path);  // every rank the same triangles, the same verdict
+  const bool is_root = space.is_root();
+  const std::int64_t n = space.dimension();
+  const int vertex_count = mesh.vertex_count();
+  // As write_states_npy: the triangles first, so that a complete states file has its triangles.
+  std::exception_ptr error;
+  std::optional<io_detail::OutputFile> file;
+  if (is_root) {
+    try {
+      write_npy(triangles_npy_path(path), mesh.triangles());
+      file.emplace(kFormat, path);
+      write_header(*file, "<f8", vertex_count, n);
+    } catch (...) {
+      error = std::current_exception();
+      file.reset();
+    }
+  }
+  const auto bytes_per_vertex = static_cast<std::size_t>(n) * sizeof(double);
+  const int block = static_cast<int>(std::clamp<std::size_t>(
+      gather_bytes / bytes_per_vertex, 1, static_cast<std::size_t>(std::max(1, vertex_count))));
+  std::vector<double> whole(is_root ? static_cast<std::size_t>(n) * block : 0);
+  const auto local = mesh.points();  // local rows × V, column-major
+  for (int begin = 0; begin < vertex_count; begin += block) {
+    // Stop early, and together, once the root cannot write.
+    if (io_detail::any_rank_failed(space, error != nullptr)) {
+      break;
+    }
+    const int count = std::min(block, vertex_count - begin);
+    space.gather_to_root(local.data() + static_cast<std::ptrdiff_t>(begin) * local.rows(), count,
+                         whole.data());
+    if (!is_root) {
+      continue;
+    }
+    try {
+      if constexpr (std::endian::native == std::endian::little) {
+        file->bytes(whole.data(), static_cast<std::size_t>(count) * bytes_per_vertex);
+      } else {
+        for (std::size_t i = 0; i < static_cast<std::size_t>(count * n); ++i) {
+          file->little_endian_double(whole[i]);
+        }
+      }
+    } catch (...) {
+      error = std::current_exception();
+      file.reset();
+    }
+  }
+  if (file) {
+    try {
+      file->close();
+    } catch (...) {
+      error = std::current_exception();
+    }
+  }
+  io_detail::throw_if_root_failed(space, error, kFormat, path);
 }
 
 }  // namespace tessera

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -43,9 +44,26 @@ std::string triangles_npy_path(const std::string& states_path);
 /// new states beside the previous triangles (the triangles are written first, so a completed
 /// states file always has its triangles).
 ///
+/// A split mesh (mesh.space().is_distributed(), docs/cluster.md) is written collectively, as
+/// write_split_states_npy does: the same bytes as one process writes for the whole mesh.
+///
 /// \throw InvalidArgument if a triangle has an index outside [0, V) (nothing is written), or
 ///        naming the file that cannot be written.
 void write_states_npy(const std::string& path, const TriangleMesh& mesh);
+
+/// The n-vectors gathered to rank 0 at a time by write_split_states_npy: 4 MB (at least one
+/// vertex), so that rank 0 never holds more than this of the states.
+constexpr std::size_t kStatesGatherBytes = std::size_t{4} << 20;
+
+/// write_states_npy of a split mesh, streaming: rank 0 writes the header, then gathers the
+/// ranks' rows of `gather_bytes` of vertices at a time (AmbientSpace::gather_to_root) and
+/// writes them, so that it never holds every vertex's n-vector. Collective: every rank calls
+/// it; only rank 0 touches files, and if it fails every rank throws (rank 0 its own error).
+/// The bytes are those write_states_npy writes for the whole mesh in one process. In one
+/// process it is write_states_npy.
+/// \throw InvalidArgument as write_states_npy.
+void write_split_states_npy(const std::string& path, const TriangleMesh& mesh,
+                            std::size_t gather_bytes = kStatesGatherBytes);
 
 /// Reads what write_states_npy writes, as a mesh in R^n: the points from `path` and the
 /// triangles from triangles_npy_path(path), both written by tessera or by NumPy (numpy.save).

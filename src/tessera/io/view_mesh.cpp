@@ -4,19 +4,22 @@
 #include <algorithm>
 
 #include "tessera/core/error.h"
+#include "tessera/io/detail/root_writes.h"
 
 namespace tessera {
 
 TriangleMesh mesh_in_view(const TriangleMesh& mesh, const View& view) {
-  TESSERA_CHECK(view.ambient_dimension() == mesh.ambient_dimension(),
+  // A split mesh holds some rows of each point; its space knows n.
+  const AmbientSpace& space = mesh.space();
+  TESSERA_CHECK(view.ambient_dimension() == space.dimension(),
                 "the view '" << view.specification() << "' takes points of R^"
                              << view.ambient_dimension() << ", the mesh is in R^"
-                             << mesh.ambient_dimension());
+                             << space.dimension());
   TESSERA_CHECK(view.size() >= 2, "the view '"
                                       << view.specification() << "' has " << view.size()
                                       << " functional; a mesh needs at least two to place its "
                                          "vertices (three for a surface in space)");
-  const Eigen::MatrixXd values = view.evaluate_columns(mesh.points());
+  const Eigen::MatrixXd values = view.evaluate_columns(mesh.points(), space);
   if (view.size() >= 3) {
     return TriangleMesh(values, mesh.triangles());
   }
@@ -49,7 +52,11 @@ void write_mesh_in_view(const std::string& path, const TriangleMesh& mesh, const
     comment.replace(dashes, 2, "- -");
   }
   options.comments.push_back(comment);
-  write_mesh(path, shown, options);
+  if (!mesh.space().is_distributed()) {
+    write_mesh(path, shown, options);
+    return;
+  }
+  io_detail::write_on_root(mesh.space(), "mesh", path, [&] { write_mesh(path, shown, options); });
 }
 
 }  // namespace tessera

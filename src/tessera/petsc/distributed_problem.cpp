@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/petsc/distributed_problem.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "tessera/core/error.h"
@@ -12,6 +13,7 @@ namespace tessera::petsc {
 DistributedSpace::DistributedSpace(MPI_Comm communicator, int dimension, int first_row,
                                    int local_rows)
     : AmbientSpace(dimension, first_row, local_rows, local_rows), communicator_(communicator) {
+  MPI_Comm_rank(communicator_, &rank_);
   MPI_Comm_size(communicator_, &ranks_);
 }
 
@@ -21,7 +23,10 @@ void DistributedSpace::sum(double* values, int count) const {
   gathered.resize(static_cast<std::size_t>(count) * static_cast<std::size_t>(ranks_));
   MPI_Allgather(values, count, MPI_DOUBLE, gathered.data(), count, MPI_DOUBLE, communicator_);
   for (int k = 0; k < count; ++k) {
-    double total = 0.0;
+    // −0.0, the exact identity of floating addition (0.0 is not: 0.0 + −0.0 = 0.0): a value
+    // held by one rank and summed with the others' −0.0 comes back bit for bit (a view's
+    // coordinates of a split mesh).
+    double total = -0.0;
     for (int rank = 0; rank < ranks_; ++rank) {
       total += gathered[static_cast<std::size_t>(rank) * count + k];
     }
@@ -34,6 +39,46 @@ double DistributedSpace::maximum(double value) const {
   double result = value;
   MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, MPI_MAX, communicator_);  // exact: no rounding
   return result;
+}
+
+void DistributedSpace::maximum(double* values, int count) const {
+  ++reductions_;
+  MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_DOUBLE, MPI_MAX, communicator_);
+}
+
+void DistributedSpace::gather_to_root(const double* local, int count, double* whole) const {
+  // Where each rank's rows go: its first row and its number of rows (any split, even empty).
+  const int layout[2] = {first_row(), local_rows()};
+  const auto ranks = static_cast<std::size_t>(ranks_);
+  std::vector<int> layouts(is_root() ? 2 * ranks : 0);
+  MPI_Gather(layout, 2, MPI_INT, layouts.data(), 2, MPI_INT, 0, communicator_);
+  std::vector<int> counts(is_root() ? ranks : 0);
+  std::vector<int> offsets(is_root() ? ranks : 0);
+  thread_local std::vector<double> gathered;
+  if (is_root()) {
+    int offset = 0;
+    for (std::size_t r = 0; r < ranks; ++r) {
+      counts[r] = layouts[2 * r + 1] * count;
+      offsets[r] = offset;
+      offset += counts[r];
+    }
+    gathered.resize(static_cast<std::size_t>(offset));
+  }
+  MPI_Gatherv(local, local_rows() * count, MPI_DOUBLE, gathered.data(), counts.data(),
+              offsets.data(), MPI_DOUBLE, 0, communicator_);
+  if (!is_root()) {
+    return;
+  }
+  // Rank r sent its rows of the `count` columns, column-major (rows × count).
+  const auto n = static_cast<std::size_t>(dimension());
+  for (std::size_t r = 0; r < ranks; ++r) {
+    const auto first = static_cast<std::size_t>(layouts[2 * r]);
+    const auto rows = static_cast<std::size_t>(layouts[2 * r + 1]);
+    const double* block = gathered.data() + offsets[r];
+    for (std::size_t column = 0; column < static_cast<std::size_t>(count); ++column) {
+      std::copy_n(block + column * rows, rows, whole + column * n + first);
+    }
+  }
 }
 
 namespace {

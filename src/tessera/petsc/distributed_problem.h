@@ -24,12 +24,17 @@ class DistributedSpace final : public AmbientSpace {
   bool is_distributed() const override { return true; }
   void sum(double* values, int count) const override;
   double maximum(double value) const override;
+  void maximum(double* values, int count) const override;
+  bool is_root() const override { return rank_ == 0; }
+  /// MPI_Gatherv of the ranks' blocks to rank 0, which puts each at the rank's first row.
+  void gather_to_root(const double* local, int count, double* whole) const override;
   /// Calls of sum and maximum so far (each one collective call): the covering logic's
   /// communication, next to the solver's own.
   long reductions() const { return reductions_; }
 
  private:
   MPI_Comm communicator_;
+  int rank_ = 0;
   int ranks_ = 1;
   mutable long reductions_ = 0;
 };

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 #include <utility>
 
@@ -89,6 +90,12 @@ std::vector<std::pair<std::string, std::size_t>> names_in_expression(std::string
 bool is_reserved_in_expressions(const std::string& name) {
   const auto& functions = Expression::function_names();
   return name == "pi" || std::find(functions.begin(), functions.end(), name) != functions.end();
+}
+
+// Whether a split mesh's values of this kind come from a maximum over the ranks (else a sum).
+bool is_reduced_by_maximum(Kind kind) {
+  return kind == Kind::BlockMaximum || kind == Kind::BlockMinimum ||
+         kind == Kind::BlockAbsMaximum;
 }
 
 ViewFunctional coordinate_functional(int index, const std::string& name) {
@@ -486,6 +493,142 @@ Eigen::MatrixXd View::evaluate_columns(const Eigen::Ref<const Eigen::MatrixXd>& 
   ViewWorkspace workspace;
   for (Eigen::Index j = 0; j < points.cols(); ++j) {
     evaluate(points.col(j), values.col(j), workspace);
+  }
+  return values;
+}
+
+Eigen::MatrixXd View::evaluate_columns(const Eigen::Ref<const Eigen::MatrixXd>& points,
+                                       const AmbientSpace& space) const {
+  if (!space.is_distributed()) {
+    return evaluate_columns(points);
+  }
+  TESSERA_CHECK(space.dimension() == ambient_dimension_ && points.rows() == space.local_rows(),
+                "View::evaluate_columns: points of R^" << space.dimension() << " ("
+                    << points.rows() << " rows here, " << space.local_rows()
+                    << " expected), the view takes points of R^" << ambient_dimension_);
+  // Each functional's partial values go to slots of a sum or of a maximum: slot[i] is the
+  // first of functional i's, in the table its kind reduces in.
+  int sum_slots = 0;
+  int maximum_slots = 0;
+  std::vector<int> slot(functionals_.size());
+  for (std::size_t i = 0; i < functionals_.size(); ++i) {
+    const ViewFunctional& f = functionals_[i];
+    if (is_reduced_by_maximum(f.kind)) {
+      slot[i] = maximum_slots++;
+    } else {
+      slot[i] = sum_slots;
+      sum_slots += f.kind == Kind::Expression ? static_cast<int>(f.variables.size()) : 1;
+    }
+  }
+  const int first_row = space.first_row();
+  const int local_rows = space.local_rows();
+  // This rank's part [begin, end) of coordinates [first, first + size), in local rows.
+  const auto local_part = [&](int first, int size) {
+    const int begin = std::max(first, first_row) - first_row;
+    const int end = std::min(first + size, first_row + local_rows) - first_row;
+    return std::pair<int, int>(begin, std::max(begin, end));
+  };
+  // −0.0 is the identity of the sum (DistributedSpace::sum), −∞ that of the maximum: a rank
+  // holding none of a block changes nothing, and a coordinate comes back bit for bit.
+  constexpr double kNoSum = -0.0;
+  constexpr double kNoMaximum = -std::numeric_limits<double>::infinity();
+  // Writes f's partial values of x (this rank's rows) to `out`, its slots.
+  const auto partial_value = [&](const ViewFunctional& f, const auto& x, double* out) {
+    const auto [begin, end] = local_part(f.first, f.size);
+    const auto part = x.segment(begin, end - begin);
+    const bool is_empty = end == begin;
+    switch (f.kind) {
+      case Kind::Coordinate:
+        *out = space.holds_row(f.first) ? x(f.first - first_row) : kNoSum;
+        break;
+      case Kind::BlockMaximum:
+        *out = is_empty ? kNoMaximum : part.maxCoeff();
+        break;
+      case Kind::BlockMinimum:  // min = −max(−x): negation is exact
+        *out = is_empty ? kNoMaximum : -part.minCoeff();
+        break;
+      case Kind::BlockAbsMaximum:
+        *out = is_empty ? kNoMaximum : part.cwiseAbs().maxCoeff();
+        break;
+      case Kind::BlockMean:
+        *out = is_empty ? kNoSum : part.sum();
+        break;
+      case Kind::BlockNorm:
+        *out = is_empty ? kNoSum : part.squaredNorm();
+        break;
+      case Kind::Norm: {
+        double sum = 0.0;
+        for (int j = 0; j < local_rows; ++j) {
+          const double w = weights_.size() == 0 ? 1.0 : weights_(first_row + j);
+          sum += (w * x(j)) * (w * x(j));
+        }
+        *out = local_rows == 0 ? kNoSum : sum;
+        break;
+      }
+      case Kind::Expression:
+        for (std::size_t v = 0; v < f.variables.size(); ++v) {
+          const int i = f.variables[v];
+          out[v] = space.holds_row(i) ? x(i - first_row) : kNoSum;
+        }
+        break;
+    }
+  };
+  const auto count = points.cols();
+  Eigen::MatrixXd values(size(), count);
+  // Bounded reductions: DistributedSpace::sum gathers every rank's values on every rank.
+  constexpr Eigen::Index kValuesPerReduction = Eigen::Index{1} << 15;
+  const Eigen::Index columns_per_reduction =
+      std::max<Eigen::Index>(1, kValuesPerReduction / std::max(1, std::max(sum_slots,
+                                                                           maximum_slots)));
+  Eigen::MatrixXd sums(sum_slots, std::min(count, columns_per_reduction));
+  Eigen::MatrixXd maxima(maximum_slots, std::min(count, columns_per_reduction));
+  ViewWorkspace workspace;
+  for (Eigen::Index begin = 0; begin < count; begin += columns_per_reduction) {
+    const Eigen::Index columns = std::min(columns_per_reduction, count - begin);
+    for (Eigen::Index j = 0; j < columns; ++j) {
+      const auto x = points.col(begin + j);
+      for (std::size_t i = 0; i < functionals_.size(); ++i) {
+        const ViewFunctional& f = functionals_[i];
+        Eigen::MatrixXd& table = is_reduced_by_maximum(f.kind) ? maxima : sums;
+        partial_value(f, x, table.col(j).data() + slot[i]);
+      }
+    }
+    if (sum_slots > 0) {
+      space.sum(sums.data(), static_cast<int>(sum_slots * columns));
+    }
+    if (maximum_slots > 0) {
+      space.maximum(maxima.data(), static_cast<int>(maximum_slots * columns));
+    }
+    for (Eigen::Index j = 0; j < columns; ++j) {
+      for (std::size_t i = 0; i < functionals_.size(); ++i) {
+        const ViewFunctional& f = functionals_[i];
+        const double total =
+            is_reduced_by_maximum(f.kind) ? maxima(slot[i], j) : sums(slot[i], j);
+        double value = total;
+        switch (f.kind) {
+          case Kind::BlockMinimum:
+            value = -total;
+            break;
+          case Kind::BlockMean:
+            value = total / static_cast<double>(f.size);
+            break;
+          case Kind::BlockNorm:
+            value = f.weight * std::sqrt(total);
+            break;
+          case Kind::Norm:
+            value = std::sqrt(total);
+            break;
+          case Kind::Expression:
+            workspace.arguments =
+                sums.col(j).segment(slot[i], static_cast<Eigen::Index>(f.variables.size()));
+            value = f.expression->value(workspace.arguments, workspace.expression);
+            break;
+          default:
+            break;
+        }
+        values(static_cast<Eigen::Index>(i), begin + j) = value;
+      }
+    }
   }
   return values;
 }

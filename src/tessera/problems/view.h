@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/error.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/problems/expression.h"
@@ -116,6 +117,18 @@ class View {
   ///         as a NumPy (N, k) array whose columns are names().
   /// \throw InvalidArgument if points.rows() != ambient_dimension().
   Eigen::MatrixXd evaluate_columns(const Eigen::Ref<const Eigen::MatrixXd>& points) const;
+  /// The view of N points split over the ranks of `space` (SPMD, docs/cluster.md): `points`
+  /// holds this rank's rows of each (space.local_rows() × N, as TriangleMesh::points() of a
+  /// split mesh). Collective: every rank computes its partial values of every functional for
+  /// every point, then one sum (coordinates, means, norms, an expression's coordinates) and one
+  /// maximum (max, min, absmax) per 2^15 values make the same k×N on every rank.
+  /// Coordinates, max, min, absmax and expressions are one process's values to the bit; means
+  /// and norms to rounding (the ranks' partial sums are added in rank order).
+  /// In one process (space not distributed): evaluate_columns(points), bit for bit.
+  /// \throw InvalidArgument if space.dimension() != ambient_dimension() or points.rows() !=
+  ///        space.local_rows() (the same on every rank: nothing is reduced then).
+  Eigen::MatrixXd evaluate_columns(const Eigen::Ref<const Eigen::MatrixXd>& points,
+                                   const AmbientSpace& space) const;
 
  private:
   int ambient_dimension_ = 0;
