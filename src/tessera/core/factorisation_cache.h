@@ -8,6 +8,7 @@
 #include <deque>
 #include <utility>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/linearization.h"
 
 namespace tessera {
@@ -20,9 +21,9 @@ class FactorisationCache {
 
   /// The entry for `key`, factored or not (DF rank deficient there); null if there is none.
   const Linearization* find(int key) const {
-    for (const auto& [at, linearization] : entries_) {
-      if (at == key) {
-        return &linearization;
+    for (const Entry& entry : entries_) {
+      if (entry.key == key) {
+        return &entry.linearization;
       }
     }
     return nullptr;
@@ -34,14 +35,21 @@ class FactorisationCache {
                               const Eigen::Ref<const Eigen::VectorXd>& x) {
     while (!entries_.empty() && (entries_.size() >= max_count_ ||
                                  (entries_.size() >= 2 && bytes_ > max_bytes_))) {
-      bytes_ -= entries_.front().second.memory_bytes();
+      bytes_ -= entries_.front().bytes;
       entries_.pop_front();
     }
-    entries_.emplace_back(key, Linearization());
-    Linearization& linearization = entries_.back().second;
+    entries_.push_back({key, Linearization(), 0});
+    Linearization& linearization = entries_.back().linearization;
     const bool is_factored = linearization.factor(problem, x);
     linearization.release_assembly();  // kept for its solves only
-    bytes_ += linearization.memory_bytes();
+    std::size_t bytes = linearization.memory_bytes();
+    if (const auto space = problem.space(); space->is_distributed()) {
+      // Each rank holds its rows of the point and the basis: the largest count on every rank,
+      // so that all ranks keep the same entries (their callers branch on what is kept).
+      bytes = static_cast<std::size_t>(space->maximum(static_cast<double>(bytes)));
+    }
+    entries_.back().bytes = bytes;
+    bytes_ += bytes;
     return is_factored ? &linearization : nullptr;
   }
 
@@ -49,7 +57,12 @@ class FactorisationCache {
   std::size_t max_count_;
   std::size_t max_bytes_;
   std::size_t bytes_ = 0;
-  std::deque<std::pair<int, Linearization>> entries_;  // oldest first
+  struct Entry {
+    int key;
+    Linearization linearization;
+    std::size_t bytes;  // as counted when it was made
+  };
+  std::deque<Entry> entries_;  // oldest first
 };
 
 }  // namespace tessera
