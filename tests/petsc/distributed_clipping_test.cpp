@@ -26,7 +26,7 @@ namespace tessera::petsc {
 namespace {
 
 // The atlas's step; its edges near ∂S are about this long.
-constexpr double kStep = 0.3;
+constexpr double kStep = 0.5;
 
 // bratu2d:N=6 twice: in one process (ScaledProblem, the coordinates run_covering works in) and
 // on the ranks of PETSC_COMM_WORLD (ScaledPetscProblem, the same coordinates), with a covering
@@ -119,7 +119,9 @@ void expect_same_summary(const ClipSummary& split, const ClipSummary& serial) {
 }
 
 // Faces that cut through the covering: two bounds on the parameters, which meet M ∩ S in a
-// corner, and one slanted face (not a coordinate face: its vertices are placed along its normal).
+// corner, and one slanted face across all of u (not a coordinate face: its vertices are placed
+// along its normal, whose rows lie on every rank, so that every rank's part of a distance
+// counts).
 Domain smaller_domain(int n) {
   Domain extra(n);
   Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
@@ -134,10 +136,9 @@ Domain smaller_domain(int n) {
   extra.add_half_space(normal, point, "eps <= 0.2");
   normal.setZero();
   point.setZero();
-  normal(n - 2) = -1.0;  // λ + 20 ε ≤ 10
-  normal(n - 1) = -20.0;
-  point(n - 2) = 10.0;
-  extra.add_half_space(normal, point, "lambda + 20 eps <= 10");
+  normal.head(n - 2).setConstant(-1.0);  // mean u ≤ 3: its normal has rows on every rank
+  point.head(n - 2).setConstant(3.0);
+  extra.add_half_space(normal, point, "mean u <= 3");
   return extra;
 }
 
