@@ -5,6 +5,7 @@
 
 #include "tessera/core/ambient_space.h"
 #include "tessera/core/implicit_problem.h"
+#include "tessera/core/jacobian_product.h"
 #include "tessera/core/linearization_backend.h"
 
 namespace tessera {
@@ -32,6 +33,8 @@ struct WorkCounts {
 class CountedProblem final : public ImplicitProblem {
  public:
   explicit CountedProblem(const ImplicitProblem& inner) : inner_(inner) {}
+  CountedProblem(const CountedProblem&) = delete;  // counted_products_ refers to this one
+  CountedProblem& operator=(const CountedProblem&) = delete;
 
   int ambient_dimension() const override { return inner_.ambient_dimension(); }
   void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
@@ -59,6 +62,9 @@ class CountedProblem final : public ImplicitProblem {
   std::unique_ptr<LinearizationBackend> make_linearization_backend() const override {
     return inner_.make_linearization_backend();
   }
+  const JacobianProduct* as_jacobian_product() const override {
+    return inner_.as_jacobian_product() != nullptr ? &counted_products_ : nullptr;
+  }
   /// Called by Linearization::factor for the evaluations of DF that a problem's own backend
   /// made without calling `jacobian` (the PETSc backend evaluates DF on distributed matrices).
   void record_jacobian_evaluations(long count) const { jacobian_evaluations_ += count; }
@@ -79,7 +85,23 @@ class CountedProblem final : public ImplicitProblem {
   }
 
  private:
+  // The inner problem's DF(y)·V, each product counted as an evaluation of DF.
+  class CountedProducts final : public JacobianProduct {
+   public:
+    explicit CountedProducts(const CountedProblem& owner) : owner_(owner) {}
+    void jacobian_product(const Eigen::Ref<const Eigen::VectorXd>& y,
+                          const Eigen::Ref<const Eigen::MatrixXd>& V, Eigen::MatrixXd& JV,
+                          double& squared_frobenius_part) const override {
+      ++owner_.jacobian_evaluations_;
+      owner_.inner_.as_jacobian_product()->jacobian_product(y, V, JV, squared_frobenius_part);
+    }
+
+   private:
+    const CountedProblem& owner_;
+  };
+
   const ImplicitProblem& inner_;
+  CountedProducts counted_products_{*this};
   mutable long function_evaluations_ = 0;
   mutable long jacobian_evaluations_ = 0;
   mutable long factorisations_ = 0;

@@ -1,6 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/core/face_projection.h"
 
+#include <array>
+#include <cmath>
+#include <memory>
+
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/linearization.h"
 
 namespace tessera {
@@ -31,6 +36,63 @@ void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::
   }
 }
 
+void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::VectorXd& x,
+                    const AmbientSpace& space) {
+  if (!space.is_distributed()) {
+    place_on_faces(domain, faces, x);
+    return;
+  }
+  // A coordinate face has one nonzero in its normal over all the ranks: counted at once. Its
+  // bound is then set by the rank that holds the coordinate; the others move x along the
+  // normal (one reduction for b·(x − p) each).
+  const auto count = faces.size();
+  std::vector<double> nonzeros(count, 0.0);
+  std::vector<int> axis(count, -1);
+  for (std::size_t f = 0; f < count; ++f) {
+    const HalfSpace& h = domain.half_spaces()[faces[f]];
+    for (Eigen::Index i = 0; i < h.normal.size(); ++i) {
+      if (h.normal(i) != 0.0) {
+        nonzeros[f] += 1.0;
+        axis[f] = static_cast<int>(i);
+      }
+    }
+  }
+  if (count > 0) {
+    space.sum(nonzeros.data(), static_cast<int>(count));
+  }
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t f = 0; f < count; ++f) {
+      const HalfSpace& h = domain.half_spaces()[faces[f]];
+      if (nonzeros[f] == 1.0) {
+        if (axis[f] >= 0) {
+          x(axis[f]) = h.point(axis[f]);  // the bound itself: b·(x − p) is then exactly 0
+        }
+      } else {
+        x -= domain.signed_distance(faces[f], x) * h.normal;
+      }
+    }
+  }
+}
+
+double partial_signed_distance(const Domain& domain, int k,
+                               const Eigen::Ref<const Eigen::VectorXd>& x) {
+  if (!domain.is_distributed()) {
+    return domain.signed_distance(k, x);
+  }
+  // Domain's own sum over the rows held here (a sparse normal's support, else the whole rows).
+  const HalfSpace& h = domain.half_spaces()[k];
+  if (h.support.empty()) {
+    return h.normal.dot(x - h.point);
+  }
+  double distance = 0.0;
+  for (int i : h.support) {
+    if (i >= 0) {
+      distance += h.normal(i) * (x(i) - h.point(i));
+    }
+  }
+  return distance;
+}
+
 namespace {
 
 // SlowChord: the chord still contracted, but by less than options' max_contraction per step;
@@ -51,7 +113,10 @@ FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& 
                         const std::vector<int>& faces, Eigen::VectorXd& x, double max_move,
                         const CorrectorOptions& options, double* first_contraction,
                         const Linearization* frozen) {
-  const int n = problem.ambient_dimension();
+  // Local rows and global reductions (AmbientSpace): in one process Eigen's own norms.
+  const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
+  const AmbientSpace& space = *shared_space;
+  const bool split = space.is_distributed();
   const int c = static_cast<int>(faces.size());
   if (first_contraction != nullptr) {
     *first_contraction = 0.0;
@@ -61,8 +126,8 @@ FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& 
     return FaceProjection::Failed;
   }
   const Eigen::VectorXd start = x;
-  Eigen::VectorXd F(n - 2);
-  Eigen::VectorXd dx(n);
+  Eigen::VectorXd F(space.local_equations());
+  Eigen::VectorXd dx(space.local_rows());
   Linearization own;
   const Linearization& linearization = frozen != nullptr ? *frozen : own;
   // The chord converges linearly: it gets more steps, and must contract by a factor 2 per step.
@@ -84,10 +149,33 @@ FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& 
     const Eigen::MatrixXd& T = linearization.tangent_basis();
     Eigen::MatrixXd BT(c, 2);
     Eigen::VectorXd rhs(c);
+    std::array<double, 2> offset{};  // b·(x − p) of each face
+    std::array<double, 2> along{};   // b·dx
     for (int f = 0; f < c; ++f) {
       const HalfSpace& h = domain.half_spaces()[faces[f]];
       BT.row(f) = h.normal.transpose() * T;
-      rhs(f) = -h.normal.dot(x - h.point) - h.normal.dot(dx);
+      offset[f] = h.normal.dot(x - h.point);
+      along[f] = h.normal.dot(dx);
+    }
+    if (split && c > 0) {
+      // The ranks' parts of BᵀT, Bᵀ(x − p) and Bᵀdx, summed at once.
+      std::array<double, 8> parts{};
+      for (int f = 0; f < c; ++f) {
+        parts[4 * f] = BT(f, 0);
+        parts[4 * f + 1] = BT(f, 1);
+        parts[4 * f + 2] = offset[f];
+        parts[4 * f + 3] = along[f];
+      }
+      space.sum(parts.data(), 4 * c);
+      for (int f = 0; f < c; ++f) {
+        BT(f, 0) = parts[4 * f];
+        BT(f, 1) = parts[4 * f + 1];
+        offset[f] = parts[4 * f + 2];
+        along[f] = parts[4 * f + 3];
+      }
+    }
+    for (int f = 0; f < c; ++f) {
+      rhs(f) = -offset[f] - along[f];
     }
     Eigen::VectorXd z(2);
     if (!solve_minimum_norm_dense(BT, rhs, z)) {
@@ -99,7 +187,7 @@ FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& 
   double previous = 0.0;
   for (int k = 0; k < (reuse ? 3 * max_steps : max_steps); ++k) {
     problem.evaluate(x, F);
-    if (!F.allFinite()) {
+    if (!space.all_finite(F)) {
       return FaceProjection::Failed;
     }
     if (frozen == nullptr && (!reuse || k == 0) && !factor_here()) {
@@ -108,35 +196,57 @@ FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& 
     if (!step()) {
       return FaceProjection::Failed;
     }
-    if (reuse && k > 0 && dx.norm() > kReuseContraction * previous &&
-        dx.norm() > options.tolerance * (1.0 + x.norm())) {
-      // The kept factorisation does not contract well here: the step with a new one.
-      if (factorisations >= max_steps || !factor_here() || !step()) {
-        return FaceProjection::Failed;
+    if (reuse && k > 0) {
+      // ‖dx‖ and ‖x‖ (one reduction on a split point).
+      std::array<double, 2> norms{};
+      if (split) {
+        norms = {dx.squaredNorm(), x.squaredNorm()};
+        space.sum(norms.data(), 2);
+        norms = {std::sqrt(norms[0]), std::sqrt(norms[1])};
+      } else {
+        norms = {dx.norm(), x.norm()};
+      }
+      if (norms[0] > kReuseContraction * previous &&
+          norms[0] > options.tolerance * (1.0 + norms[1])) {
+        // The kept factorisation does not contract well here: the step with a new one.
+        if (factorisations >= max_steps || !factor_here() || !step()) {
+          return FaceProjection::Failed;
+        }
       }
     }
     x += dx;
-    if ((x - start).norm() > max_move) {
+    // ‖x − start‖, ‖dx‖ and ‖x‖ (one reduction on a split point).
+    std::array<double, 3> norms{};
+    if (split) {
+      norms = {(x - start).squaredNorm(), dx.squaredNorm(), x.squaredNorm()};
+      space.sum(norms.data(), 3);
+      norms = {std::sqrt(norms[0]), std::sqrt(norms[1]), std::sqrt(norms[2])};
+    } else {
+      norms = {(x - start).norm(), dx.norm(), x.norm()};
+    }
+    if (norms[0] > max_move) {
       return k == 0 ? FaceProjection::FirstStepTooFar : FaceProjection::Failed;
     }
-    const double norm = dx.norm();
-    const bool small = norm <= options.tolerance * (1.0 + x.norm());
+    const double norm = norms[1];
+    const bool small = norm <= options.tolerance * (1.0 + norms[2]);
     if (k == 1 && previous > 0 && first_contraction != nullptr) {
       *first_contraction = norm / previous;
     }
     if (k > 0 && previous > 0 && norm > max_contraction * previous && !small) {
       // Not contracting enough: outside the chord's (or Newton's) region of fast convergence.
-      return frozen != nullptr && norm < previous && x.allFinite() ? FaceProjection::SlowChord
-                                                                  : FaceProjection::Failed;
+      return frozen != nullptr && norm < previous && space.all_finite(x)
+                 ? FaceProjection::SlowChord
+                 : FaceProjection::Failed;
     }
     previous = norm;
     if (small) {
       // The iteration leaves b·(x − p) at the size of the last step; a boundary vertex must lie
       // on its faces exactly (never outside S), so the last rounding-sized move puts it there.
-      place_on_faces(domain, faces, x);
+      place_on_faces(domain, faces, x, space);
       problem.evaluate(x, F);
-      return F.allFinite() && F.norm() <= options.residual_tolerance ? FaceProjection::Converged
-                                                                      : FaceProjection::Failed;
+      return space.all_finite(F) && space.norm(F) <= options.residual_tolerance
+                 ? FaceProjection::Converged
+                 : FaceProjection::Failed;
     }
   }
   return FaceProjection::Failed;
@@ -165,7 +275,7 @@ bool project_onto_faces(const ImplicitProblem& problem, const Domain& domain,
       // at the last iterate, already close to the solution, and the chord from it converges
       // fast (seen on bratu2d: θ = 0.5–0.9 from the neighbour's factorisation, one step in 25
       // of clipping); Gauss–Newton from the start would factor at every step.
-      const double moved = (x - start).norm();
+      const double moved = problem.space()->distance(x, start);
       Linearization here;
       const Eigen::MatrixXd& reference = near->tangent_basis();
       if (moved < max_move && here.factor(problem, x, &reference) &&

@@ -17,14 +17,28 @@ namespace tessera {
 /// corrector tolerance): for a coordinate face (a box face) the coordinate is set to the bound
 /// itself, so that b·(x − p) = 0 exactly; for other faces x moves along the normal, which leaves
 /// |b·(x − p)| at rounding level. Boundary vertices must never lie outside S.
+/// \pre the domain is not distributed (see the overload with a space).
 void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::VectorXd& x);
+/// The same where x is this rank's rows of a point split over `space`, and the domain is
+/// distributed alike (Domain::distributed): a collective call, one reduction for which faces are
+/// coordinate faces and one per other face and pass. In one process, the overload above.
+void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::VectorXd& x,
+                    const AmbientSpace& space);
+
+/// This rank's part of the signed distance b_k·(x − p_k): the distance itself in one process
+/// (the same bits as domain.signed_distance), a partial sum over the rows held here for a
+/// distributed domain. Summing the parts of many points and faces in one AmbientSpace::sum is
+/// how the passes over a split mesh ask for distances (one reduction per pass, not per point).
+double partial_signed_distance(const Domain& domain, int k,
+                               const Eigen::Ref<const Eigen::VectorXd>& x);
 
 /// Projects x onto M ∩ {the bounding hyperplanes of `faces`} (at most two of them, as M is a
 /// surface) by minimum-norm Gauss–Newton on F(x) = 0, b_f·(x − p_f) = 0. Each step factors DF
 /// alone (dense or sparse, through Linearization), so it costs what an unconstrained step
 /// costs and never forms a dense n×n matrix.
 ///
-/// \param x  n-vector, moved in place (unspecified on failure).
+/// \param x  n-vector (a distributed problem's local rows, with a domain distributed alike),
+///        moved in place (unspecified on failure).
 /// \param max_move  the projection fails if x moves farther than this from where it started.
 /// \param first_contraction  if not null, receives Deuflhard's θ = ‖dx₁‖/‖dx₀‖ of the first
 ///        two steps (0 if the first step already converged): the step-size controls use it.

@@ -11,6 +11,7 @@
 namespace tessera {
 
 class AmbientSpace;
+class JacobianProduct;
 class LinearizationBackend;
 
 /// A named range of coordinates, e.g. the grid values u of a discretised PDE.
@@ -77,6 +78,9 @@ class ImplicitProblem {
   /// ranks; then `evaluate` and the solvers see the local rows only. Decorators forward their
   /// inner problem's.
   virtual std::shared_ptr<const AmbientSpace> space() const;
+  /// DF(y)·V for a problem whose Jacobian is no Eigen matrix (petsc::DistributedProblem), for
+  /// tangent_basis_near; null (the default): `jacobian` / `sparse_jacobian` give it.
+  virtual const JacobianProduct* as_jacobian_product() const { return nullptr; }
 
   /// The factorisation the problem brings for Linearization, or null (the default): tessera's
   /// dense QR or sparse bordered LU, as has_sparse_jacobian says. Decorators forward.

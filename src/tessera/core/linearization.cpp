@@ -12,6 +12,7 @@
 #include "tessera/core/bordered_jacobian.h"
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/error.h"
+#include "tessera/core/jacobian_product.h"
 #include "tessera/core/linearization_backend.h"
 #include "tessera/core/sparse_lu.h"
 
@@ -337,12 +338,61 @@ void Linearization::solve_minimum_norm_columns(const Eigen::Ref<const Eigen::Mat
   backend_->solve_columns(rhs, tangent_, dx);
 }
 
+namespace {
+
+// tangent_basis_near on the local rows of a distributed problem: the same iteration, with DF(y)·T
+// from the problem's JacobianProduct and every norm and inner product reduced over the ranks
+// (the serial one's Eigen expressions are left untouched).
+bool tangent_basis_near_distributed(const ImplicitProblem& problem, const AmbientSpace& space,
+                                    const Linearization& near,
+                                    const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::MatrixXd& T,
+                                    double tolerance, int max_iterations) {
+  const JacobianProduct* product = problem.as_jacobian_product();
+  if (product == nullptr) {
+    return false;  // J(y)·T is not available: the caller factors at y instead
+  }
+  Eigen::MatrixXd JT;
+  double squared_norm = 0.0;
+  T = near.tangent_basis();
+  product->jacobian_product(y, T, JT, squared_norm);
+  space.sum(&squared_norm, 1);
+  const double jacobian_norm = std::sqrt(squared_norm);
+  if (!std::isfinite(jacobian_norm) || jacobian_norm == 0.0) {
+    return false;
+  }
+  Eigen::MatrixXd correction(T.rows(), 2);
+  double unused = 0.0;
+  for (int iteration = 0; iteration <= max_iterations; ++iteration) {
+    if (iteration > 0) {
+      product->jacobian_product(y, T, JT, unused);
+    }
+    if (space.frobenius_norm(JT) <= tolerance * jacobian_norm) {
+      return true;
+    }
+    if (iteration == max_iterations) {
+      break;
+    }
+    near.solve_minimum_norm_columns(JT, correction);
+    T -= correction;
+    // Orthonormalise (modified Gram–Schmidt): ker J(y) is spanned either way.
+    T.col(0) /= space.norm(T.col(0));
+    T.col(1) -= space.dot(T.col(0), T.col(1)) * T.col(0);
+    T.col(1) /= space.norm(T.col(1));
+    if (!space.all_finite(T)) {
+      return false;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& near,
                         const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::MatrixXd& T,
                         double tolerance, int max_iterations) {
   TESSERA_ASSERT(near.is_factored());
-  if (problem.space()->is_distributed()) {
-    return false;  // J(y)·T needs the distributed Jacobian: the caller factors at y instead
+  if (const std::shared_ptr<const AmbientSpace> space = problem.space(); space->is_distributed()) {
+    return tangent_basis_near_distributed(problem, *space, near, y, T, tolerance, max_iterations);
   }
   const int n = problem.ambient_dimension();
   const int m = n - 2;

@@ -211,6 +211,49 @@ void DistributedProblem::sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>
   jacobian(x, unused);
 }
 
+void DistributedProblem::jacobian_product(const Eigen::Ref<const Eigen::VectorXd>& y,
+                                          const Eigen::Ref<const Eigen::MatrixXd>& V,
+                                          Eigen::MatrixXd& JV,
+                                          double& squared_frobenius_part) const {
+  const int rows = space_->local_rows();
+  TESSERA_ASSERT(y.size() == rows && V.rows() == rows);
+  // A matrix of its own: PetscProblem::jacobian sets DF's rows only, so the border rows (n − 2,
+  // n − 1) of a matrix no linearisation has bordered stay empty, and J·V is DF·V with 0 there.
+  if (!jacobian_) {
+    jacobian_ = problem_.create_jacobian();
+  }
+  const Eigen::VectorXd point = y;  // contiguous
+  {
+    const PlacedArray placed(x_, point.data());
+    problem_.jacobian(x_, jacobian_);
+  }
+  PetscInt first = 0;
+  PetscInt end = 0;
+  check(MatGetOwnershipRange(jacobian_, &first, &end), "MatGetOwnershipRange");
+  squared_frobenius_part = 0.0;
+  for (PetscInt row = first; row < end; ++row) {
+    PetscInt count = 0;
+    const PetscScalar* values = nullptr;
+    check(MatGetRow(jacobian_, row, &count, nullptr, &values), "MatGetRow");
+    for (PetscInt k = 0; k < count; ++k) {
+      squared_frobenius_part += values[k] * values[k];
+    }
+    check(MatRestoreRow(jacobian_, row, &count, nullptr, &values), "MatRestoreRow");
+  }
+  JV.resize(rows, V.cols());
+  Eigen::VectorXd column(rows);
+  Eigen::VectorXd product(rows);
+  for (Eigen::Index c = 0; c < V.cols(); ++c) {
+    column = V.col(c);
+    {
+      const PlacedArray placed_in(x_, column.data());
+      const PlacedArray placed_out(F_, product.data());
+      check(MatMult(jacobian_, x_, F_), "MatMult");
+    }
+    JV.col(c) = product;
+  }
+}
+
 std::vector<CoordinateBlock> DistributedProblem::coordinate_blocks() const {
   return problem_.coordinate_blocks();
 }

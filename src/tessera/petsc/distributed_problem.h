@@ -10,6 +10,7 @@
 
 #include "tessera/core/ambient_space.h"
 #include "tessera/core/implicit_problem.h"
+#include "tessera/core/jacobian_product.h"
 #include "tessera/petsc/petsc_problem.h"
 
 namespace tessera::petsc {
@@ -46,7 +47,7 @@ class DistributedSpace final : public AmbientSpace {
 /// Linearization factors through make_linearization_backend (MUMPS by default), and
 /// `jacobian`/`sparse_jacobian` throw. The metric's weights are the PetscProblem's business
 /// (wrap it in a ScaledPetscProblem first): tessera's ScaledProblem refuses distributed problems.
-class DistributedProblem final : public ImplicitProblem {
+class DistributedProblem final : public ImplicitProblem, public JacobianProduct {
  public:
   /// `coordinate_names`: one per coordinate (the serial problem's, for views and messages);
   /// empty: x0 … x{n−1}.
@@ -70,6 +71,12 @@ class DistributedProblem final : public ImplicitProblem {
   std::unique_ptr<LinearizationBackend> make_linearization_backend() const override;
 
   const PetscProblem& petsc_problem() const { return problem_; }
+  const JacobianProduct* as_jacobian_product() const override { return this; }
+  /// DF(y)·V by MatMult on PETSc's Jacobian (its border rows left empty), for
+  /// tangent_basis_near: a split mesh's tangent planes from a neighbour's factorisation.
+  void jacobian_product(const Eigen::Ref<const Eigen::VectorXd>& y,
+                        const Eigen::Ref<const Eigen::MatrixXd>& V, Eigen::MatrixXd& JV,
+                        double& squared_frobenius_part) const override;
 
  private:
   const PetscProblem& problem_;
@@ -77,6 +84,7 @@ class DistributedProblem final : public ImplicitProblem {
   std::shared_ptr<const DistributedSpace> space_;
   Owned<Vec> x_;  // wrappers of the caller's arrays (VecPlaceArray)
   Owned<Vec> F_;
+  mutable Owned<Mat> jacobian_;  // for jacobian_product; made at its first use
 };
 
 }  // namespace tessera::petsc

@@ -11,7 +11,9 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/describe.h"
+#include "tessera/core/error.h"
 #include "tessera/core/face_projection.h"
 #include "tessera/core/factorisation_cache.h"
 #include "tessera/core/linearization.h"
@@ -35,13 +37,95 @@ using detail::vertex_neighbours;
 // methods' own boundary snapping (the atlas's chart centres, refinement midpoints) leaves
 // vertices there to corrector tolerance, and they must count as on the face, not across it.
 constexpr double kOnFaceTolerance = 1e-9;
+// A split mesh (SPMD, docs/cluster.md): the points are this rank's rows of a distributed
+// problem's space, the domain is cut to the same rows, and every length, distance and tangent
+// coordinate below is summed over the ranks, so that every rank takes the same branch. The
+// passes batch their reductions (a pass's partial sums in one AmbientSpace::sum); in one process
+// the sums do nothing and the expressions are the serial code's own.
+
+// The lengths ‖point(u) − point(w)‖ of the pairs (u, w): one reduction on a split mesh.
+std::vector<double> lengths(const TriangleMesh& mesh, const AmbientSpace& space,
+                            const std::vector<std::pair<int, int>>& pairs) {
+  std::vector<double> result(pairs.size());
+  if (!space.is_distributed()) {
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      result[i] = (mesh.point(pairs[i].first) - mesh.point(pairs[i].second)).norm();
+    }
+    return result;
+  }
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    result[i] = (mesh.point(pairs[i].first) - mesh.point(pairs[i].second)).squaredNorm();
+  }
+  if (!result.empty()) {
+    space.sum(result.data(), static_cast<int>(result.size()));
+  }
+  for (double& length : result) {
+    length = std::sqrt(length);
+  }
+  return result;
+}
+
+// min_angle of each triangle: one reduction (their sides) on a split mesh.
+std::vector<double> min_angles(const TriangleMesh& mesh, const AmbientSpace& space,
+                               const std::vector<Triangle>& triangles) {
+  std::vector<double> result(triangles.size());
+  if (!space.is_distributed()) {
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+      result[i] = min_angle(mesh, triangles[i]);
+    }
+    return result;
+  }
+  std::vector<std::pair<int, int>> sides;
+  for (const Triangle& t : triangles) {
+    sides.insert(sides.end(), {{t[1], t[0]}, {t[2], t[1]}, {t[0], t[2]}});
+  }
+  const std::vector<double> side = lengths(mesh, space, sides);
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    result[i] = min_angle_of_sides(side[3 * i], side[3 * i + 1], side[3 * i + 2]);
+  }
+  return result;
+}
+
+// Whether the caller asked to stop: a rank's own request, so on a split mesh the largest over
+// the ranks (a request seen by one rank stops them all at the same place). The options are the
+// same on every rank: without a callback there is nothing to agree on.
+bool is_stop_requested(const std::function<bool()>& stop_requested, const AmbientSpace& space) {
+  if (!stop_requested) {
+    return false;
+  }
+  const bool requested = stop_requested();
+  return space.is_distributed() ? space.maximum(requested ? 1.0 : 0.0) > 0.0 : requested;
+}
+
 // A vertex already at the corner point x of M ∩ (the faces), or −1. Two vertices snapped or cut
 // onto the same corner would make a zero-area triangle.
-int find_corner(const TriangleMesh& mesh, const FaceSets& vertex_faces,
+int find_corner(const TriangleMesh& mesh, const AmbientSpace& space, const FaceSets& vertex_faces,
                 const std::vector<int>& faces, const Eigen::VectorXd& x) {
+  if (!space.is_distributed()) {
+    for (int v = 0; v < mesh.vertex_count(); ++v) {
+      if (vertex_faces[v] == faces && (mesh.point(v) - x).norm() <= 1e-8 * (1 + x.norm())) {
+        return v;
+      }
+    }
+    return -1;
+  }
+  // The vertices on the same faces (replicated) and their distances to x, summed at once.
+  std::vector<int> candidates;
   for (int v = 0; v < mesh.vertex_count(); ++v) {
-    if (vertex_faces[v] == faces && (mesh.point(v) - x).norm() <= 1e-8 * (1 + x.norm())) {
-      return v;
+    if (vertex_faces[v] == faces) {
+      candidates.push_back(v);
+    }
+  }
+  std::vector<double> parts(candidates.size() + 1);
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    parts[i] = (mesh.point(candidates[i]) - x).squaredNorm();
+  }
+  parts.back() = x.squaredNorm();
+  space.sum(parts.data(), static_cast<int>(parts.size()));
+  const double tolerance = 1e-8 * (1 + std::sqrt(parts.back()));
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (std::sqrt(parts[i]) <= tolerance) {
+      return candidates[i];
     }
   }
   return -1;
@@ -57,17 +141,47 @@ std::vector<int> common_faces(const std::vector<int>& a, const std::vector<int>&
 
 // Records which bounding hyperplanes each vertex already lies on (to kOnFaceTolerance) and
 // puts it on them exactly.
-FaceSets faces_of_vertices(const Domain& domain, TriangleMesh& mesh) {
+FaceSets faces_of_vertices(const Domain& domain, const AmbientSpace& space, TriangleMesh& mesh) {
   FaceSets on_faces(mesh.vertex_count());
+  const int faces = static_cast<int>(domain.half_spaces().size());
+  if (!space.is_distributed()) {
+    for (int v = 0; v < mesh.vertex_count(); ++v) {
+      Eigen::VectorXd x = mesh.point(v);
+      for (int k = 0; k < faces; ++k) {
+        if (std::abs(domain.signed_distance(k, x)) <= kOnFaceTolerance * (1.0 + x.norm())) {
+          on_faces[v].push_back(k);
+        }
+      }
+      if (!on_faces[v].empty()) {
+        place_on_faces(domain, on_faces[v], x);
+        mesh.mutable_point(v) = x;
+      }
+    }
+    return on_faces;
+  }
+  // Every vertex's distances to the faces and its squared norm, summed at once.
+  const auto stride = static_cast<std::size_t>(faces + 1);
+  std::vector<double> parts(stride * static_cast<std::size_t>(mesh.vertex_count()));
   for (int v = 0; v < mesh.vertex_count(); ++v) {
-    Eigen::VectorXd x = mesh.point(v);
-    for (int k = 0; k < static_cast<int>(domain.half_spaces().size()); ++k) {
-      if (std::abs(domain.signed_distance(k, x)) <= kOnFaceTolerance * (1.0 + x.norm())) {
+    double* row = parts.data() + stride * static_cast<std::size_t>(v);
+    for (int k = 0; k < faces; ++k) {
+      row[k] = partial_signed_distance(domain, k, mesh.point(v));
+    }
+    row[faces] = mesh.point(v).squaredNorm();
+  }
+  if (!parts.empty()) {
+    space.sum(parts.data(), static_cast<int>(parts.size()));
+  }
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    const double* row = parts.data() + stride * static_cast<std::size_t>(v);
+    for (int k = 0; k < faces; ++k) {
+      if (std::abs(row[k]) <= kOnFaceTolerance * (1.0 + std::sqrt(row[faces]))) {
         on_faces[v].push_back(k);
       }
     }
     if (!on_faces[v].empty()) {
-      place_on_faces(domain, on_faces[v], x);
+      Eigen::VectorXd x = mesh.point(v);
+      place_on_faces(domain, on_faces[v], x, space);
       mesh.mutable_point(v) = x;
     }
   }
@@ -125,20 +239,26 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   // factorisation while it contracts (sparse problems).
   CorrectorOptions corrector = options.corrector;
   corrector.reuse_factorisation = true;
+  const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
+  const AmbientSpace& space = *shared_space;
   const auto is_stopped = [&] {
-    summary.interrupted = summary.interrupted ||
-                          (options.stop_requested && options.stop_requested());
+    summary.interrupted =
+        summary.interrupted || is_stop_requested(options.stop_requested, space);
     return summary.interrupted;
   };
   const int n = problem.ambient_dimension();
   const int m = problem.equation_count();
   OrientationGuard guard(problem, vertex_neighbours(mesh));
   const int vertex_count = mesh.vertex_count();
-  std::vector<double> d(vertex_count);
+  // Every vertex's distance to the face (one reduction on a split mesh).
+  std::vector<double> d(vertex_count, 0.0);
   for (int v = 0; v < vertex_count; ++v) {
-    d[v] = std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)
-               ? 0.0
-               : domain.signed_distance(k, mesh.point(v));
+    if (!std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)) {
+      d[v] = partial_signed_distance(domain, k, mesh.point(v));
+    }
+  }
+  if (space.is_distributed() && vertex_count > 0) {
+    space.sum(d.data(), vertex_count);
   }
   {
     // Room for the cut vertices (at most one per edge across the face, fewer than the
@@ -210,15 +330,19 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   // |d| < snap_distance can lie many snap distances from M ∩ face; such vertices are skipped
   // before their tangent plane is factored.
   const auto distance_along_mesh = [&](int v) {
-    double rate = 0.0;
+    std::vector<std::pair<int, int>> edges;
     for (int t : vertex_triangles[v]) {
       for (int w : mesh.triangle(t)) {
         if (w != v) {
-          const double length = (mesh.point(w) - mesh.point(v)).norm();
-          if (length > 0) {
-            rate = std::max(rate, std::abs(d[v] - d[w]) / length);
-          }
+          edges.emplace_back(w, v);
         }
+      }
+    }
+    const std::vector<double> length = lengths(mesh, space, edges);  // one reduction
+    double rate = 0.0;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      if (length[i] > 0) {
+        rate = std::max(rate, std::abs(d[v] - d[edges[i].first]) / length[i]);
       }
     }
     return rate > 0 ? std::abs(d[v]) / rate : std::numeric_limits<double>::infinity();
@@ -242,7 +366,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
         !domain.contains(x, 1e-9)) {
       continue;
     }
-    const int occupant = is_corner ? find_corner(mesh, work_faces, faces, x) : -1;
+    const int occupant = is_corner ? find_corner(mesh, space, work_faces, faces, x) : -1;
     if (occupant >= 0) {
       if (are_adjacent(v, occupant) && collapse_into[occupant] < 0 &&
           star_keeps_orientation(v, mesh.point(occupant), occupant)) {
@@ -293,22 +417,34 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       std::vector<int> faces = common_faces(work_faces[u], work_faces[w]);
       faces.push_back(k);
       std::sort(faces.begin(), faces.end());
-      const double edge_length = (mesh.point(u) - mesh.point(w)).norm();
+      const double edge_length = space.distance(mesh.point(u), mesh.point(w));
       const int inside = d[u] > 0 ? u : w;
       const Linearization* near = guard.at_vertex(inside, mesh.point(inside));
       if (!project_onto_faces(problem, domain, faces, x, edge_length, corrector, nullptr, near)) {
         std::ostringstream message;
         message << "cannot clip the mesh to the face " << describe_face(domain, k)
                 << ": no point of M on the face near the edge from "
-                << describe_point(mesh.point(u)) << " to " << describe_point(mesh.point(w));
+                << describe_point(mesh.point(u), space) << " to "
+                << describe_point(mesh.point(w), space);
         summary.message = message.str();
         return false;
       }
       // A cut point next to (or across) an earlier face belongs at the corner where the two
       // faces meet: left where it is, it would make a needle with that corner, or lie outside
       // S. Earlier faces are done, so a point outside one of them would stay outside.
+      // The distances to the earlier faces: one reduction, again when x moves to a corner.
+      std::vector<double> to_earlier(static_cast<std::size_t>(k));
+      const auto measure_earlier = [&] {
+        for (int j = 0; j < k; ++j) {
+          to_earlier[j] = partial_signed_distance(domain, j, x);
+        }
+        if (space.is_distributed() && k > 0) {
+          space.sum(to_earlier.data(), k);
+        }
+      };
+      measure_earlier();
       for (int j = 0; j < k; ++j) {
-        const double distance = domain.signed_distance(j, x);
+        const double distance = to_earlier[j];
         if (std::binary_search(faces.begin(), faces.end(), j) ||
             (distance >= snap_distance && distance >= 0)) {
           continue;
@@ -324,12 +460,13 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
             domain.contains(corner, 1e-9)) {
           x = corner;
           faces = corner_faces;
+          measure_earlier();
           continue;
         }
         if (distance < 0) {
           std::ostringstream message;
           message << "cannot clip the mesh to the face " << describe_face(domain, k)
-                  << ": the cut point " << describe_point(x) << " lies outside the face "
+                  << ": the cut point " << describe_point(x, space) << " lies outside the face "
                   << describe_face(domain, j) << " by " << -distance
                   << " and M has no corner point on both faces near it";
           summary.message = message.str();
@@ -338,8 +475,9 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       }
       // Where the face meets an earlier face, M ∩ both is a point (a corner of the clipped
       // surface): reuse the corner vertex if one is already there, else the corner doubles.
-      const int existing =
-          static_cast<int>(faces.size()) + m == n ? find_corner(mesh, work_faces, faces, x) : -1;
+      const int existing = static_cast<int>(faces.size()) + m == n
+                               ? find_corner(mesh, space, work_faces, faces, x)
+                               : -1;
       if (existing >= 0) {
         cut_vertex[key] = existing;
         continue;
@@ -391,7 +529,8 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
         if (!fits(split[0]) || !fits(split[1])) {
           continue;
         }
-        const double angle = std::min(min_angle(mesh, split[0]), min_angle(mesh, split[1]));
+        const std::vector<double> angles = min_angles(mesh, space, {split[0], split[1]});
+        const double angle = std::min(angles[0], angles[1]);
         if (angle > best_angle) {
           best = i;
           best_angle = angle;
@@ -408,8 +547,9 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     if (fold.empty()) {
       std::ostringstream message;
       message << "clipping to the face " << describe_face(domain, k)
-              << " would fold the triangle with corners " << describe_point(before[0]) << ", "
-              << describe_point(before[1]) << ", " << describe_point(before[2]);
+              << " would fold the triangle with corners " << describe_point(before[0], space)
+              << ", " << describe_point(before[1], space) << ", "
+              << describe_point(before[2], space);
       fold = message.str();
     }
   };
@@ -455,13 +595,23 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
 // Where face k cannot be clipped, the triangles with a vertex outside it are removed (and, where
 // that pinches a vertex, the smaller fans): the mesh stays valid and inside S, its boundary
 // there ragged instead of on M ∩ ∂S.
-void drop_outside(const Domain& domain, int k, TriangleMesh& mesh, FaceSets& on_faces) {
+void drop_outside(const Domain& domain, const AmbientSpace& space, int k, TriangleMesh& mesh,
+                  FaceSets& on_faces) {
+  // Which vertices are inside the face (one reduction on a split mesh).
+  std::vector<double> distance(static_cast<std::size_t>(mesh.vertex_count()), 0.0);
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    if (!std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)) {
+      distance[v] = partial_signed_distance(domain, k, mesh.point(v));
+    }
+  }
+  if (space.is_distributed() && !distance.empty()) {
+    space.sum(distance.data(), static_cast<int>(distance.size()));
+  }
   std::vector<Triangle> inside;
   for (const Triangle& t : mesh.triangles()) {
     bool is_inside = true;
     for (int v : t) {
-      is_inside = is_inside && (std::binary_search(on_faces[v].begin(), on_faces[v].end(), k) ||
-                                domain.signed_distance(k, mesh.point(v)) >= 0);
+      is_inside = is_inside && distance[v] >= 0;  // 0 on the face
     }
     if (is_inside) {
       inside.push_back(t);
@@ -478,6 +628,8 @@ void drop_outside(const Domain& domain, int k, TriangleMesh& mesh, FaceSets& on_
 // oriented and the result is valid.
 int collapse_short_boundary_edges(const ImplicitProblem& problem, TriangleMesh& mesh,
                                   const FaceSets& on_faces, double min_length) {
+  const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
+  const AmbientSpace& space = *shared_space;
   OrientationGuard guard(problem, vertex_neighbours(mesh));
   int collapsed = 0;
   bool changed = true;
@@ -485,38 +637,59 @@ int collapse_short_boundary_edges(const ImplicitProblem& problem, TriangleMesh& 
   while (changed) {
     changed = false;
     const MeshTopology topology(mesh);
+    // Collapses move no point: the boundary edges' lengths are measured once per topology
+    // (one reduction on a split mesh).
+    std::vector<std::pair<int, int>> boundary;
     for (int e : topology.boundary_edges()) {
-      auto [a, b] = topology.edge(e);
-      if ((mesh.point(a) - mesh.point(b)).norm() >= min_length || !rejected.insert({a, b}).second) {
+      boundary.emplace_back(topology.edge(e)[0], topology.edge(e)[1]);
+    }
+    const std::vector<double> boundary_length = lengths(mesh, space, boundary);
+    for (std::size_t i = 0; i < boundary.size(); ++i) {
+      auto [a, b] = boundary[i];
+      if (boundary_length[i] >= min_length || !rejected.insert({a, b}).second) {
         continue;
       }
       if (on_faces[b].size() > on_faces[a].size()) {
         std::swap(a, b);  // keep a, the vertex on more faces
       }
+      // b's triangles before and after (b replaced by a), their angles measured at once.
       std::vector<Triangle> triangles;
-      double worst_before = std::numbers::pi;
-      double worst_after = std::numbers::pi;
-      bool keeps_orientation = true;
+      std::vector<Triangle> measured;  // b's triangles, then the reshaped ones
+      std::vector<std::pair<Triangle, Triangle>> reshaped;
       for (Triangle t : mesh.triangles()) {
         const bool has_a = t[0] == a || t[1] == a || t[2] == a;
         const bool has_b = t[0] == b || t[1] == b || t[2] == b;
         if (has_b) {
-          worst_before = std::min(worst_before, min_angle(mesh, t));
+          measured.push_back(t);
         }
         if (has_a && has_b) {
           continue;  // the triangle on the collapsed edge disappears
         }
         if (has_b) {
-          const Corners before = corners(mesh, t);
+          const Triangle old = t;
           for (int& v : t) {
             v = v == b ? a : v;
           }
-          worst_after = std::min(worst_after, min_angle(mesh, t));
-          keeps_orientation =
-              keeps_orientation &&
-              guard.keeps_orientation(a, mesh.point(a), before, corners(mesh, t));
+          reshaped.emplace_back(old, t);
         }
         triangles.push_back(t);
+      }
+      const std::size_t around_b = measured.size();
+      for (const auto& [old, now] : reshaped) {
+        measured.push_back(now);
+      }
+      const std::vector<double> angles = min_angles(mesh, space, measured);
+      double worst_before = std::numbers::pi;
+      double worst_after = std::numbers::pi;
+      for (std::size_t j = 0; j < angles.size(); ++j) {
+        double& worst = j < around_b ? worst_before : worst_after;
+        worst = std::min(worst, angles[j]);
+      }
+      bool keeps_orientation = true;
+      for (const auto& [old, now] : reshaped) {
+        keeps_orientation =
+            keeps_orientation &&
+            guard.keeps_orientation(a, mesh.point(a), corners(mesh, old), corners(mesh, now));
       }
       if (worst_after <= worst_before || !keeps_orientation) {
         continue;  // only collapses that improve the worst angle around b and fold nothing
@@ -544,19 +717,43 @@ int collapse_short_boundary_edges(const ImplicitProblem& problem, TriangleMesh& 
 
 ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain, TriangleMesh& mesh,
                            const ClipOptions& options) {
+  const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
+  const AmbientSpace& space = *shared_space;
+  const bool split = space.is_distributed();
+  if (split) {
+    check_mesh_of_problem(mesh, problem, "clip_to_domain");
+    TESSERA_CHECK(domain.is_unbounded() || domain.is_distributed(),
+                  "clip_to_domain: problem '" << problem.name()
+                                              << "' is distributed; so must the domain be "
+                                                 "(Domain::distributed)");
+  }
   ClipSummary summary;
   const int face_count = static_cast<int>(domain.half_spaces().size());
-  FaceSets on_faces = faces_of_vertices(domain, mesh);
+  FaceSets on_faces = faces_of_vertices(domain, space, mesh);
   for (int k = 0; k < face_count; ++k) {
     if (summary.interrupted) {
       // No more projections after a stop: the triangles outside the faces left are removed.
-      drop_outside(domain, k, mesh, on_faces);
+      drop_outside(domain, space, k, mesh, on_faces);
       continue;
     }
     bool crosses = false;
-    for (int v = 0; v < mesh.vertex_count() && !crosses; ++v) {
-      crosses = !std::binary_search(on_faces[v].begin(), on_faces[v].end(), k) &&
-                domain.signed_distance(k, mesh.point(v)) < 0;
+    if (!split) {
+      for (int v = 0; v < mesh.vertex_count() && !crosses; ++v) {
+        crosses = !std::binary_search(on_faces[v].begin(), on_faces[v].end(), k) &&
+                  domain.signed_distance(k, mesh.point(v)) < 0;
+      }
+    } else {
+      // Every vertex's distance at once: one reduction.
+      std::vector<double> distance(static_cast<std::size_t>(mesh.vertex_count()), 0.0);
+      for (int v = 0; v < mesh.vertex_count(); ++v) {
+        if (!std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)) {
+          distance[v] = partial_signed_distance(domain, k, mesh.point(v));
+        }
+      }
+      if (!distance.empty()) {
+        space.sum(distance.data(), static_cast<int>(distance.size()));
+      }
+      crosses = std::any_of(distance.begin(), distance.end(), [](double d) { return d < 0; });
     }
     if (!crosses) {
       continue;
@@ -607,7 +804,7 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
                 " would leave an invalid mesh: " + validation.report();
     }
     if (!done) {
-      drop_outside(domain, k, mesh, on_faces);
+      drop_outside(domain, space, k, mesh, on_faces);
       if (summary.message.empty() && !summary.interrupted) {
         summary.message = failure +
                           "; the triangles across that face were removed instead (try a smaller "

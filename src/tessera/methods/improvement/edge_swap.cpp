@@ -3,7 +3,9 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <memory>
 #include <cstdint>
 #include <numbers>
 #include <sstream>
@@ -11,6 +13,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/corrector.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
@@ -71,17 +74,25 @@ double signed_area(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eig
 // by the orthonormal n×2 basis T: each of the four triangles abc, bad (old) and cad, dbc (new)
 // has signed area > min_area_ratio·(longest side or diagonal)² times `sign`. If `sign` is 0 on
 // entry it is set to the sign of abc; all four with one sign is the same as: the diagonals ab
-// and cd cross.
-bool is_strictly_convex_in_plane(const TriangleMesh& mesh, const Quad& q, const Eigen::MatrixXd& T,
-                                 const Eigen::VectorXd& origin, const ImprovementOptions& options,
-                                 double& sign) {
+// and cd cross. On a split mesh the four corners' coordinates are summed over the ranks at once.
+bool is_strictly_convex_in_plane(const TriangleMesh& mesh, const AmbientSpace& space, const Quad& q,
+                                 const Eigen::MatrixXd& T, const Eigen::VectorXd& origin,
+                                 const ImprovementOptions& options, double& sign) {
   const auto in_plane = [&](int v) -> Eigen::Vector2d {
     return T.transpose() * (mesh.point(v) - origin);
   };
-  const Eigen::Vector2d pa = in_plane(q.a);
-  const Eigen::Vector2d pb = in_plane(q.b);
-  const Eigen::Vector2d pc = in_plane(q.c);
-  const Eigen::Vector2d pd = in_plane(q.d);
+  Eigen::Matrix<double, 2, 4> corners;  // pa, pb, pc, pd
+  corners.col(0) = in_plane(q.a);
+  corners.col(1) = in_plane(q.b);
+  corners.col(2) = in_plane(q.c);
+  corners.col(3) = in_plane(q.d);
+  if (space.is_distributed()) {
+    space.sum(corners.data(), 8);
+  }
+  const Eigen::Vector2d pa = corners.col(0);
+  const Eigen::Vector2d pb = corners.col(1);
+  const Eigen::Vector2d pc = corners.col(2);
+  const Eigen::Vector2d pd = corners.col(3);
   const double longest_squared =
       std::max({(pa - pb).squaredNorm(), (pa - pc).squaredNorm(), (pa - pd).squaredNorm(),
                 (pb - pc).squaredNorm(), (pb - pd).squaredNorm(), (pc - pd).squaredNorm()});
@@ -106,7 +117,7 @@ bool project_edge_midpoint(const TriangleMesh& mesh, const ImplicitProblem& prob
                            Linearization& linearization, Eigen::VectorXd& x) {
   x = 0.5 * (mesh.point(u) + mesh.point(v));
   CorrectorOptions corrector;
-  corrector.max_displacement = (mesh.point(u) - mesh.point(v)).norm();
+  corrector.max_displacement = problem.space()->distance(mesh.point(u), mesh.point(v));
   return project_gauss_newton(problem, x, corrector, linearization).is_success();
 }
 
@@ -116,7 +127,8 @@ bool project_edge_midpoint(const TriangleMesh& mesh, const ImplicitProblem& prob
 // O(1) n-vectors.
 class CornerTangents {
  public:
-  explicit CornerTangents(const ImplicitProblem& problem) : problem_(problem) {}
+  explicit CornerTangents(const ImplicitProblem& problem)
+      : problem_(problem), space_(problem.space()) {}
 
   /// The factorisation at vertex v, made now unless v was the last one factored.
   const Linearization* factorisation(const TriangleMesh& mesh, int v) {
@@ -148,7 +160,11 @@ class CornerTangents {
     } else {
       return false;
     }
-    align_tangent_basis(T, reference);
+    if (space_->is_distributed()) {
+      align_tangent_basis(T, reference, *space_);  // Tᵀ·reference summed over the ranks
+    } else {
+      align_tangent_basis(T, reference);
+    }
     return true;
   }
 
@@ -162,6 +178,7 @@ class CornerTangents {
   }
 
   const ImplicitProblem& problem_;
+  const std::shared_ptr<const AmbientSpace> space_;
   Linearization linearization_;
   int factored_vertex_ = -1;
   bool is_factored_ = false;
@@ -174,6 +191,8 @@ class CornerTangents {
 SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& problem,
                               const Quad& q, const ImprovementOptions& options,
                               Linearization& workspace, CornerTangents& corners_tangents) {
+  const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
+  const AmbientSpace& space = *shared_space;
   const Linearization* at_a = corners_tangents.factorisation(mesh, q.a);
   if (at_a == nullptr) {
     return SwapCheck::ProjectionFailed;
@@ -182,7 +201,7 @@ SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& p
   // left the neighbourhood of M it belongs to (another sheet), where nothing can be judged.
   Eigen::VectorXd x = 0.5 * (mesh.point(q.a) + mesh.point(q.b));
   CorrectorOptions corrector;
-  corrector.max_displacement = (mesh.point(q.a) - mesh.point(q.b)).norm();
+  corrector.max_displacement = space.distance(mesh.point(q.a), mesh.point(q.b));
   const Eigen::VectorXd midpoint = x;
   if (!project_chord(problem, *at_a, x, corrector).is_success()) {
     x = midpoint;
@@ -193,7 +212,8 @@ SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& p
   // T: n×2 orthonormal tangent basis at a; coordinates in the tangent plane are Tᵀ(y − a).
   const Eigen::MatrixXd T = at_a->tangent_basis();
   double sign = 0.0;
-  if (!is_strictly_convex_in_plane(mesh, q, T, Eigen::VectorXd(mesh.point(q.a)), options, sign)) {
+  if (!is_strictly_convex_in_plane(mesh, space, q, T, Eigen::VectorXd(mesh.point(q.a)), options,
+                                   sign)) {
     return SwapCheck::NonConvex;
   }
   // One plane alone can be fooled where M curves across a large quadrilateral: a swap could
@@ -207,8 +227,8 @@ SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& p
       return SwapCheck::ProjectionFailed;
     }
     double corner_sign = sign;
-    if (!is_strictly_convex_in_plane(mesh, q, corner_tangent, Eigen::VectorXd(mesh.point(v)),
-                                     options, corner_sign)) {
+    if (!is_strictly_convex_in_plane(mesh, space, q, corner_tangent,
+                                     Eigen::VectorXd(mesh.point(v)), options, corner_sign)) {
       return SwapCheck::NonConvex;
     }
   }
@@ -240,6 +260,45 @@ double plane_angle(const TriangleMesh& mesh, const Triangle& first, const Triang
   return std::acos(std::clamp(smallest, 0.0, 1.0));
 }
 
+// The same angle on a split mesh, from the Gram matrix G = EᵀE of E = (b − a, c − a, d − a)
+// (summed over the ranks once for the four triangles of a quad): a corner is a coefficient
+// vector k (k_a = 0, k_b = e₁, …), an edge q − p is E(k_q − k_p), and Gram–Schmidt in the inner
+// product xᵀGy gives the planes' bases as E·C. Then Q1ᵀQ2 = C1ᵀ G C2. For n = 3 the normals'
+// cosine is det(Q1ᵀQ2) (Binet–Cauchy).
+double plane_angle_from_gram(const Eigen::Matrix3d& G, const Quad& q, const Triangle& first,
+                             const Triangle& second, int n) {
+  const auto coefficients = [&](int v) {
+    Eigen::Vector3d k = Eigen::Vector3d::Zero();
+    if (v != q.a) {
+      k(v == q.b ? 0 : (v == q.c ? 1 : 2)) = 1.0;
+    }
+    return k;
+  };
+  const auto basis = [&](const Triangle& t) {
+    Eigen::Matrix<double, 3, 2> C;
+    // As Eigen's normalized(): a zero vector stays zero (a degenerate triangle).
+    const auto normalize = [&](int j) {
+      const double squared = C.col(j).dot(G * C.col(j));
+      if (squared > 0) {
+        C.col(j) /= std::sqrt(squared);
+      }
+    };
+    C.col(0) = coefficients(t[1]) - coefficients(t[0]);
+    normalize(0);
+    C.col(1) = coefficients(t[2]) - coefficients(t[0]);
+    C.col(1) -= C.col(1).dot(G * C.col(0)) * C.col(0);
+    normalize(1);
+    return C;
+  };
+  const Eigen::Matrix2d M = basis(first).transpose() * G * basis(second);
+  if (n == 3) {
+    const double cosine = M.determinant();
+    return std::atan2(std::sqrt(std::max(0.0, 1.0 - cosine * cosine)), cosine);
+  }
+  const double smallest = Eigen::JacobiSVD<Eigen::Matrix2d>(M).singularValues()(1);
+  return std::acos(std::clamp(smallest, 0.0, 1.0));
+}
+
 // What the criterion says of replacing triangles (a, b, c), (b, a, d) by (c, a, d), (d, b, c).
 enum class Verdict {
   Improves,  ///< by more than the relative tolerance
@@ -247,24 +306,55 @@ enum class Verdict {
   ProjectionFailed,  ///< MidpointDistance: the old edge's midpoint could not be projected
 };
 
+// The quad's five sides and two diagonals in R^n: ab, bc, ca, ad, db, cd.
+constexpr int kQuadSides = 6;
+std::array<std::pair<int, int>, 6> quad_sides(const Quad& q) {
+  return {{{q.a, q.b}, {q.b, q.c}, {q.c, q.a}, {q.a, q.d}, {q.d, q.b}, {q.c, q.d}}};
+}
+
 // Evaluates the criterion alone (no validity check): the angle and normal criteria cost a few
-// dot products, far less than the five factorisations of the convexity check.
+// dot products, far less than the five factorisations of the convexity check. `measured`: the
+// quad's kQuadSides lengths if the caller has them (a split mesh measures a sweep's quads at
+// once).
 Verdict judge_swap(const TriangleMesh& mesh, const ImplicitProblem& problem, const Quad& q,
-                   const ImprovementOptions& options, Linearization& workspace) {
+                   const ImprovementOptions& options, Linearization& workspace,
+                   const double* measured) {
   const double tolerance = options.relative_tolerance;
+  const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
+  const AmbientSpace& space = *shared_space;
   switch (options.criterion) {
     case ImprovementCriterion::MaxMinAngle: {
       // The quad's five sides and two diagonals, each measured once in R^n.
-      const auto length = [&](int u, int v) { return (mesh.point(u) - mesh.point(v)).norm(); };
-      const double ab = length(q.a, q.b), bc = length(q.b, q.c), ca = length(q.c, q.a);
-      const double ad = length(q.a, q.d), db = length(q.d, q.b), cd = length(q.c, q.d);
+      std::array<double, kQuadSides> side{};
+      if (measured != nullptr) {
+        std::copy(measured, measured + kQuadSides, side.begin());
+      } else {
+        const auto pairs = quad_sides(q);
+        for (std::size_t i = 0; i < pairs.size(); ++i) {
+          side[i] = space.distance(mesh.point(pairs[i].first), mesh.point(pairs[i].second));
+        }
+      }
+      const auto [ab, bc, ca, ad, db, cd] = side;
       const double before = std::min(min_angle_of_sides(ab, bc, ca), min_angle_of_sides(ab, ad, db));
       const double after = std::min(min_angle_of_sides(ca, ad, cd), min_angle_of_sides(cd, db, bc));
       return after > before * (1.0 + tolerance) ? Verdict::Improves : Verdict::DoesNotImprove;
     }
     case ImprovementCriterion::NormalAngle: {
-      const double before = plane_angle(mesh, {q.a, q.b, q.c}, {q.b, q.a, q.d});
-      const double after = plane_angle(mesh, {q.c, q.a, q.d}, {q.d, q.b, q.c});
+      double before = 0.0;
+      double after = 0.0;
+      if (space.is_distributed()) {
+        Eigen::MatrixXd E(mesh.ambient_dimension(), 3);
+        E.col(0) = mesh.point(q.b) - mesh.point(q.a);
+        E.col(1) = mesh.point(q.c) - mesh.point(q.a);
+        E.col(2) = mesh.point(q.d) - mesh.point(q.a);
+        const Eigen::Matrix3d G = space.products(E, E);  // one reduction
+        const int n = space.dimension();
+        before = plane_angle_from_gram(G, q, {q.a, q.b, q.c}, {q.b, q.a, q.d}, n);
+        after = plane_angle_from_gram(G, q, {q.c, q.a, q.d}, {q.d, q.b, q.c}, n);
+      } else {
+        before = plane_angle(mesh, {q.a, q.b, q.c}, {q.b, q.a, q.d});
+        after = plane_angle(mesh, {q.c, q.a, q.d}, {q.d, q.b, q.c});
+      }
       return after < before * (1.0 - tolerance) ? Verdict::Improves : Verdict::DoesNotImprove;
     }
     case ImprovementCriterion::MidpointDistance: {
@@ -272,13 +362,19 @@ Verdict judge_swap(const TriangleMesh& mesh, const ImplicitProblem& problem, con
       if (!project_edge_midpoint(mesh, problem, q.a, q.b, workspace, old_projection)) {
         return Verdict::ProjectionFailed;
       }
-      const double before = (old_projection - 0.5 * (mesh.point(q.a) + mesh.point(q.b))).norm();
+      const double before =
+          space.is_distributed()
+              ? space.distance(old_projection, 0.5 * (mesh.point(q.a) + mesh.point(q.b)))
+              : (old_projection - 0.5 * (mesh.point(q.a) + mesh.point(q.b))).norm();
       Eigen::VectorXd new_projection;
       // A new diagonal whose midpoint cannot be projected is no improvement.
       if (!project_edge_midpoint(mesh, problem, q.c, q.d, workspace, new_projection)) {
         return Verdict::DoesNotImprove;
       }
-      const double after = (new_projection - 0.5 * (mesh.point(q.c) + mesh.point(q.d))).norm();
+      const double after =
+          space.is_distributed()
+              ? space.distance(new_projection, 0.5 * (mesh.point(q.c) + mesh.point(q.d)))
+              : (new_projection - 0.5 * (mesh.point(q.c) + mesh.point(q.d))).norm();
       return after < before * (1.0 - tolerance) ? Verdict::Improves : Verdict::DoesNotImprove;
     }
   }
@@ -319,6 +415,10 @@ SwapCheck find_quad(const std::vector<Triangle>& triangles, int u, int v, Quad& 
 }
 
 void check_dimensions(const TriangleMesh& mesh, const ImplicitProblem& problem) {
+  if (problem.space()->is_distributed()) {
+    check_mesh_of_problem(mesh, problem, "edge swaps");  // a split mesh of the problem's rows
+    return;
+  }
   TESSERA_CHECK(mesh.ambient_dimension() == problem.ambient_dimension(),
                 "the mesh lives in R^" << mesh.ambient_dimension() << " but problem '"
                                        << problem.name() << "' in R^"
@@ -432,6 +532,13 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
   CornerTangents corner_tangents(problem);
   Linearization workspace;
   std::vector<std::uint8_t> is_changed;
+  // A split mesh (SPMD): every rank its rows of the points; what a swap is judged by is summed
+  // over the ranks, so that all make the same swaps.
+  const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
+  const AmbientSpace& space = *shared_space;
+  const bool split = space.is_distributed();
+  // kQuadSides lengths per edge of the sweep's topology (split meshes, MaxMinAngle).
+  std::vector<double> quad_lengths;
   while (summary.sweeps < options.max_sweeps) {
     ++summary.sweeps;
     // The topology is rebuilt once per sweep. A swap changes only its two triangles: edges of
@@ -439,6 +546,29 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
     // visited again in the next one.
     const MeshTopology topology(mesh.vertex_count(), triangles);
     is_changed.assign(triangles.size(), 0);
+    if (split && options.criterion == ImprovementCriterion::MaxMinAngle) {
+      // Swaps move no point, and an edge is judged only while its quad is the one of the
+      // sweep's topology: every quad's lengths are measured at once (one reduction per sweep).
+      quad_lengths.assign(kQuadSides * static_cast<std::size_t>(topology.edge_count()), 0.0);
+      for (int e = 0; e < topology.edge_count(); ++e) {
+        const auto incident = topology.edge_triangles(e);
+        Quad q;
+        if (incident.size() == 2 && orient_quad(triangles, incident[0], incident[1],
+                                                topology.edge(e)[0], topology.edge(e)[1], q)) {
+          const auto pairs = quad_sides(q);
+          for (std::size_t i = 0; i < pairs.size(); ++i) {
+            quad_lengths[kQuadSides * static_cast<std::size_t>(e) + i] =
+                (mesh.point(pairs[i].first) - mesh.point(pairs[i].second)).squaredNorm();
+          }
+        }
+      }
+      if (!quad_lengths.empty()) {
+        space.sum(quad_lengths.data(), static_cast<int>(quad_lengths.size()));
+      }
+      for (double& length : quad_lengths) {
+        length = std::sqrt(length);
+      }
+    }
     int swaps_in_sweep = 0;
     int interior_edges = 0;
     for (int e = 0; e < topology.edge_count(); ++e) {
@@ -459,19 +589,30 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
         ++summary.rejected_existing_edge;
         continue;
       }
-      if (options.stop_requested && options.stop_requested()) {
+      // A split mesh polls where a swap is wanted, before its factorisations: the request is
+      // one rank's, so the ranks agree on it by a reduction, which per edge would cost more
+      // than the criterion measured for the whole sweep at once.
+      if (!split && options.stop_requested && options.stop_requested()) {
         summary.interrupted = true;
         break;
       }
       // The criterion first: most edges of a reasonable mesh do not want a swap, and for them
       // the projection and the five factorisations of the validity check would be wasted.
-      const Verdict verdict = judge_swap(mesh, problem, q, options, workspace);
+      const Verdict verdict = judge_swap(
+          mesh, problem, q, options, workspace,
+          quad_lengths.empty() ? nullptr
+                               : quad_lengths.data() + kQuadSides * static_cast<std::size_t>(e));
       if (verdict == Verdict::ProjectionFailed) {
         ++summary.rejected_projection_failed;
         continue;
       }
       if (verdict == Verdict::DoesNotImprove) {
         continue;
+      }
+      if (split && options.stop_requested &&
+          space.maximum(options.stop_requested() ? 1.0 : 0.0) > 0.0) {
+        summary.interrupted = true;
+        break;
       }
       const SwapCheck check =
           check_quad_geometry(mesh, problem, q, options, workspace, corner_tangents);

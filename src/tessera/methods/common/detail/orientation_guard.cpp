@@ -2,8 +2,11 @@
 #include "tessera/methods/common/detail/orientation_guard.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <memory>
 
+#include "tessera/core/ambient_space.h"
 
 namespace tessera::detail {
 namespace {
@@ -39,6 +42,7 @@ std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& mesh) {
 OrientationGuard::OrientationGuard(const ImplicitProblem& problem,
                                    std::vector<std::vector<int>> neighbours)
     : problem_(problem),
+      space_(problem.space()),
       shares_factorisations_(problem.has_sparse_jacobian()),
       neighbours_(std::move(neighbours)),
       kept_(kMaxKept, kMaxKeptBytes) {}
@@ -75,7 +79,10 @@ bool OrientationGuard::keeps_orientation(int v, const Eigen::VectorXd& x, const 
     // solves); the vertex's own where that does not converge.
     const Linearization* near = at_vertex(v, x);
     Eigen::MatrixXd T;
-    const bool is_own = near != nullptr && near->point() == x;
+    bool is_own = near != nullptr && near->point() == x;
+    if (near != nullptr && space_->is_distributed()) {
+      is_own = space_->maximum(is_own ? 0.0 : 1.0) == 0.0;  // the same point on every rank
+    }
     if (near == nullptr ||
         (!is_own && !tangent_basis_near(problem_, *near, x, T, kNearTangentTolerance))) {
       near = factor_at(v, x);
@@ -89,6 +96,22 @@ bool OrientationGuard::keeps_orientation(int v, const Eigen::VectorXd& x, const 
     found = tangents_.emplace(v, std::move(T)).first;
   }
   const Eigen::MatrixXd& T = found->second;
+  if (space_->is_distributed()) {
+    // The corners' tangent coordinates and the new edges' squared lengths: one reduction.
+    std::array<double, 11> parts{};
+    Eigen::Map<Eigen::Vector2d>(parts.data()) = T.transpose() * (before[1] - before[0]);
+    Eigen::Map<Eigen::Vector2d>(parts.data() + 2) = T.transpose() * (before[2] - before[0]);
+    Eigen::Map<Eigen::Vector2d>(parts.data() + 4) = T.transpose() * (after[1] - after[0]);
+    Eigen::Map<Eigen::Vector2d>(parts.data() + 6) = T.transpose() * (after[2] - after[0]);
+    for (int r = 0; r < 3; ++r) {
+      parts[8 + r] = (after[(r + 1) % 3] - after[r]).squaredNorm();
+    }
+    space_->sum(parts.data(), 11);
+    const double area_before = parts[0] * parts[3] - parts[1] * parts[2];
+    const double area_after = parts[4] * parts[7] - parts[5] * parts[6];
+    const double longest = std::max({parts[8], parts[9], parts[10]});
+    return area_before * area_after > 0 && std::abs(area_after) > kMinAreaRatio * longest;
+  }
   const double area_before = projected_area(T, before);
   const double area_after = projected_area(T, after);
   double longest = 0.0;

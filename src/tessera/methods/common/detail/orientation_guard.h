@@ -6,9 +6,11 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/factorisation_cache.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/linearization.h"
@@ -60,6 +62,7 @@ class OrientationGuard {
   const Linearization* factor_at(int v, const Eigen::VectorXd& x);
 
   const ImplicitProblem& problem_;
+  const std::shared_ptr<const AmbientSpace> space_;  // points are its local rows
   const bool shares_factorisations_;
   std::vector<std::vector<int>> neighbours_;
   FactorisationCache kept_;
