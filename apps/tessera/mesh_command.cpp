@@ -278,12 +278,15 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   ProblemSetup setup = resolve_problem(command.problem);
   const int n = setup.problem->ambient_dimension();
   apply_start_and_box(setup, command.start, command.box);
-  backend.adopt(setup);
+  const CoveringMethod& method =
+      command.method.empty() ? covering_methods().front() : find_covering_method(command.method);
+  // The atlas runs on split states (each rank its rows of every vertex); the other methods, and
+  // the improvement and fold curves (not yet converted), on whole ones on every rank.
+  backend.adopt(setup, /*split_states=*/method.name == "atlas" && !command.improve &&
+                           command.folds.empty());
   // Every rank computes; the root prints and writes.
   const bool is_root = backend.is_root();
   const bool quiet = command.quiet || !is_root;
-  const CoveringMethod& method =
-      command.method.empty() ? covering_methods().front() : find_covering_method(command.method);
   // A method's own options given to another method would be ignored silently: refuse them.
   refuse_options_of_other_methods(command.settings, method.name, /*keyword_names=*/false);
   // Every option is checked before the computation starts.
@@ -339,7 +342,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   const InterruptGuard interrupt;
   // Collective on the PETSc backend: every rank stops at the same vertex.
   settings.stop_requested = [&backend] { return backend.any_rank(InterruptGuard::requested()); };
-  CoveringResult result = cover(setup, method, settings);
+  CoveringResult result = backend.cover(setup, method, settings);
   if (show_progress) {
     std::fprintf(stderr, "\r%60s\r", "");
   }
@@ -391,6 +394,8 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     write_mesh_in_view(command.output, result.mesh, view, file_options);
     written.push_back(command.output);
   }
+  const BackendReport backend_report{backend.name(), backend.ranks(),
+                                     backend.splits_states() ? "split" : "whole"};
   const ViewReport view_report{
       view.specification(),
       view.is_all_coordinates() ? std::vector<std::string>() : view.names(), chosen.origin};
@@ -402,7 +407,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   if (!command.summary.empty() && is_root) {
     before.run = result.summary;
     before.view = view_report;
-    before.backend = BackendReport{backend.name(), backend.ranks()};
+    before.backend = backend_report;
     write_summary_json(command.summary, before);
   }
   const bool stopped_before = backend.any_rank(InterruptGuard::requested());
@@ -417,7 +422,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
                                   [&backend](bool stop) { return backend.any_rank(stop); });
   report.run = result.summary;
   report.view = view_report;
-  report.backend = BackendReport{backend.name(), backend.ranks()};
+  report.backend = backend_report;
   std::vector<Polyline> fold_curves;
   if (has_mesh && fold_plane) {
     // On the finished mesh, in its view; a partial mesh has the folds of what it covers.

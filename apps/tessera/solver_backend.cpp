@@ -69,7 +69,8 @@ struct SolverBackend::Petsc {
     session = std::make_unique<petsc::Session>(&argc, &argv);
   }
   ~Petsc() {
-    scaled.reset();  // before PETSc ends
+    covering.problem.reset();  // before PETSc ends
+    scaled.reset();
     problem.reset();
     session.reset();
   }
@@ -80,13 +81,11 @@ struct SolverBackend::Petsc {
   char** argv = nullptr;
   std::unique_ptr<petsc::Session> session;
   std::unique_ptr<petsc::PetscArrheniusBratu> problem;
-  // Split states: the problem in its metric's coordinates (what the atlas covers), this rank's
-  // rows of the metric's weights, and the problem and domain in x for restore_coordinates.
+  // Split states: the problem in its metric's coordinates y = W x (what the atlas covers), its
+  // setup on this rank's rows, and this rank's rows of the weights W.
   std::unique_ptr<petsc::ScaledPetscProblem> scaled;
+  ProblemSetup covering;
   Eigen::VectorXd local_weights;
-  bool split = false;
-  std::unique_ptr<ImplicitProblem> unscaled;
-  Domain unscaled_domain;
 };
 
 SolverBackend::SolverBackend(const std::string& name, const std::vector<std::string>& petsc_options)
@@ -161,18 +160,19 @@ void SolverBackend::adopt_split(ProblemSetup& setup) {
     weights = Eigen::VectorXd::Ones(n);
   }
   petsc_->scaled = std::make_unique<petsc::ScaledPetscProblem>(*petsc_->problem);
-  auto covering =
+  ProblemSetup& covering = petsc_->covering;
+  covering.problem =
       std::make_unique<petsc::DistributedProblem>(*petsc_->scaled, serial.coordinate_names());
-  const std::shared_ptr<const AmbientSpace> space = covering->space();
+  const std::shared_ptr<const AmbientSpace> space = covering.problem->space();
   const int first = space->first_row();
   const int rows = space->local_rows();
   // The two implementations must describe the same M: compare F at the start (each rank its
   // rows of the residual; the distributed one keeps zeros in the border rows n − 2, n − 1).
   Eigen::VectorXd F_serial(n - 2);
   serial.evaluate(setup.start, F_serial);
-  const Eigen::VectorXd start = weights.cwiseProduct(setup.start).segment(first, rows);
+  covering.start = weights.cwiseProduct(setup.start).segment(first, rows);
   Eigen::VectorXd F_split(space->local_equations());
-  covering->evaluate(start, F_split);
+  covering.problem->evaluate(covering.start, F_split);
   const int held = std::max(0, std::min(rows, n - 2 - first));
   std::array<double, 2> sums = {(F_split.head(held) - F_serial.segment(first, held)).squaredNorm(),
                                 F_serial.segment(first, held).squaredNorm()};
@@ -182,28 +182,33 @@ void SolverBackend::adopt_split(ProblemSetup& setup) {
                             "' disagrees with the serial one at the start point (|ΔF| = " +
                             std::to_string(std::sqrt(sums[0])) + "); please report this");
   }
+  covering.domain = scale_domain(setup.domain, weights).distributed(space);
+  covering.suggested_step = setup.suggested_step;
+  covering.description = setup.description;
   petsc_->local_weights = weights.segment(first, rows);
-  petsc_->unscaled =
+  // Everything but the covering sees the problem in x, on this rank's rows.
+  setup.domain = setup.domain.distributed(space);
+  setup.start = setup.start.segment(first, rows).eval();
+  auto in_x =
       std::make_unique<petsc::DistributedProblem>(*petsc_->problem, serial.coordinate_names());
-  petsc_->unscaled_domain = setup.domain.distributed(space);
-  setup.domain = scale_domain(setup.domain, weights).distributed(space);
-  setup.start = start;
-  setup.problem = std::move(covering);
-  petsc_->split = true;
+  in_x->set_metric_problem(covering.problem.get());  // the report measures in y, as in serial
+  setup.problem = std::move(in_x);
 }
 
-bool SolverBackend::splits_states() const { return petsc_ && petsc_->split; }
+bool SolverBackend::splits_states() const { return petsc_ && petsc_->covering.problem; }
 
-void SolverBackend::restore_coordinates(ProblemSetup& setup, TriangleMesh& mesh) {
-  if (!splits_states() || !petsc_->unscaled) {
-    return;
+CoveringResult SolverBackend::cover(const ProblemSetup& setup, const CoveringMethod& method,
+                                    const MethodSettings& settings) const {
+  if (!splits_states()) {
+    return tessera::cover(setup, method, settings);
   }
-  for (int v = 0; v < mesh.vertex_count(); ++v) {
-    mesh.mutable_point(v).array() /= petsc_->local_weights.array();
+  // The covering measures lengths in y = W x (the metric): it runs on the scaled problem, and
+  // its mesh comes back to x.
+  CoveringResult result = tessera::cover(petsc_->covering, method, settings);
+  for (int v = 0; v < result.mesh.vertex_count(); ++v) {
+    result.mesh.mutable_point(v).array() /= petsc_->local_weights.array();
   }
-  setup.problem = std::move(petsc_->unscaled);
-  setup.domain = petsc_->unscaled_domain;
-  // (setup.start stays in y: nothing after the covering uses it.)
+  return result;
 }
 
 void SolverBackend::abort(int code) const {
@@ -239,7 +244,10 @@ void SolverBackend::adopt(ProblemSetup& /*setup*/, bool /*split_states*/) {}
 
 bool SolverBackend::splits_states() const { return false; }
 
-void SolverBackend::restore_coordinates(ProblemSetup& /*setup*/, TriangleMesh& /*mesh*/) {}
+CoveringResult SolverBackend::cover(const ProblemSetup& setup, const CoveringMethod& method,
+                                    const MethodSettings& settings) const {
+  return tessera::cover(setup, method, settings);
+}
 
 void SolverBackend::abort(int code) const { std::exit(code); }
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "tessera/geometry/triangle_mesh.h"
+#include "tessera/methods/covering_methods.h"
 #include "tessera/problems/problem_setup.h"
 
 namespace tessera::app {
@@ -45,16 +45,15 @@ class SolverBackend {
   /// Puts setup's problem on this backend (PETSc: the catalogue's bvp and bratu2d), with the
   /// same start, domain and coordinate names. The backend must outlive the setup's problem.
   /// With `split_states` (the atlas), every rank holds its rows of every n-vector: setup's
-  /// problem is then the problem in its metric's coordinates y = W x (what the covering
-  /// measures lengths in), its start and domain this rank's rows of them in y;
-  /// restore_coordinates turns the result back.
+  /// problem, start and domain become this rank's rows of them (the mesh's points will be too).
   /// \throw InvalidArgument if the problem has no implementation on the backend.
   void adopt(ProblemSetup& setup, bool split_states = false);
   /// Whether adopt split the states.
   bool splits_states() const;
-  /// After a covering on split states: the mesh's rows back in the problem's coordinates x, and
-  /// setup's problem and domain those of x (their rows), for the report and the output.
-  void restore_coordinates(ProblemSetup& setup, TriangleMesh& mesh);
+  /// tessera::cover on this backend: on split states the covering runs on the problem in its
+  /// metric's coordinates y = W x (ScaledPetscProblem) and its mesh comes back to x.
+  CoveringResult cover(const ProblemSetup& setup, const CoveringMethod& method,
+                       const MethodSettings& settings) const;
   /// Ends every rank with `code` (MPI_Abort): after an error on some ranks, the others may wait
   /// in a collective call forever. The serial backend exits.
   [[noreturn]] void abort(int code) const;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `mpiexec -n 2 tessera mesh … --backend petsc` as a cluster user runs it: the same mesh as the
-// serial backend (states and triangles from --states), written once, the backend in the
-// summary; and the misuses a user meets get a usage error that names the problem.
+// serial backend (states and triangles from --states, gathered from the ranks' rows), written
+// once, the backend in the summary; and the misuses a user meets get a usage error that names the problem.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -83,6 +83,7 @@ TEST(PetscCli, TwoRanksWriteTheSerialBackendsMeshOnce) {
   const auto summary = nlohmann::json::parse(summary_file);
   EXPECT_EQ(summary["backend"]["name"], "petsc");
   EXPECT_EQ(summary["backend"]["ranks"], 2);
+  EXPECT_EQ(summary["backend"]["states"], "split");  // the atlas: each rank its rows
   EXPECT_TRUE(summary["valid"].get<bool>());
   std::ifstream serial_summary_file(folder + "/serial.json");
   const auto serial_summary = nlohmann::json::parse(serial_summary_file);

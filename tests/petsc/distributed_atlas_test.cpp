@@ -5,6 +5,7 @@
 // their triangulation must be the one process's on any number of ranks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "tessera/core/scaled_problem.h"
 #include "tessera/methods/atlas/atlas_builder.h"
 #include "tessera/methods/atlas/atlas_triangulation.h"
+#include "tessera/methods/covering_methods.h"
 #include "tessera/methods/start_point.h"
 #include "tessera/petsc/distributed_problem.h"
 #include "tessera/petsc/petsc_bratu.h"
@@ -25,6 +27,22 @@ using detail::AtlasBuilder;
 
 const DistributedSpace& distributed_space(const AmbientSpace& space) {
   return dynamic_cast<const DistributedSpace&>(space);
+}
+
+// bratu2d:N=6 where λ and ε lie within 0.1 of the start's: a few hundred charts.
+ProblemSetup small_square() {
+  ProblemSetup setup = make_catalogue_problem("bratu2d:N=6");
+  const int n = setup.problem->ambient_dimension();
+  for (const int coordinate : {n - 2, n - 1}) {
+    for (const double side : {-1.0, 1.0}) {
+      Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
+      normal(coordinate) = -side;
+      Eigen::VectorXd point = Eigen::VectorXd::Zero(n);
+      point(coordinate) = setup.start(coordinate) + 0.1 * side;
+      setup.domain.add_half_space(normal, point);
+    }
+  }
+  return setup;
 }
 
 AtlasTriangulation triangulate(AtlasBuilder& builder) {
@@ -40,21 +58,10 @@ AtlasTriangulation triangulate(AtlasBuilder& builder) {
   return triangulate_atlas(cells);
 }
 
-// bratu2d:N=6 in the metric's coordinates, where λ and ε lie within 0.1 of the start's, charts
-// of radius up to 0.2: the serial problem and the PETSc one split over the ranks build the same
+// The small square in the metric's coordinates, charts of radius up to 0.2: the serial problem and the PETSc one split over the ranks build the same
 // charts (radii to rounding, centres to the corrector's tolerance) and the same triangles.
 TEST(DistributedAtlas, SplitChartsAreTheOneProcessCharts) {
-  ProblemSetup setup = make_catalogue_problem("bratu2d:N=6");
-  const int n = setup.problem->ambient_dimension();
-  for (const int coordinate : {n - 2, n - 1}) {
-    for (const double side : {-1.0, 1.0}) {
-      Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
-      normal(coordinate) = -side;
-      Eigen::VectorXd point = Eigen::VectorXd::Zero(n);
-      point(coordinate) = setup.start(coordinate) + 0.1 * side;
-      setup.domain.add_half_space(normal, point);
-    }
-  }
+  const ProblemSetup setup = small_square();
   const Eigen::VectorXd weights = metric_weights(*setup.problem);
   ASSERT_GT(weights.size(), 0);
   const ScaledProblem scaled_serial(*setup.problem, weights);
@@ -117,6 +124,48 @@ TEST(DistributedAtlas, SplitChartsAreTheOneProcessCharts) {
   ASSERT_EQ(split_mesh.mesh.vertex_count(), serial_mesh.mesh.vertex_count());
   EXPECT_TRUE(split_mesh.mesh.space().is_distributed() == space->is_distributed());
   EXPECT_EQ(split_mesh.mesh.ambient_dimension(), rows);
+}
+
+// The whole pipeline (start, atlas, clipping, notches, swaps, refinement to the tolerance,
+// validation, the checks) on split states gives the one process's mesh, in y = W x.
+TEST(DistributedAtlas, TheCoveringOfSplitStatesIsTheOneProcessMesh) {
+  const ProblemSetup serial = small_square();
+  const Eigen::VectorXd weights = metric_weights(*serial.problem);
+  MethodSettings settings;
+  settings.step = 0.2;
+  const CoveringMethod& atlas = find_covering_method("atlas");
+  const CoveringResult expected = cover(serial, atlas, settings);
+  ASSERT_TRUE(expected.summary.is_complete()) << expected.summary.message;
+
+  PetscArrheniusBratu bratu(PETSC_COMM_WORLD, 2, 6);
+  const ScaledPetscProblem scaled(bratu);
+  ProblemSetup split;
+  split.problem = std::make_unique<DistributedProblem>(scaled);
+  const std::shared_ptr<const AmbientSpace> space = split.problem->space();
+  const int first = space->first_row();
+  const int rows = space->local_rows();
+  split.start = weights.cwiseProduct(serial.start).segment(first, rows);
+  split.domain = scale_domain(serial.domain, weights).distributed(space);
+  split.suggested_step = serial.suggested_step;
+  const CoveringResult result = cover(split, atlas, settings);
+  ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+
+  EXPECT_TRUE(result.mesh.space().is_distributed());
+  ASSERT_EQ(result.mesh.vertex_count(), expected.mesh.vertex_count());
+  EXPECT_EQ(result.mesh.triangles(), expected.mesh.triangles());
+  double largest_gap = 0.0;
+  for (int v = 0; v < result.mesh.vertex_count(); ++v) {
+    const Eigen::VectorXd gap =
+        result.mesh.point(v) - weights.cwiseProduct(expected.mesh.point(v)).segment(first, rows);
+    largest_gap = std::max(largest_gap, space->norm(gap));
+  }
+  EXPECT_LE(largest_gap, 1e-7);
+  EXPECT_EQ(result.summary.refined_edges, expected.summary.refined_edges);
+  EXPECT_EQ(result.summary.factorisations, expected.summary.factorisations);
+  EXPECT_EQ(result.summary.jacobian_evaluations, expected.summary.jacobian_evaluations);
+  EXPECT_EQ(result.summary.function_evaluations, expected.summary.function_evaluations);
+  ASSERT_TRUE(result.validation.has_value());
+  EXPECT_TRUE(result.validation->is_valid()) << result.validation->report();
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "tessera/petsc/distributed_problem.h"
 #include "tessera/petsc/petsc_bratu.h"
 #include "tessera/problems/catalogue.h"
+#include "petsc/split_rows.h"
 
 namespace tessera::petsc {
 namespace {
@@ -68,15 +69,7 @@ class SplitBratu {
   }
 
   /// This rank's rows of every vertex.
-  TriangleMesh split(const TriangleMesh& mesh) const {
-    Eigen::MatrixXd local(space_->local_rows(), mesh.vertex_count());
-    for (int v = 0; v < mesh.vertex_count(); ++v) {
-      local.col(v) = mesh.point(v).segment(space_->first_row(), space_->local_rows());
-    }
-    TriangleMesh result(local, mesh.triangles());
-    result.set_space(space_);
-    return result;
-  }
+  TriangleMesh split(const TriangleMesh& mesh) const { return split_rows(mesh, space_); }
 
   int n() const { return static_cast<int>(weights_.size()); }
 

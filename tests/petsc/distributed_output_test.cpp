@@ -26,6 +26,7 @@
 #include "tessera/petsc/petsc_bratu.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/view.h"
+#include "petsc/split_rows.h"
 
 namespace tessera::petsc {
 namespace {
@@ -57,17 +58,6 @@ const TriangleMesh& serial_mesh() {
     return covered.mesh;
   }();
   return mesh;
-}
-
-// This rank's rows of every vertex of `mesh`, declared split over `space`.
-TriangleMesh split(const TriangleMesh& mesh, const std::shared_ptr<const AmbientSpace>& space) {
-  Eigen::MatrixXd local(space->local_rows(), mesh.vertex_count());
-  for (int v = 0; v < mesh.vertex_count(); ++v) {
-    local.col(v) = mesh.point(v).segment(space->first_row(), space->local_rows());
-  }
-  TriangleMesh result(local, mesh.triangles());
-  result.set_space(space);
-  return result;
 }
 
 // Two splits of R^n over the ranks: PETSc's even one, and a skewed one where rank 0 holds no
@@ -141,7 +131,7 @@ TEST(DistributedOutput, TheViewOfASplitMeshIsTheSerialOne) {
   ASSERT_EQ(serial.ambient_dimension(), view.size());
   constexpr int kFirstRounded = 7;  // mean:u, norm:u, norm: partial sums added in rank order
   for (const auto& space : splits(problem.ambient_dimension())) {
-    const TriangleMesh shown = mesh_in_view(split(mesh, space), view);
+    const TriangleMesh shown = mesh_in_view(split_rows(mesh, space), view);
     ASSERT_EQ(shown.ambient_dimension(), view.size());
     ASSERT_EQ(shown.vertex_count(), serial.vertex_count());
     EXPECT_EQ(shown.triangles(), serial.triangles());
@@ -179,7 +169,7 @@ TEST(DistributedOutput, TheStatesOfASplitMeshAreTheSerialFiles) {
   }
   int case_number = 0;
   for (const auto& space : splits(n)) {
-    const TriangleMesh local = split(mesh, space);
+    const TriangleMesh local = split_rows(mesh, space);
     // The default block (every vertex at once here), 7 vertices, 1 vertex at a time.
     const std::size_t vertex_bytes = sizeof(double) * static_cast<std::size_t>(n);
     for (const std::size_t gather_bytes : {kStatesGatherBytes, 7 * vertex_bytes + 5,
@@ -228,7 +218,7 @@ TEST(DistributedOutput, TheMeshFilesOfASplitMeshAreTheSerialFiles) {
     write_mesh_output(mesh, serial_whole);
   }
   for (const auto& space : splits(problem.ambient_dimension())) {
-    const TriangleMesh local = split(mesh, space);
+    const TriangleMesh local = split_rows(mesh, space);
     const MeshOutput in_view{(folder / "view.ply").string(), view, options,
                              (folder / "states.npy").string()};
     const MeshOutput whole{(folder / "whole.vtk").string(), every, options, ""};
@@ -280,7 +270,7 @@ TEST(DistributedOutput, AFailedWriteFailsEveryRank) {
   const ImplicitProblem& problem = *bratu_setup().problem;
   const std::string missing = "/nonexistent-tessera-folder/states.npy";
   for (const auto& space : splits(problem.ambient_dimension())) {
-    const TriangleMesh local = split(mesh, space);
+    const TriangleMesh local = split_rows(mesh, space);
     EXPECT_THROW(write_split_states_npy(missing, local, 1), InvalidArgument);
     EXPECT_THROW(write_mesh_in_view("/nonexistent-tessera-folder/view.ply", local,
                                     parse_view("lambda, epsilon, max:u", problem)),

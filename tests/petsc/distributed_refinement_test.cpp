@@ -26,6 +26,7 @@
 #include "tessera/petsc/distributed_problem.h"
 #include "tessera/petsc/petsc_bratu.h"
 #include "tessera/problems/catalogue.h"
+#include "petsc/split_rows.h"
 
 namespace tessera::petsc {
 namespace {
@@ -54,15 +55,7 @@ struct Bratu {
     return TriangleMesh(points, mesh.triangles());
   }
   // This rank's rows of a mesh in the metric's coordinates.
-  TriangleMesh split(const TriangleMesh& mesh) const {
-    Eigen::MatrixXd local(space->local_rows(), mesh.vertex_count());
-    for (int v = 0; v < mesh.vertex_count(); ++v) {
-      local.col(v) = mesh.point(v).segment(space->first_row(), space->local_rows());
-    }
-    TriangleMesh rows(local, mesh.triangles());
-    rows.set_space(space);
-    return rows;
-  }
+  TriangleMesh split(const TriangleMesh& mesh) const { return split_rows(mesh, space); }
   Eigen::VectorXd rows_of(const Eigen::VectorXd& x) const {
     return x.segment(space->first_row(), space->local_rows());
   }

@@ -89,11 +89,13 @@ class CountedProblem final : public ImplicitProblem {
   class CountedProducts final : public JacobianProduct {
    public:
     explicit CountedProducts(const CountedProblem& owner) : owner_(owner) {}
-    void jacobian_product(const Eigen::Ref<const Eigen::VectorXd>& y,
-                          const Eigen::Ref<const Eigen::MatrixXd>& V, Eigen::MatrixXd& JV,
-                          double& squared_frobenius_part) const override {
+    double evaluate_jacobian_at(const Eigen::Ref<const Eigen::VectorXd>& y) const override {
       ++owner_.jacobian_evaluations_;
-      owner_.inner_.as_jacobian_product()->jacobian_product(y, V, JV, squared_frobenius_part);
+      return owner_.inner_.as_jacobian_product()->evaluate_jacobian_at(y);
+    }
+    void multiply_jacobian(const Eigen::Ref<const Eigen::MatrixXd>& V,
+                           Eigen::MatrixXd& JV) const override {
+      owner_.inner_.as_jacobian_product()->multiply_jacobian(V, JV);
     }
 
    private:

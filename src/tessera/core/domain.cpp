@@ -97,7 +97,7 @@ Domain Domain::distributed(std::shared_ptr<const AmbientSpace> space) const {
   return rows;
 }
 
-double Domain::local_signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const {
+double Domain::partial_signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const {
   const HalfSpace& h = half_spaces_[k];
   if (h.support.empty()) {
     return h.normal.dot(x - h.point);
@@ -114,7 +114,7 @@ double Domain::local_signed_distance(int k, const Eigen::Ref<const Eigen::Vector
 std::vector<double> Domain::signed_distances(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   std::vector<double> distances(half_spaces_.size());
   for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
-    distances[static_cast<std::size_t>(k)] = local_signed_distance(k, x);
+    distances[static_cast<std::size_t>(k)] = partial_signed_distance(k, x);
   }
   if (space_ && !distances.empty()) {
     space_->sum(distances.data(), static_cast<int>(distances.size()));
@@ -123,7 +123,7 @@ std::vector<double> Domain::signed_distances(const Eigen::Ref<const Eigen::Vecto
 }
 
 double Domain::signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const {
-  double distance = local_signed_distance(k, x);
+  double distance = partial_signed_distance(k, x);
   if (space_) {
     space_->sum(&distance, 1);
   }
@@ -136,7 +136,7 @@ Eigen::MatrixXd Domain::signed_distances(const Eigen::Ref<const Eigen::MatrixXd>
   Eigen::MatrixXd distances(K, static_cast<Eigen::Index>(columns.size()));
   for (std::size_t j = 0; j < columns.size(); ++j) {
     for (int k = 0; k < K; ++k) {
-      distances(k, static_cast<Eigen::Index>(j)) = local_signed_distance(k, points.col(columns[j]));
+      distances(k, static_cast<Eigen::Index>(j)) = partial_signed_distance(k, points.col(columns[j]));
     }
   }
   if (space_ && distances.size() > 0) {
@@ -150,7 +150,7 @@ BoundaryDistance Domain::boundary_distance(const Eigen::Ref<const Eigen::VectorX
   result.signed_distance = std::numeric_limits<double>::infinity();
   const std::vector<double> summed = space_ ? signed_distances(x) : std::vector<double>();
   for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
-    const double d = space_ ? summed[static_cast<std::size_t>(k)] : local_signed_distance(k, x);
+    const double d = space_ ? summed[static_cast<std::size_t>(k)] : partial_signed_distance(k, x);
     if (d < result.signed_distance) {
       result.signed_distance = d;
       result.nearest_half_space = k;
@@ -162,7 +162,7 @@ BoundaryDistance Domain::boundary_distance(const Eigen::Ref<const Eigen::VectorX
 bool Domain::contains(const Eigen::Ref<const Eigen::VectorXd>& x, double tolerance) const {
   const std::vector<double> summed = space_ ? signed_distances(x) : std::vector<double>();
   for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
-    const double d = space_ ? summed[static_cast<std::size_t>(k)] : local_signed_distance(k, x);
+    const double d = space_ ? summed[static_cast<std::size_t>(k)] : partial_signed_distance(k, x);
     if (d < -tolerance) {
       return false;
     }
@@ -181,8 +181,8 @@ bool Domain::segment_meets_interior(const Eigen::Ref<const Eigen::VectorXd>& x,
   const std::vector<double> to = space_ ? signed_distances(y) : std::vector<double>();
   for (int k = 0; k < static_cast<int>(half_spaces_.size()); ++k) {
     const auto j = static_cast<std::size_t>(k);
-    const double at_x = (space_ ? from[j] : local_signed_distance(k, x)) - margin;
-    const double at_y = (space_ ? to[j] : local_signed_distance(k, y)) - margin;
+    const double at_x = (space_ ? from[j] : partial_signed_distance(k, x)) - margin;
+    const double at_y = (space_ ? to[j] : partial_signed_distance(k, y)) - margin;
     if (at_x <= 0 && at_y <= 0) {
       return false;
     }

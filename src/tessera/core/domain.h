@@ -86,11 +86,16 @@ class Domain {
   /// A one-line description, e.g. "box [-1.5,1.5]^3" or "2 half-spaces".
   std::string describe() const;
 
+  /// This rank's part of the signed distance b_k·(x − p_k): the distance itself in one process
+  /// (the same bits as signed_distance), a partial sum over the rows held here for a
+  /// distributed domain. Summing the parts of many points and faces in one AmbientSpace::sum
+  /// is how the passes over a split mesh ask for distances (one reduction per pass, not per
+  /// point). Not collective.
+  double partial_signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
  private:
-  // Each half-space's partial signed distance over the rows held here.
-  double local_signed_distance(int k, const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // All signed distances of x, summed over the ranks once (distributed domains; one process
-  // asks local_signed_distance face by face, without allocating).
+  // asks partial_signed_distance face by face, without allocating).
   std::vector<double> signed_distances(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   int dimension_ = 0;

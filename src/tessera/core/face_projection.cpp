@@ -74,25 +74,6 @@ void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::
   }
 }
 
-double partial_signed_distance(const Domain& domain, int k,
-                               const Eigen::Ref<const Eigen::VectorXd>& x) {
-  if (!domain.is_distributed()) {
-    return domain.signed_distance(k, x);
-  }
-  // Domain's own sum over the rows held here (a sparse normal's support, else the whole rows).
-  const HalfSpace& h = domain.half_spaces()[k];
-  if (h.support.empty()) {
-    return h.normal.dot(x - h.point);
-  }
-  double distance = 0.0;
-  for (int i : h.support) {
-    if (i >= 0) {
-      distance += h.normal(i) * (x(i) - h.point(i));
-    }
-  }
-  return distance;
-}
-
 namespace {
 
 // SlowChord: the chord still contracted, but by less than options' max_contraction per step;

@@ -25,13 +25,6 @@ void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::
 void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::VectorXd& x,
                     const AmbientSpace& space);
 
-/// This rank's part of the signed distance b_k·(x − p_k): the distance itself in one process
-/// (the same bits as domain.signed_distance), a partial sum over the rows held here for a
-/// distributed domain. Summing the parts of many points and faces in one AmbientSpace::sum is
-/// how the passes over a split mesh ask for distances (one reduction per pass, not per point).
-double partial_signed_distance(const Domain& domain, int k,
-                               const Eigen::Ref<const Eigen::VectorXd>& x);
-
 /// Projects x onto M ∩ {the bounding hyperplanes of `faces`} (at most two of them, as M is a
 /// surface) by minimum-norm Gauss–Newton on F(x) = 0, b_f·(x − p_f) = 0. Each step factors DF
 /// alone (dense or sparse, through Linearization), so it costs what an unconstrained step

@@ -81,6 +81,10 @@ class ImplicitProblem {
   /// DF(y)·V for a problem whose Jacobian is no Eigen matrix (petsc::DistributedProblem), for
   /// tangent_basis_near; null (the default): `jacobian` / `sparse_jacobian` give it.
   virtual const JacobianProduct* as_jacobian_product() const { return nullptr; }
+  /// The same M in its metric's coordinates y = W x (CoordinateBlock), where the problem
+  /// provides it itself: a distributed problem cannot be wrapped in ScaledProblem, so the PETSc
+  /// backend pairs it with its scaled twin. Null (the default): ScaledProblem gives it.
+  virtual const ImplicitProblem* metric_problem() const { return nullptr; }
 
   /// The factorisation the problem brings for Linearization, or null (the default): tessera's
   /// dense QR or sparse bordered LU, as has_sparse_jacobian says. Decorators forward.

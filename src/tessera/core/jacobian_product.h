@@ -13,12 +13,14 @@ namespace tessera {
 class JacobianProduct {
  public:
   virtual ~JacobianProduct() = default;
-  /// JV = DF(y)·V for V (local rows × k) into JV (local equations × k, resized), and this
-  /// rank's part of ‖DF(y)‖_F² (the caller sums the parts over the ranks, in rank order, so that
-  /// every rank has the same bits). A collective call. Non-finite entries are passed on.
-  virtual void jacobian_product(const Eigen::Ref<const Eigen::VectorXd>& y,
-                                const Eigen::Ref<const Eigen::MatrixXd>& V, Eigen::MatrixXd& JV,
-                                double& squared_frobenius_part) const = 0;
+  /// Evaluates DF(y) (one evaluation of DF; a collective call) for the products below, and
+  /// returns this rank's part of ‖DF(y)‖_F² (the caller sums the parts over the ranks, in rank
+  /// order, so that every rank has the same bits). Non-finite entries are passed on.
+  virtual double evaluate_jacobian_at(const Eigen::Ref<const Eigen::VectorXd>& y) const = 0;
+  /// JV = DF(y)·V with DF(y) of the last evaluate_jacobian_at, for V (local rows × k) into JV
+  /// (local equations × k, resized). A collective call.
+  virtual void multiply_jacobian(const Eigen::Ref<const Eigen::MatrixXd>& V,
+                                 Eigen::MatrixXd& JV) const = 0;
 };
 
 }  // namespace tessera

@@ -352,20 +352,16 @@ bool tangent_basis_near_distributed(const ImplicitProblem& problem, const Ambien
     return false;  // J(y)·T is not available: the caller factors at y instead
   }
   Eigen::MatrixXd JT;
-  double squared_norm = 0.0;
-  T = near.tangent_basis();
-  product->jacobian_product(y, T, JT, squared_norm);
+  double squared_norm = product->evaluate_jacobian_at(y);
   space.sum(&squared_norm, 1);
   const double jacobian_norm = std::sqrt(squared_norm);
   if (!std::isfinite(jacobian_norm) || jacobian_norm == 0.0) {
     return false;
   }
+  T = near.tangent_basis();
   Eigen::MatrixXd correction(T.rows(), 2);
-  double unused = 0.0;
   for (int iteration = 0; iteration <= max_iterations; ++iteration) {
-    if (iteration > 0) {
-      product->jacobian_product(y, T, JT, unused);
-    }
+    product->multiply_jacobian(T, JT);
     if (space.frobenius_norm(JT) <= tolerance * jacobian_norm) {
       return true;
     }

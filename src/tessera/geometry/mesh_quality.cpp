@@ -238,9 +238,21 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
 
 MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem,
                             const QualityOptions& options) {
-  check_mesh_of_problem(mesh, problem, "measure_quality");
   TESSERA_CHECK(options.max_samples >= 0,
                 "QualityOptions::max_samples = " << options.max_samples << " must be >= 0");
+  if (const ImplicitProblem* scaled = problem.metric_problem();
+      scaled != nullptr && problem.space()->is_distributed()) {
+    // In the metric's coordinates y = W x, as in one process below, by the problem's own twin
+    // there (a distributed problem cannot be wrapped in ScaledProblem).
+    check_mesh_of_problem(mesh, *scaled, "measure_quality");
+    const AmbientSpace& space = *problem.space();
+    const Eigen::VectorXd weights =
+        metric_weights(problem).segment(space.first_row(), space.local_rows());
+    return quality_of(
+        mesh, [&](int v) -> Eigen::VectorXd { return weights.cwiseProduct(mesh.point(v)); },
+        *scaled, options);
+  }
+  check_mesh_of_problem(mesh, problem, "measure_quality");
   if (problem.space()->is_distributed()) {
     return quality_of(mesh, [&mesh](int v) { return mesh.point(v); }, problem, options);
   }

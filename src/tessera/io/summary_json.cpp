@@ -171,7 +171,9 @@ std::string to_json(const MeshReport& report) {
     j["run"]["notes"] = r.notes;
   }
   if (report.backend) {
-    j["backend"] = {{"name", report.backend->name}, {"ranks", report.backend->ranks}};
+    j["backend"] = {{"name", report.backend->name},
+                    {"ranks", report.backend->ranks},
+                    {"states", report.backend->states}};
   }
   if (report.view) {
     j["view"] = {{"specification", report.view->specification}, {"origin", report.view->origin}};
@@ -295,7 +297,8 @@ std::string to_text(const MeshReport& report) {
   }
   if (report.backend && report.backend->name != "serial") {
     out << "backend        " << report.backend->name << " on " << report.backend->ranks
-        << (report.backend->ranks == 1 ? " rank" : " ranks") << "\n";
+        << (report.backend->ranks == 1 ? " rank" : " ranks") << ", states "
+        << report.backend->states << "\n";
   }
   if (report.view && !(report.view->specification == "all" && report.view->origin == "default")) {
     out << "view           " << report.view->specification << " (";

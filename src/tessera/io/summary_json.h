@@ -29,6 +29,8 @@ struct ViewReport {
 struct BackendReport {
   std::string name;
   int ranks = 1;
+  /// "whole": every rank holds every vertex's n coordinates; "split": each rank its rows.
+  std::string states = "whole";
 };
 
 /// The states written as NumPy arrays (`tessera mesh --states`, io/npy.h).

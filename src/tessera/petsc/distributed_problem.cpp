@@ -211,12 +211,9 @@ void DistributedProblem::sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>
   jacobian(x, unused);
 }
 
-void DistributedProblem::jacobian_product(const Eigen::Ref<const Eigen::VectorXd>& y,
-                                          const Eigen::Ref<const Eigen::MatrixXd>& V,
-                                          Eigen::MatrixXd& JV,
-                                          double& squared_frobenius_part) const {
+double DistributedProblem::evaluate_jacobian_at(const Eigen::Ref<const Eigen::VectorXd>& y) const {
   const int rows = space_->local_rows();
-  TESSERA_ASSERT(y.size() == rows && V.rows() == rows);
+  TESSERA_ASSERT(y.size() == rows);
   // A matrix of its own: PetscProblem::jacobian sets DF's rows only, so the border rows (n − 2,
   // n − 1) of a matrix no linearisation has bordered stay empty, and J·V is DF·V with 0 there.
   if (!jacobian_) {
@@ -230,7 +227,7 @@ void DistributedProblem::jacobian_product(const Eigen::Ref<const Eigen::VectorXd
   PetscInt first = 0;
   PetscInt end = 0;
   check(MatGetOwnershipRange(jacobian_, &first, &end), "MatGetOwnershipRange");
-  squared_frobenius_part = 0.0;
+  double squared_frobenius_part = 0.0;
   for (PetscInt row = first; row < end; ++row) {
     PetscInt count = 0;
     const PetscScalar* values = nullptr;
@@ -240,6 +237,13 @@ void DistributedProblem::jacobian_product(const Eigen::Ref<const Eigen::VectorXd
     }
     check(MatRestoreRow(jacobian_, row, &count, nullptr, &values), "MatRestoreRow");
   }
+  return squared_frobenius_part;
+}
+
+void DistributedProblem::multiply_jacobian(const Eigen::Ref<const Eigen::MatrixXd>& V,
+                                           Eigen::MatrixXd& JV) const {
+  const int rows = space_->local_rows();
+  TESSERA_ASSERT(jacobian_ && V.rows() == rows);
   JV.resize(rows, V.cols());
   Eigen::VectorXd column(rows);
   Eigen::VectorXd product(rows);

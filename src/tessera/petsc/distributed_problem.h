@@ -72,15 +72,21 @@ class DistributedProblem final : public ImplicitProblem, public JacobianProduct 
 
   const PetscProblem& petsc_problem() const { return problem_; }
   const JacobianProduct* as_jacobian_product() const override { return this; }
+  /// The problem in its metric's coordinates, if set_metric_problem gave it.
+  const ImplicitProblem* metric_problem() const override { return metric_problem_; }
+  /// `scaled`: this problem in y = W x on the same split (a DistributedProblem over a
+  /// ScaledPetscProblem of the same PetscProblem), which must outlive this one.
+  void set_metric_problem(const ImplicitProblem* scaled) { metric_problem_ = scaled; }
   /// DF(y)·V by MatMult on PETSc's Jacobian (its border rows left empty), for
   /// tangent_basis_near: a split mesh's tangent planes from a neighbour's factorisation.
-  void jacobian_product(const Eigen::Ref<const Eigen::VectorXd>& y,
-                        const Eigen::Ref<const Eigen::MatrixXd>& V, Eigen::MatrixXd& JV,
-                        double& squared_frobenius_part) const override;
+  double evaluate_jacobian_at(const Eigen::Ref<const Eigen::VectorXd>& y) const override;
+  void multiply_jacobian(const Eigen::Ref<const Eigen::MatrixXd>& V,
+                         Eigen::MatrixXd& JV) const override;
 
  private:
   const PetscProblem& problem_;
   std::vector<std::string> coordinate_names_;
+  const ImplicitProblem* metric_problem_ = nullptr;
   std::shared_ptr<const DistributedSpace> space_;
   Owned<Vec> x_;  // wrappers of the caller's arrays (VecPlaceArray)
   Owned<Vec> F_;

@@ -89,7 +89,7 @@ NotchClosing close_boundary_notches(const ImplicitProblem& problem, const Domain
       for (int i = 0; i < size && size >= 4; ++i) {
         const auto v = mesh.point(loop[i]);
         for (int k = 0; k < faces; ++k) {
-          parts.push_back(partial_signed_distance(domain, k, v));
+          parts.push_back(domain.partial_signed_distance(k, v));
         }
         parts.push_back(split ? (mesh.point(loop[(i + size - 1) % size]) -
                                  mesh.point(loop[(i + 1) % size]))

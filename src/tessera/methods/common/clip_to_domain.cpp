@@ -165,7 +165,7 @@ FaceSets faces_of_vertices(const Domain& domain, const AmbientSpace& space, Tria
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     double* row = parts.data() + stride * static_cast<std::size_t>(v);
     for (int k = 0; k < faces; ++k) {
-      row[k] = partial_signed_distance(domain, k, mesh.point(v));
+      row[k] = domain.partial_signed_distance(k, mesh.point(v));
     }
     row[faces] = mesh.point(v).squaredNorm();
   }
@@ -254,7 +254,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   std::vector<double> d(vertex_count, 0.0);
   for (int v = 0; v < vertex_count; ++v) {
     if (!std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)) {
-      d[v] = partial_signed_distance(domain, k, mesh.point(v));
+      d[v] = domain.partial_signed_distance(k, mesh.point(v));
     }
   }
   if (space.is_distributed() && vertex_count > 0) {
@@ -436,7 +436,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
       std::vector<double> to_earlier(static_cast<std::size_t>(k));
       const auto measure_earlier = [&] {
         for (int j = 0; j < k; ++j) {
-          to_earlier[j] = partial_signed_distance(domain, j, x);
+          to_earlier[j] = domain.partial_signed_distance(j, x);
         }
         if (space.is_distributed() && k > 0) {
           space.sum(to_earlier.data(), k);
@@ -601,7 +601,7 @@ void drop_outside(const Domain& domain, const AmbientSpace& space, int k, Triang
   std::vector<double> distance(static_cast<std::size_t>(mesh.vertex_count()), 0.0);
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     if (!std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)) {
-      distance[v] = partial_signed_distance(domain, k, mesh.point(v));
+      distance[v] = domain.partial_signed_distance(k, mesh.point(v));
     }
   }
   if (space.is_distributed() && !distance.empty()) {
@@ -747,7 +747,7 @@ ClipSummary clip_to_domain(const ImplicitProblem& problem, const Domain& domain,
       std::vector<double> distance(static_cast<std::size_t>(mesh.vertex_count()), 0.0);
       for (int v = 0; v < mesh.vertex_count(); ++v) {
         if (!std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)) {
-          distance[v] = partial_signed_distance(domain, k, mesh.point(v));
+          distance[v] = domain.partial_signed_distance(k, mesh.point(v));
         }
       }
       if (!distance.empty()) {
