@@ -34,6 +34,9 @@ class FrontState {
  public:
   /// Points are rows of `space` (R^n itself in one process).
   FrontState(std::shared_ptr<const AmbientSpace> space, double grid_cell);
+  /// In R^n in one process.
+  FrontState(int ambient_dimension, double grid_cell)
+      : FrontState(std::make_shared<const AmbientSpace>(ambient_dimension), grid_cell) {}
 
   int add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexType type);
   int add_triangle(int a, int b, int c);
