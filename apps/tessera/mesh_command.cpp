@@ -280,10 +280,10 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   apply_start_and_box(setup, command.start, command.box);
   const CoveringMethod& method =
       command.method.empty() ? covering_methods().front() : find_covering_method(command.method);
-  // The atlas runs on split states (each rank its rows of every vertex); the other methods, and
-  // the improvement and fold curves (not yet converted), on whole ones on every rank.
-  backend.adopt(setup, /*split_states=*/method.name == "atlas" && !command.improve &&
-                           command.folds.empty());
+  // The atlas and the front run on split states (each rank its rows of every vertex); bezier,
+  // and the improvement and fold curves (not yet converted), on whole ones on every rank.
+  const bool splits = method.name == "atlas" || method.name == "front";
+  backend.adopt(setup, /*split_states=*/splits && !command.improve && command.folds.empty());
   // Every rank computes; the root prints and writes.
   const bool is_root = backend.is_root();
   const bool quiet = command.quiet || !is_root;

@@ -81,7 +81,7 @@ struct SolverBackend::Petsc {
   char** argv = nullptr;
   std::unique_ptr<petsc::Session> session;
   std::unique_ptr<petsc::PetscArrheniusBratu> problem;
-  // Split states: the problem in its metric's coordinates y = W x (what the atlas covers), its
+  // Split states: the problem in its metric's coordinates y = W x (what the covering sees), its
   // setup on this rank's rows, and this rank's rows of the weights W.
   std::unique_ptr<petsc::ScaledPetscProblem> scaled;
   ProblemSetup covering;

@@ -2,8 +2,8 @@
 // `tessera mesh --backend`: where the linear algebra runs. "serial": tessera's own sparse LU or
 // dense QR in this process. "petsc": F, DF and the factorisations of the bordered Jacobian on
 // PETSc's distributed objects (MUMPS by default) over the ranks of mpirun, every rank running
-// the same covering. The atlas runs on split states (each rank holds its rows of every vertex,
-// petsc::DistributedProblem); the other methods on whole ones (petsc::ReplicatedProblem).
+// the same covering. The atlas and the front run on split states (each rank holds its rows of
+// every vertex, petsc::DistributedProblem); bezier on whole ones (petsc::ReplicatedProblem).
 // docs/cluster.md.
 #pragma once
 
@@ -44,8 +44,9 @@ class SolverBackend {
   bool any_rank(bool value) const;
   /// Puts setup's problem on this backend (PETSc: the catalogue's bvp and bratu2d), with the
   /// same start, domain and coordinate names. The backend must outlive the setup's problem.
-  /// With `split_states` (the atlas), every rank holds its rows of every n-vector: setup's
-  /// problem, start and domain become this rank's rows of them (the mesh's points will be too).
+  /// With `split_states` (the atlas, the front), every rank holds its rows of every n-vector:
+  /// setup's problem, start and domain become this rank's rows of them (the mesh's points will
+  /// be too).
   /// \throw InvalidArgument if the problem has no implementation on the backend.
   void adopt(ProblemSetup& setup, bool split_states = false);
   /// Whether adopt split the states.

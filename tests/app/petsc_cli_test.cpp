@@ -93,6 +93,43 @@ TEST(PetscCli, TwoRanksWriteTheSerialBackendsMeshOnce) {
   EXPECT_EQ(summary["run"]["jacobian_evaluations"], serial_summary["run"]["jacobian_evaluations"]);
 }
 
+// The advancing front on split states: the serial backend's states and triangles, from each
+// rank's rows of every vertex.
+TEST(PetscCli, TheFrontOnTwoRanksSplitsTheStatesAndGivesTheSerialMesh) {
+  const std::string folder = testing::temporary_directory("petsc_cli_front");
+  const std::string run = small_bvp_run() + " --method front";
+  const auto serial = run_cli(run + " -o " + folder + "/serial.ply --states " + folder +
+                              "/serial.npy --summary " + folder + "/serial.json -q");
+  ASSERT_EQ(serial.exit_code, 0) << serial.output;
+  const auto petsc = run_shell(mpiexec(2) + TESSERA_CLI + " " + run + " --backend petsc -o " +
+                               folder + "/petsc.ply --states " + folder + "/petsc.npy --summary " +
+                               folder + "/petsc.json -q");
+  ASSERT_EQ(petsc.exit_code, 0) << petsc.output;
+
+  const auto serial_states = read_npy(folder + "/serial.npy");
+  const auto petsc_states = read_npy(folder + "/petsc.npy");
+  ASSERT_EQ(petsc_states.rows, serial_states.rows);
+  ASSERT_EQ(petsc_states.columns, serial_states.columns);
+  EXPECT_GT(serial_states.rows, 100);
+  double largest_gap = 0.0;
+  for (std::size_t k = 0; k < serial_states.reals.size(); ++k) {
+    largest_gap = std::max(largest_gap, std::abs(serial_states.reals[k] - petsc_states.reals[k]));
+  }
+  EXPECT_LE(largest_gap, 1e-8);
+  const auto serial_triangles = read_npy(folder + "/serial.triangles.npy");
+  const auto petsc_triangles = read_npy(folder + "/petsc.triangles.npy");
+  EXPECT_EQ(petsc_triangles.integers, serial_triangles.integers);
+
+  std::ifstream summary_file(folder + "/petsc.json");
+  const auto summary = nlohmann::json::parse(summary_file);
+  EXPECT_EQ(summary["backend"]["states"], "split");
+  EXPECT_TRUE(summary["valid"].get<bool>());
+  std::ifstream serial_summary_file(folder + "/serial.json");
+  const auto serial_summary = nlohmann::json::parse(serial_summary_file);
+  EXPECT_EQ(summary["run"]["factorisations"], serial_summary["run"]["factorisations"]);
+  EXPECT_EQ(summary["run"]["jacobian_evaluations"], serial_summary["run"]["jacobian_evaluations"]);
+}
+
 TEST(PetscCli, AProblemWithoutAPetscImplementationIsAUsageErrorOnEveryRank) {
   const std::string folder = testing::temporary_directory("petsc_cli_misuse");
   const auto result =

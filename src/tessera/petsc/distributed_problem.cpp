@@ -102,6 +102,9 @@ class DistributedBackend final : public LinearizationBackend {
     // A distributed factorisation is not copied: the copy factors again at its next use.
     return std::make_unique<DistributedBackend>(problem_);
   }
+  // ...so a copied Linearization must not call itself factored (it did: the front's
+  // continuation then solved with an empty factorisation).
+  bool clones_factorisation() const override { return false; }
 
   bool factor(const ImplicitProblem& /*problem*/, const Eigen::Ref<const Eigen::VectorXd>& x,
               const Eigen::MatrixXd* reference, Eigen::MatrixXd& tangent,

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "tessera/core/error.h"
 
@@ -11,6 +12,14 @@ namespace tessera {
 PointGrid::PointGrid(int ambient_dimension, double cell_size)
     : ambient_dimension_(ambient_dimension), view_(ambient_dimension), cell_size_(cell_size) {
   TESSERA_CHECK(cell_size > 0, "PointGrid cell size " << cell_size << " must be > 0");
+}
+
+PointGrid::PointGrid(std::shared_ptr<const AmbientSpace> space, double cell_size)
+    : ambient_dimension_(space->dimension()), view_(space), cell_size_(cell_size) {
+  TESSERA_CHECK(cell_size > 0, "PointGrid cell size " << cell_size << " must be > 0");
+  if (space->is_distributed()) {
+    space_ = std::move(space);
+  }
 }
 
 Eigen::Vector3d PointGrid::cell_of(const Eigen::Ref<const Eigen::VectorXd>& x) const {

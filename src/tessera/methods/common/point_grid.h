@@ -4,10 +4,13 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/geometry/principal_view.h"
 
 namespace tessera {
@@ -20,6 +23,10 @@ namespace tessera {
 class PointGrid {
  public:
   PointGrid(int ambient_dimension, double cell_size);
+  /// For points given by this rank's rows of `space` (SPMD; all of R^n in one process, where
+  /// this is PointGrid(n, cell_size)): the view and the distances are reductions over the
+  /// ranks, so every rank finds the same ids. Every call is then collective.
+  PointGrid(std::shared_ptr<const AmbientSpace> space, double cell_size);
 
   void insert(int id, const Eigen::Ref<const Eigen::VectorXd>& x);
   void remove(int id, const Eigen::Ref<const Eigen::VectorXd>& x);
@@ -38,8 +45,9 @@ class PointGrid {
   Eigen::Vector3d cell_of(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   std::vector<int> candidates(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
-  int ambient_dimension_;
+  int ambient_dimension_;  // n, also when the points are split
   PrincipalView view_;
+  std::shared_ptr<const AmbientSpace> space_;  // null: in one process
   RefitSchedule schedule_;
   int size_ = 0;
   double cell_size_;
@@ -69,9 +77,26 @@ template <typename PositionFunction>
 std::vector<int> PointGrid::near(const Eigen::Ref<const Eigen::VectorXd>& x, double radius,
                                  PositionFunction position) const {
   std::vector<int> result;
-  for (int id : candidates(x)) {
-    if ((position(id) - x).norm() <= radius) {
-      result.push_back(id);
+  const std::vector<int> found = candidates(x);
+  if (!space_) {
+    for (int id : found) {
+      if ((position(id) - x).norm() <= radius) {
+        result.push_back(id);
+      }
+    }
+    return result;
+  }
+  // Split points: every candidate's squared distance in one reduction.
+  std::vector<double> squares(found.size());
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    squares[k] = (position(found[k]) - x).squaredNorm();
+  }
+  if (!squares.empty()) {
+    space_->sum(squares.data(), static_cast<int>(squares.size()));
+  }
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    if (std::sqrt(squares[k]) <= radius) {
+      result.push_back(found[k]);
     }
   }
   return result;

@@ -279,7 +279,8 @@ void FrontBuilder::build_initial_hexagon(const Eigen::VectorXd& center,
     if (step_ < options_.step * options_.min_step_fraction) {
       throw StopRun{CoveringTermination::ProjectionFailed,
                     "cannot project the first hexagon vertex around the start " +
-                        describe_point(center) + " even with step " + std::to_string(step_) +
+                        describe_point(center, *space_) + " even with step " +
+                        std::to_string(step_) +
                         ": the corrector does not converge near the start"};
     }
   }
@@ -328,36 +329,53 @@ Eigen::VectorXd FrontBuilder::new_point(int center, const Linearization& frame,
   double sub_step = step_ / 2;
   double travelled = 0.0;
   Eigen::VectorXd current = x_center;
-  Linearization current_frame = frame;
+  // The continuation's frame: `frame` until the first sub-step, then its own factorisation.
+  // One process copies `frame` (the copy keeps its border, which its next factorisation then
+  // keeps too); a distributed factorisation is not copied (its copy is not factored), so on
+  // split states the first sub-steps use `frame` itself and `moving` factors afresh.
+  Linearization moving;
+  const Linearization* current_frame = &frame;
+  if (!space_->is_distributed()) {
+    moving = frame;
+    current_frame = &moving;
+  }
   Eigen::VectorXd current_direction = direction;
   while (travelled < step_ * (1 - 1e-12)) {
     if (sub_step < step_ * options_.min_step_fraction) {
       std::ostringstream message;
       message << "projection onto M failed from frontal vertex " << center << " "
-              << describe_point(x_center) << " in tangent direction " << angle
+              << describe_point(x_center, *space_) << " in tangent direction " << angle
               << " rad even with step " << sub_step;
       throw StopRun{CoveringTermination::ProjectionFailed, message.str()};
     }
     Eigen::VectorXd trial = current + sub_step * current_direction;
     CorrectorOptions options = chord_options_;
     options.max_displacement = 0.75 * sub_step;
-    if (!project_chord(problem_, current_frame, trial, options).is_success()) {
+    if (!project_chord(problem_, *current_frame, trial, options).is_success()) {
       sub_step /= 2;
       continue;
     }
     travelled += sub_step;
     current = trial;
-    const Eigen::MatrixXd previous_basis = current_frame.tangent_basis();
-    if (!current_frame.factor(problem_, current, &previous_basis)) {
+    const Eigen::MatrixXd previous_basis = current_frame->tangent_basis();
+    current_frame = &moving;
+    if (!moving.factor(problem_, current, &previous_basis)) {
       std::ostringstream message;
-      message << "the Jacobian is rank deficient at " << describe_point(current)
+      message << "the Jacobian is rank deficient at " << describe_point(current, *space_)
               << " while continuing from frontal vertex " << center;
       throw StopRun{CoveringTermination::ProjectionFailed, message.str()};
     }
     // Keep the direction: its component in the new tangent plane, renormalised.
-    const Eigen::MatrixXd& T = current_frame.tangent_basis();
-    current_direction = T * (T.transpose() * current_direction);
-    current_direction.normalize();
+    const Eigen::MatrixXd& T = moving.tangent_basis();
+    current_direction = T * space_->tangent_coordinates(T, current_direction);
+    if (space_->is_distributed()) {
+      const double length = space_->norm(current_direction);
+      if (length > 0) {
+        current_direction /= length;
+      }
+    } else {
+      current_direction.normalize();
+    }
   }
   return current;
 }
@@ -378,7 +396,7 @@ void FrontBuilder::process(int center) {
     }
     std::ostringstream message;
     message << "the Jacobian is rank deficient at frontal vertex " << center << " "
-            << describe_point(state_.point(center)) << " (a singular point of M)";
+            << describe_point(state_.point(center), *space_) << " (a singular point of M)";
     throw StopRun{CoveringTermination::ProjectionFailed, message.str()};
   }
   // Each pass closes one gap; a vertex normally has one gap, more only where the front was
@@ -393,7 +411,7 @@ void FrontBuilder::process(int center) {
     for (const auto& chain : chains) {
       if (chain.is_closed) {
         std::ostringstream message;
-        message << "vertex " << center << " " << describe_point(state_.point(center))
+        message << "vertex " << center << " " << describe_point(state_.point(center), *space_)
                 << " has a closed fan and further triangles: the mesh folds there";
         throw StopRun{CoveringTermination::FrontCollision, message.str()};
       }
@@ -439,7 +457,7 @@ void FrontBuilder::process(int center) {
     }
   }
   std::ostringstream message;
-  message << "frontal vertex " << center << " " << describe_point(state_.point(center))
+  message << "frontal vertex " << center << " " << describe_point(state_.point(center), *space_)
           << " could not be given a complete neighbourhood";
   throw StopRun{CoveringTermination::FrontCollision, message.str()};
 }
@@ -453,7 +471,8 @@ std::vector<Gap> FrontBuilder::find_gaps(int center, const std::vector<FanChain>
   // Several fans: order them by the direction of their first edge; the gap after each fan
   // runs counterclockwise from its last edge to the first edge of the next fan.
   const auto direction = [&](int v) {
-    const Eigen::Vector2d y = U.transpose() * (state_.point(v) - state_.point(center));
+    const Eigen::Vector2d y =
+        space_->tangent_coordinates(U, state_.point(v) - state_.point(center));
     return std::atan2(y(1), y(0));
   };
   std::vector<std::pair<double, const FanChain*>> ordered;
@@ -483,10 +502,11 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
     if (gap.angle <= 0) {
       std::ostringstream message;
       message << "the triangles around frontal vertex " << center << " "
-              << describe_point(state_.point(center))
+              << describe_point(state_.point(center), *space_)
               << " overlap (no room is left between the open edges to "
-              << describe_point(state_.point(gap.last)) << " and "
-              << describe_point(state_.point(gap.first)) << ") and the open edges cannot be merged";
+              << describe_point(state_.point(gap.last), *space_) << " and "
+              << describe_point(state_.point(gap.first), *space_)
+              << ") and the open edges cannot be merged";
       throw StopRun{CoveringTermination::FrontCollision, message.str()};
     }
     add_closing_triangle(center, gap.last, gap.first, U);
@@ -500,7 +520,7 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
   }
   if (old_count >= options_.max_valence) {
     std::ostringstream message;
-    message << "frontal vertex " << center << " " << describe_point(state_.point(center))
+    message << "frontal vertex " << center << " " << describe_point(state_.point(center), *space_)
             << " already has " << old_count << " triangles and a gap of " << gap.angle
             << " rad >= α_min remains (raise --max-valence or lower the step)";
     throw StopRun{CoveringTermination::FrontCollision, message.str()};
@@ -515,7 +535,7 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
   // A single sector whose far edge would be much longer than h is split in two after all
   // (sectors of at least 30°): otherwise the longest edges, and with them the distance of
   // the mesh to M, grow faster than h under refinement.
-  const double far_edge = (state_.point(gap.last) - state_.point(gap.first)).norm();
+  const double far_edge = space_->distance(state_.point(gap.last), state_.point(gap.first));
   if (sectors == 1 && far_edge > kMaxEdgeRatio * step_ && gap.angle >= kTwoPi / 6 &&
       old_count < options_.max_valence) {
     sectors = 2;
@@ -524,7 +544,8 @@ void FrontBuilder::close_gap(int center, const Linearization& frame, const Eigen
     add_closing_triangle(center, gap.last, gap.first, U);
     return;
   }
-  const Eigen::Vector2d y_last = U.transpose() * (state_.point(gap.last) - state_.point(center));
+  const Eigen::Vector2d y_last =
+      space_->tangent_coordinates(U, state_.point(gap.last) - state_.point(center));
   const double start_angle = std::atan2(y_last(1), y_last(0));
   int previous = gap.last;
   for (int i = 1; i < sectors; ++i) {
@@ -573,17 +594,23 @@ std::optional<int> FrontBuilder::colliding_front_vertex(int center, int previous
   const std::vector<int> nearby = state_.ring(center, 2);
   std::optional<int> closest;
   double closest_distance = radius;
+  std::vector<int> candidates;
   for (int w : state_.vertices_near(x, radius)) {
-    if (std::binary_search(nearby.begin(), nearby.end(), w)) {
-      continue;
+    if (!std::binary_search(nearby.begin(), nearby.end(), w)) {
+      candidates.push_back(w);
     }
-    const double distance = (state_.point(w) - x).norm();
+  }
+  const std::vector<double> distances = state_.distances(x, candidates);
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const int w = candidates[k];
+    const double distance = distances[k];
     if (state_.type(w) == VertexType::Interior) {
       std::ostringstream message;
-      message << "the front runs into the finished part of the mesh near " << describe_point(x)
+      message << "the front runs into the finished part of the mesh near "
+              << describe_point(x, *space_)
               << ": a new vertex from frontal vertex " << center << " "
-              << describe_point(state_.point(center)) << " falls within " << distance
-              << " of interior vertex " << w << " " << describe_point(state_.point(w));
+              << describe_point(state_.point(center), *space_) << " falls within " << distance
+              << " of interior vertex " << w << " " << describe_point(state_.point(w), *space_);
       throw StopRun{CoveringTermination::FrontCollision, message.str()};
     }
     if (distance <= closest_distance && state_.triangle_fits({center, previous, w}, U) &&
@@ -598,14 +625,15 @@ std::optional<int> FrontBuilder::colliding_front_vertex(int center, int previous
 void FrontBuilder::connect_to_front_vertex(int center, int previous, int w,
                                            const Eigen::MatrixXd& U) {
   const Eigen::Vector2d y_previous =
-      U.transpose() * (state_.point(previous) - state_.point(center));
-  const Eigen::Vector2d y_w = U.transpose() * (state_.point(w) - state_.point(center));
+      space_->tangent_coordinates(U, state_.point(previous) - state_.point(center));
+  const Eigen::Vector2d y_w =
+      space_->tangent_coordinates(U, state_.point(w) - state_.point(center));
   const bool turns_counterclockwise = y_previous(0) * y_w(1) - y_previous(1) * y_w(0) > 0;
   if (!turns_counterclockwise || !state_.can_add_edge(previous, w) ||
       !state_.can_add_edge(w, center)) {
     std::ostringstream message;
-    message << "the front meets itself near " << describe_point(state_.point(w))
-            << ": frontal vertex " << center << " " << describe_point(state_.point(center))
+    message << "the front meets itself near " << describe_point(state_.point(w), *space_)
+            << ": frontal vertex " << center << " " << describe_point(state_.point(center), *space_)
             << " reaches vertex " << w
             << ", a non-adjacent part of the front, in a way that cannot be glued without "
                "folding the mesh";
@@ -621,9 +649,10 @@ void FrontBuilder::require_fit(const Triangle& t, const Eigen::MatrixXd& U) {
   }
   std::ostringstream message;
   message << "the front overlaps itself near frontal vertex " << t[0] << " "
-          << describe_point(state_.point(t[0])) << ": the triangle with corners "
-          << describe_point(state_.point(t[0])) << ", " << describe_point(state_.point(t[1]))
-          << ", " << describe_point(state_.point(t[2]))
+          << describe_point(state_.point(t[0]), *space_) << ": the triangle with corners "
+          << describe_point(state_.point(t[0]), *space_) << ", "
+          << describe_point(state_.point(t[1]), *space_)
+          << ", " << describe_point(state_.point(t[2]), *space_)
           << " would overlap the triangles already there";
   throw StopRun{CoveringTermination::FrontCollision, message.str()};
 }
@@ -634,8 +663,9 @@ void FrontBuilder::add_closing_triangle(int center, int last, int first, const E
   if (!state_.can_add_edge(last, first) || !state_.triangle_fits({center, last, first}, U)) {
     std::ostringstream message;
     message << "cannot close the gap at frontal vertex " << center << " "
-            << describe_point(state_.point(center)) << ": the edge from "
-            << describe_point(state_.point(last)) << " to " << describe_point(state_.point(first))
+            << describe_point(state_.point(center), *space_) << ": the edge from "
+            << describe_point(state_.point(last), *space_) << " to "
+            << describe_point(state_.point(first), *space_)
             << " is taken or the triangle would overlap the mesh there";
     throw StopRun{CoveringTermination::FrontCollision, message.str()};
   }
@@ -686,10 +716,6 @@ bool FrontBuilder::close_small_loop(int center, const Eigen::MatrixXd& U) {
 CoveringResult triangulate_by_front(const ImplicitProblem& problem, const Eigen::VectorXd& start,
                                     const Domain& domain, const FrontOptions& options) {
   options.validate();
-  // Its continuation works on whole n-vectors; only the atlas reduces over split points.
-  TESSERA_CHECK(!problem.space()->is_distributed(),
-                "method front: the problem's points are split over MPI ranks, which only method "
-                "atlas supports (docs/cluster.md); use --method atlas");
   return run_covering("front", problem, start, domain, options,
                       [&options](CoveringContext& context, CoveringResult& result) {
                         front_detail::FrontBuilder builder(context.problem, context.domain, options);

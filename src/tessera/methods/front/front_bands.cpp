@@ -82,26 +82,47 @@ void FrontBuilder::close_small_gap_outside(int z, const Eigen::MatrixXd& U) {
   }
 }
 
-bool FrontBuilder::is_in_band(int v) const {
+bool FrontBuilder::is_in_band(int v) {
   if (domain_.is_unbounded()) {
     return false;
   }
   const auto& faces = domain_.half_spaces();
-  std::vector<int> beyond;  // faces that some exterior neighbour of v lies beyond
+  const int K = static_cast<int>(faces.size());
+  std::vector<int> exterior;
   for (int w : state_.ring(v, 1)) {
-    if (state_.type(w) != VertexType::Exterior) {
-      continue;
+    if (state_.type(w) == VertexType::Exterior) {
+      exterior.push_back(w);
     }
-    for (int k = 0; k < static_cast<int>(faces.size()); ++k) {
-      if (domain_.signed_distance(k, state_.point(w)) < 0 &&
+  }
+  if (exterior.empty()) {
+    return false;
+  }
+  // Every neighbour's distances in one call (one reduction on split states).
+  const Eigen::MatrixXd distances = domain_.signed_distances(state_.points(), exterior);
+  std::vector<int> beyond;  // faces that some exterior neighbour of v lies beyond
+  for (std::size_t j = 0; j < exterior.size(); ++j) {
+    for (int k = 0; k < K; ++k) {
+      if (distances(k, static_cast<Eigen::Index>(j)) < 0 &&
           std::find(beyond.begin(), beyond.end(), k) == beyond.end()) {
         beyond.push_back(k);
       }
     }
   }
+  if (beyond.empty()) {
+    return false;
+  }
+  if (face_cosines_.size() == 0) {
+    face_cosines_.resize(K, K);
+    for (int k = 0; k < K; ++k) {
+      for (int l = 0; l < K; ++l) {
+        face_cosines_(k, l) = faces[k].normal.dot(faces[l].normal);
+      }
+    }
+    space_->sum(face_cosines_.data(), static_cast<int>(face_cosines_.size()));
+  }
   for (int k : beyond) {
     for (int l : beyond) {
-      if (faces[k].normal.dot(faces[l].normal) < -0.5) {
+      if (face_cosines_(k, l) < -0.5) {
         return true;
       }
     }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <set>
@@ -54,7 +55,8 @@ class FrontBuilder {
       : problem_(problem),
         domain_(domain),
         options_(options),
-        state_(problem.ambient_dimension(), options.step * options.collision_distance_fraction) {}
+        space_(problem.space()),
+        state_(space_, options.step * options.collision_distance_fraction) {}
 
   void run(const Eigen::VectorXd& start_point, const Linearization& start_frame,
            CoveringSummary& summary);
@@ -89,7 +91,7 @@ class FrontBuilder {
   void reopen_bridges(int v);
   /// True if v has exterior neighbours beyond two opposite faces of S (normals more than 120°
   /// apart): v lies in a band of M ∩ S narrower than about 2h.
-  bool is_in_band(int v) const;
+  bool is_in_band(int v);
   /// Closes a gap below α_min at an exterior vertex z by one triangle, as if z were frontal;
   /// leaves it if the triangle does not fit. U: the tangent frame of a vertex near z.
   void close_small_gap_outside(int z, const Eigen::MatrixXd& U);
@@ -125,6 +127,10 @@ class FrontBuilder {
   const ImplicitProblem& problem_;
   const Domain& domain_;
   const FrontOptions& options_;
+  // The rows of R^n this process holds (all n in one process): points and tangent bases are
+  // rows of it, and every inner product between them is reduced through space_ (SPMD: the
+  // same calls on every rank; docs/cluster.md).
+  const std::shared_ptr<const AmbientSpace> space_;
   FrontState state_;
   CorrectorOptions chord_options_;
   double step_ = 0.0;
@@ -143,6 +149,9 @@ class FrontBuilder {
   int new_vertex_layer_ = 1;    // the layer of the vertices the current step creates
   Linearization center_frame_;  // at the vertex being processed
   Linearization gap_frame_;     // for the gap angles of the priority order
+  // normal_k·normal_l of the domain's faces (K×K), computed once: is_in_band's test of
+  // opposite faces (on split states one reduction instead of one per pair and call).
+  Eigen::MatrixXd face_cosines_;
 };
 
 }  // namespace tessera::front_detail

@@ -2,10 +2,13 @@
 #include "tessera/methods/front/front_state.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <numbers>
+#include <utility>
 
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
@@ -42,9 +45,10 @@ std::size_t largest_chain(const std::vector<FanChain>& chains) {
 
 }  // namespace
 
-FrontState::FrontState(int ambient_dimension, double grid_cell)
-    : coordinates_(ambient_dimension),
-      grid_(ambient_dimension, grid_cell) {}
+FrontState::FrontState(std::shared_ptr<const AmbientSpace> space, double grid_cell)
+    : space_(std::move(space)),
+      coordinates_(space_->local_rows()),
+      grid_(space_, grid_cell) {}
 
 int FrontState::add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexType type) {
   const int v = static_cast<int>(types_.size());
@@ -136,6 +140,39 @@ std::vector<int> FrontState::vertices_near(const Eigen::Ref<const Eigen::VectorX
   return grid_.near(x, radius, [this](int id) { return point(id); });
 }
 
+std::vector<double> FrontState::distances(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                          const std::vector<int>& vertices) const {
+  std::vector<double> result(vertices.size());
+  if (!space_->is_distributed()) {
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+      result[k] = (point(vertices[k]) - x).norm();
+    }
+    return result;
+  }
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    result[k] = (point(vertices[k]) - x).squaredNorm();
+  }
+  if (!result.empty()) {
+    space_->sum(result.data(), static_cast<int>(result.size()));
+  }
+  for (double& value : result) {
+    value = std::sqrt(value);
+  }
+  return result;
+}
+
+Eigen::Matrix2Xd FrontState::split_tangent_coordinates(const Eigen::MatrixXd& U, int from,
+                                                       const std::vector<int>& to) const {
+  Eigen::Matrix2Xd result(2, static_cast<Eigen::Index>(to.size()));
+  for (std::size_t j = 0; j < to.size(); ++j) {
+    result.col(static_cast<Eigen::Index>(j)) = U.transpose() * (point(to[j]) - point(from));
+  }
+  if (result.size() > 0) {
+    space_->sum(result.data(), static_cast<int>(result.size()));
+  }
+  return result;
+}
+
 bool FrontState::are_adjacent(int a, int b) const {
   for (int t : incident_[a]) {
     const Triangle& tri = triangles_[t];
@@ -197,11 +234,11 @@ std::vector<FanChain> FrontState::fan_chains(int v) const {
   std::sort(edges.begin(), edges.end());
   for (std::size_t i = 1; i < edges.size(); ++i) {
     if (edges[i].first == edges[i - 1].first) {
-      throw ComputationFailed("internal fold: vertex " + std::to_string(v) + " " +
-                              describe_point(point(v)) +
-                              " has two triangles on the same side of "
-                              "its edge to " +
-                              describe_point(point(edges[i].first)));
+      // Collective on split states: the two descriptions in a fixed order.
+      const std::string at = describe_point(point(v), *space_);
+      const std::string to = describe_point(point(edges[i].first), *space_);
+      throw ComputationFailed("internal fold: vertex " + std::to_string(v) + " " + at +
+                              " has two triangles on the same side of its edge to " + to);
     }
   }
   const auto next = [&](int a) -> int {
@@ -264,6 +301,13 @@ double FrontState::fan_signed_area(int v, const FanChain& chain, const Eigen::Ma
   if (chain.vertices.size() < 2) {
     return area;
   }
+  if (space_->is_distributed()) {  // the chain's coordinates in one reduction
+    const Eigen::Matrix2Xd y = split_tangent_coordinates(U, v, chain.vertices);
+    for (Eigen::Index i = 0; i + 1 < y.cols(); ++i) {
+      area += 0.5 * cross(y.col(i), y.col(i + 1));
+    }
+    return area;
+  }
   const Eigen::VectorXd center = point(v);
   // Each vertex of the chain projected once (O(n) each): b becomes the next a.
   Eigen::Vector2d a = U.transpose() * (point(chain.vertices[0]) - center);
@@ -278,6 +322,13 @@ double FrontState::fan_signed_area(int v, const FanChain& chain, const Eigen::Ma
 double FrontState::fan_angle(int v, const FanChain& chain, const Eigen::MatrixXd& U) const {
   double total = 0.0;
   if (chain.vertices.size() < 2) {
+    return total;
+  }
+  if (space_->is_distributed()) {
+    const Eigen::Matrix2Xd y = split_tangent_coordinates(U, v, chain.vertices);
+    for (Eigen::Index i = 0; i + 1 < y.cols(); ++i) {
+      total += std::atan2(cross(y.col(i), y.col(i + 1)), y.col(i).dot(y.col(i + 1)));
+    }
     return total;
   }
   const Eigen::VectorXd center = point(v);
@@ -297,7 +348,47 @@ bool FrontState::triangle_fits(const Triangle& t, const Eigen::MatrixXd& U) cons
   // neighbour is in two of the corner's triangles, and a projection costs O(n).
   std::vector<std::pair<int, double>> known;
   int known_from = -1;
+  // Split states: every direction the test may ask for, reduced at once, per corner.
+  std::array<std::vector<std::pair<int, double>>, 3> split_known;
+  if (space_->is_distributed()) {
+    std::vector<int> from;
+    std::vector<int> to;
+    for (int r = 0; r < 3; ++r) {
+      const int v = t[r];
+      for (int w : {t[(r + 1) % 3], t[(r + 2) % 3]}) {
+        from.push_back(v);
+        to.push_back(w);
+      }
+      for (int existing : incident_[v]) {
+        const auto [p, q] = opposite_edge(triangles_[existing], v);
+        for (int w : {p, q}) {
+          from.push_back(v);
+          to.push_back(w);
+        }
+      }
+    }
+    Eigen::Matrix2Xd y(2, static_cast<Eigen::Index>(to.size()));
+    for (std::size_t j = 0; j < to.size(); ++j) {
+      y.col(static_cast<Eigen::Index>(j)) = U.transpose() * (point(to[j]) - point(from[j]));
+    }
+    space_->sum(y.data(), static_cast<int>(y.size()));
+    for (std::size_t j = 0; j < to.size(); ++j) {
+      const int r = from[j] == t[0] ? 0 : from[j] == t[1] ? 1 : 2;
+      const auto column = y.col(static_cast<Eigen::Index>(j));
+      split_known[r].emplace_back(to[j], std::atan2(column(1), column(0)));
+    }
+  }
   const auto direction = [&](int from, int to) {
+    if (space_->is_distributed()) {
+      const int r = from == t[0] ? 0 : from == t[1] ? 1 : 2;
+      for (const auto& [vertex, angle] : split_known[r]) {
+        if (vertex == to) {
+          return angle;
+        }
+      }
+      TESSERA_ASSERT(false);  // every direction asked for was reduced above
+      return std::numeric_limits<double>::quiet_NaN();
+    }
     if (from != known_from) {
       known.clear();
       known_from = from;
@@ -428,10 +519,48 @@ bool FrontState::triangulate_hole(const std::vector<int>& loop, const Eigen::Mat
     polygon.push_back(loop[i]);
   }
   const int L = static_cast<int>(polygon.size());
-  const Eigen::VectorXd center = point(polygon[0]);
   std::vector<Eigen::Vector2d> planar;
-  for (int p : polygon) {
-    planar.push_back(U.transpose() * (point(p) - center));
+  // Split states: the smallest angle of every triangle the search may try, from the Gram
+  // matrices of its sides summed in one reduction (corner_angle's formula).
+  std::map<Triangle, double> split_smallest_angle;
+  if (space_->is_distributed()) {
+    const Eigen::Matrix2Xd y = split_tangent_coordinates(U, polygon[0], polygon);
+    for (Eigen::Index j = 0; j < y.cols(); ++j) {
+      planar.push_back(y.col(j));
+    }
+    std::vector<Triangle> candidates;
+    std::vector<double> products;  // per corner: u·w, |u|², |w|²
+    for (int i = 0; i < L; ++i) {
+      for (int j = i + 1; j < L; ++j) {
+        for (int k = j + 1; k < L; ++k) {
+          const Triangle t{polygon[i], polygon[j], polygon[k]};
+          candidates.push_back(t);
+          for (int r = 0; r < 3; ++r) {
+            const auto apex = point(t[r]);
+            const auto u = point(t[(r + 1) % 3]) - apex;
+            const auto w = point(t[(r + 2) % 3]) - apex;
+            products.insert(products.end(), {u.dot(w), u.squaredNorm(), w.squaredNorm()});
+          }
+        }
+      }
+    }
+    if (!products.empty()) {
+      space_->sum(products.data(), static_cast<int>(products.size()));
+    }
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      double smallest = std::numeric_limits<double>::infinity();
+      for (std::size_t r = 0; r < 3; ++r) {
+        const double* g = &products[9 * c + 3 * r];
+        const double wedge = std::sqrt(std::max(0.0, g[1] * g[2] - g[0] * g[0]));
+        smallest = std::min(smallest, std::atan2(wedge, g[0]));
+      }
+      split_smallest_angle[candidates[c]] = smallest;
+    }
+  } else {
+    const Eigen::VectorXd center = point(polygon[0]);
+    for (int p : polygon) {
+      planar.push_back(U.transpose() * (point(p) - center));
+    }
   }
   std::vector<Triangle> best;
   double best_score = -1.0;
@@ -442,6 +571,10 @@ bool FrontState::triangulate_hole(const std::vector<int>& loop, const Eigen::Mat
         if (pending.empty()) {
           double score = std::numeric_limits<double>::infinity();
           for (const Triangle& t : current) {
+            if (space_->is_distributed()) {
+              score = std::min(score, split_smallest_angle.at(t));
+              continue;
+            }
             for (int r = 0; r < 3; ++r) {
               score = std::min(
                   score, corner_angle(point(t[r]), point(t[(r + 1) % 3]), point(t[(r + 2) % 3])));
@@ -616,7 +749,11 @@ TriangleMesh FrontState::take_mesh() {
       triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
     }
   }
-  return TriangleMesh(std::move(coordinates_), std::move(triangles));
+  TriangleMesh mesh(std::move(coordinates_), std::move(triangles));
+  if (space_->is_distributed()) {
+    mesh.set_space(space_);
+  }
+  return mesh;
 }
 
 }  // namespace tessera

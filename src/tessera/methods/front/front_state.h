@@ -6,9 +6,11 @@
 
 #include <Eigen/Core>
 #include <deque>
+#include <memory>
 #include <optional>
 #include <vector>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/point_storage.h"
 #include "tessera/geometry/triangle_mesh.h"
 #include "tessera/methods/common/point_grid.h"
@@ -25,14 +27,23 @@ struct FanChain {
   bool is_closed = false;  ///< a full neighbourhood: vertices.front() follows vertices.back()
 };
 
+/// On split states (SPMD, docs/cluster.md) every point is this rank's rows of an n-vector and
+/// every measure of the points below (tangent coordinates, distances, angles) is reduced over
+/// the ranks, so that every rank takes the same decisions; those calls are then collective.
 class FrontState {
  public:
-  FrontState(int ambient_dimension, double grid_cell);
+  /// Points are rows of `space` (R^n itself in one process).
+  FrontState(std::shared_ptr<const AmbientSpace> space, double grid_cell);
+  /// In R^n in one process.
+  FrontState(int ambient_dimension, double grid_cell)
+      : FrontState(std::make_shared<const AmbientSpace>(ambient_dimension), grid_cell) {}
 
   int add_vertex(const Eigen::Ref<const Eigen::VectorXd>& x, VertexType type);
   int add_triangle(int a, int b, int c);
 
   Eigen::Map<const Eigen::VectorXd> point(int v) const { return coordinates_.column(v); }
+  /// Every vertex's point as the columns of one matrix (removed vertices included).
+  Eigen::Map<const Eigen::MatrixXd> points() const { return coordinates_.matrix(); }
   VertexType type(int v) const { return types_[v]; }
   void set_type(int v, VertexType type);
 
@@ -44,6 +55,9 @@ class FrontState {
   int live_triangle_count() const { return live_triangles_; }
 
   std::vector<int> vertices_near(const Eigen::Ref<const Eigen::VectorXd>& x, double radius) const;
+  /// ‖x_v − x‖ for each v of `vertices` (on split states in one reduction).
+  std::vector<double> distances(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                const std::vector<int>& vertices) const;
   bool are_adjacent(int a, int b) const;
   int valence(int v) const { return static_cast<int>(incident_[v].size()); }
   /// Vertices within `depth` edges of v (v included), sorted.
@@ -111,7 +125,11 @@ class FrontState {
   /// The triangles of v's fan `chain` (as returned by fan_chains(v)).
   std::vector<int> chain_triangles(int v, const FanChain& chain) const;
   bool has_directed_edge(int a, int b) const;
+  /// Column j: Uᵀ(x_{to[j]} − x_from), for split states summed over the ranks in one call.
+  Eigen::Matrix2Xd split_tangent_coordinates(const Eigen::MatrixXd& U, int from,
+                                             const std::vector<int>& to) const;
 
+  std::shared_ptr<const AmbientSpace> space_;
   PointStorage coordinates_;
   std::vector<VertexType> types_;
   std::vector<std::vector<int>> incident_;  // vertex → triangles
