@@ -50,31 +50,33 @@ std::string mpiexec(int ranks) {
          TESSERA_MPIEXEC + " -n " + std::to_string(ranks) + " --oversubscribe ";
 }
 
-TEST(PetscCli, TwoRanksWriteTheSerialBackendsMeshOnce) {
-  const std::string folder = testing::temporary_directory("petsc_cli");
-  const std::string run = small_bvp_run();
+// `run` on the serial backend and on two ranks with split states: the serial states (to 1e-8)
+// and triangles, written once, valid, with the serial work. \return the PETSc run's output.
+std::string expect_two_ranks_give_the_serial_mesh(const std::string& run,
+                                                  const std::string& folder) {
   const auto serial = run_cli(run + " -o " + folder + "/serial.ply --states " + folder +
                               "/serial.npy --summary " + folder + "/serial.json -q");
-  ASSERT_EQ(serial.exit_code, 0) << serial.output;
-    const auto petsc = run_shell(mpiexec(2) + TESSERA_CLI + " " + run + " --backend petsc -o " +
+  EXPECT_EQ(serial.exit_code, 0) << serial.output;
+  const auto petsc = run_shell(mpiexec(2) + TESSERA_CLI + " " + run + " --backend petsc -o " +
                                folder + "/petsc.ply --states " + folder + "/petsc.npy --summary " +
                                folder + "/petsc.json");
-  ASSERT_EQ(petsc.exit_code, 0) << petsc.output;
-  const std::string& output = petsc.output;
-  // One report (rank 0 prints, the other rank computes alongside).
-  EXPECT_EQ(output.find("wrote "), output.rfind("wrote ")) << output;
-  EXPECT_TRUE(contains(output, "backend        petsc on 2 ranks")) << output;
-
+  EXPECT_EQ(petsc.exit_code, 0) << petsc.output;
+  if (serial.exit_code != 0 || petsc.exit_code != 0) {
+    return petsc.output;
+  }
   const auto serial_states = read_npy(folder + "/serial.npy");
   const auto petsc_states = read_npy(folder + "/petsc.npy");
-  ASSERT_EQ(petsc_states.rows, serial_states.rows);
-  ASSERT_EQ(petsc_states.columns, serial_states.columns);
+  EXPECT_EQ(petsc_states.rows, serial_states.rows);
+  EXPECT_EQ(petsc_states.columns, serial_states.columns);
   EXPECT_GT(serial_states.rows, 100);
-  double largest_gap = 0.0;
-  for (std::size_t k = 0; k < serial_states.reals.size(); ++k) {
-    largest_gap = std::max(largest_gap, std::abs(serial_states.reals[k] - petsc_states.reals[k]));
+  if (petsc_states.reals.size() == serial_states.reals.size()) {
+    double largest_gap = 0.0;
+    for (std::size_t k = 0; k < serial_states.reals.size(); ++k) {
+      largest_gap =
+          std::max(largest_gap, std::abs(serial_states.reals[k] - petsc_states.reals[k]));
+    }
+    EXPECT_LE(largest_gap, 1e-8);
   }
-  EXPECT_LE(largest_gap, 1e-8);
   const auto serial_triangles = read_npy(folder + "/serial.triangles.npy");
   const auto petsc_triangles = read_npy(folder + "/petsc.triangles.npy");
   EXPECT_EQ(petsc_triangles.integers, serial_triangles.integers);
@@ -83,7 +85,7 @@ TEST(PetscCli, TwoRanksWriteTheSerialBackendsMeshOnce) {
   const auto summary = nlohmann::json::parse(summary_file);
   EXPECT_EQ(summary["backend"]["name"], "petsc");
   EXPECT_EQ(summary["backend"]["ranks"], 2);
-  EXPECT_EQ(summary["backend"]["states"], "split");  // the atlas: each rank its rows
+  EXPECT_EQ(summary["backend"]["states"], "split");  // each rank its rows
   EXPECT_TRUE(summary["valid"].get<bool>());
   std::ifstream serial_summary_file(folder + "/serial.json");
   const auto serial_summary = nlohmann::json::parse(serial_summary_file);
@@ -91,43 +93,22 @@ TEST(PetscCli, TwoRanksWriteTheSerialBackendsMeshOnce) {
   // The work is the serial backend's: the same steps, the factorisations by MUMPS.
   EXPECT_EQ(summary["run"]["factorisations"], serial_summary["run"]["factorisations"]);
   EXPECT_EQ(summary["run"]["jacobian_evaluations"], serial_summary["run"]["jacobian_evaluations"]);
+  return petsc.output;
+}
+
+TEST(PetscCli, TwoRanksWriteTheSerialBackendsMeshOnce) {
+  const std::string output = expect_two_ranks_give_the_serial_mesh(
+      small_bvp_run(), testing::temporary_directory("petsc_cli"));
+  // One report (rank 0 prints, the other rank computes alongside).
+  EXPECT_EQ(output.find("wrote "), output.rfind("wrote ")) << output;
+  EXPECT_TRUE(contains(output, "backend        petsc on 2 ranks")) << output;
 }
 
 // The advancing front on split states: the serial backend's states and triangles, from each
 // rank's rows of every vertex.
 TEST(PetscCli, TheFrontOnTwoRanksSplitsTheStatesAndGivesTheSerialMesh) {
-  const std::string folder = testing::temporary_directory("petsc_cli_front");
-  const std::string run = small_bvp_run() + " --method front";
-  const auto serial = run_cli(run + " -o " + folder + "/serial.ply --states " + folder +
-                              "/serial.npy --summary " + folder + "/serial.json -q");
-  ASSERT_EQ(serial.exit_code, 0) << serial.output;
-  const auto petsc = run_shell(mpiexec(2) + TESSERA_CLI + " " + run + " --backend petsc -o " +
-                               folder + "/petsc.ply --states " + folder + "/petsc.npy --summary " +
-                               folder + "/petsc.json -q");
-  ASSERT_EQ(petsc.exit_code, 0) << petsc.output;
-
-  const auto serial_states = read_npy(folder + "/serial.npy");
-  const auto petsc_states = read_npy(folder + "/petsc.npy");
-  ASSERT_EQ(petsc_states.rows, serial_states.rows);
-  ASSERT_EQ(petsc_states.columns, serial_states.columns);
-  EXPECT_GT(serial_states.rows, 100);
-  double largest_gap = 0.0;
-  for (std::size_t k = 0; k < serial_states.reals.size(); ++k) {
-    largest_gap = std::max(largest_gap, std::abs(serial_states.reals[k] - petsc_states.reals[k]));
-  }
-  EXPECT_LE(largest_gap, 1e-8);
-  const auto serial_triangles = read_npy(folder + "/serial.triangles.npy");
-  const auto petsc_triangles = read_npy(folder + "/petsc.triangles.npy");
-  EXPECT_EQ(petsc_triangles.integers, serial_triangles.integers);
-
-  std::ifstream summary_file(folder + "/petsc.json");
-  const auto summary = nlohmann::json::parse(summary_file);
-  EXPECT_EQ(summary["backend"]["states"], "split");
-  EXPECT_TRUE(summary["valid"].get<bool>());
-  std::ifstream serial_summary_file(folder + "/serial.json");
-  const auto serial_summary = nlohmann::json::parse(serial_summary_file);
-  EXPECT_EQ(summary["run"]["factorisations"], serial_summary["run"]["factorisations"]);
-  EXPECT_EQ(summary["run"]["jacobian_evaluations"], serial_summary["run"]["jacobian_evaluations"]);
+  expect_two_ranks_give_the_serial_mesh(small_bvp_run() + " --method front",
+                                        testing::temporary_directory("petsc_cli_front"));
 }
 
 TEST(PetscCli, AProblemWithoutAPetscImplementationIsAUsageErrorOnEveryRank) {

@@ -19,49 +19,21 @@
 #include "tessera/petsc/distributed_problem.h"
 #include "tessera/petsc/petsc_bratu.h"
 #include "tessera/problems/catalogue.h"
+#include "petsc/split_support.h"
 
 namespace tessera::petsc {
 namespace {
 
 using detail::AtlasBuilder;
 
-const DistributedSpace& distributed_space(const AmbientSpace& space) {
-  return dynamic_cast<const DistributedSpace&>(space);
-}
-
-// bratu2d:N=6 where λ and ε lie within 0.1 of the start's: a few hundred charts.
-ProblemSetup small_square() {
-  ProblemSetup setup = make_catalogue_problem("bratu2d:N=6");
-  const int n = setup.problem->ambient_dimension();
-  for (const int coordinate : {n - 2, n - 1}) {
-    for (const double side : {-1.0, 1.0}) {
-      Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
-      normal(coordinate) = -side;
-      Eigen::VectorXd point = Eigen::VectorXd::Zero(n);
-      point(coordinate) = setup.start(coordinate) + 0.1 * side;
-      setup.domain.add_half_space(normal, point);
-    }
-  }
-  return setup;
-}
-
-AtlasTriangulation triangulate(AtlasBuilder& builder) {
-  AtlasCells cells;
-  cells.ambient_dimension = builder.space()->local_rows();
-  cells.space = builder.space();
-  cells.chart_count = builder.chart_count();
-  cells.center = [&builder](int c) { return Eigen::VectorXd(builder.center(c)); };
-  cells.tangent = [&builder](int c) { return Eigen::MatrixXd(builder.tangent(c)); };
-  cells.polygon = [&builder](int c) -> const ChartPolygon& { return builder.chart(c).polygon; };
-  cells.radius = [&builder](int c) { return builder.chart(c).radius; };
-  cells.is_closed = [&builder](int c) { return builder.is_closed(c); };
-  return triangulate_atlas(cells);
+AtlasTriangulation triangulate(const AtlasBuilder& builder) {
+  return triangulate_atlas(builder.cells());
 }
 
 // The small square in the metric's coordinates, charts of radius up to 0.2: the serial problem and the PETSc one split over the ranks build the same
 // charts (radii to rounding, centres to the corrector's tolerance) and the same triangles.
 TEST(DistributedAtlas, SplitChartsAreTheOneProcessCharts) {
-  const ProblemSetup setup = small_square();
+  const ProblemSetup setup = around_start("bratu2d:N=6", 0.1);
   const Eigen::VectorXd weights = metric_weights(*setup.problem);
   ASSERT_GT(weights.size(), 0);
   const ScaledProblem scaled_serial(*setup.problem, weights);
@@ -129,7 +101,7 @@ TEST(DistributedAtlas, SplitChartsAreTheOneProcessCharts) {
 // The whole pipeline (start, atlas, clipping, notches, swaps, refinement to the tolerance,
 // validation, the checks) on split states gives the one process's mesh, in y = W x.
 TEST(DistributedAtlas, TheCoveringOfSplitStatesIsTheOneProcessMesh) {
-  const ProblemSetup serial = small_square();
+  const ProblemSetup serial = around_start("bratu2d:N=6", 0.1);
   const Eigen::VectorXd weights = metric_weights(*serial.problem);
   MethodSettings settings;
   settings.step = 0.2;
@@ -139,33 +111,9 @@ TEST(DistributedAtlas, TheCoveringOfSplitStatesIsTheOneProcessMesh) {
 
   PetscArrheniusBratu bratu(PETSC_COMM_WORLD, 2, 6);
   const ScaledPetscProblem scaled(bratu);
-  ProblemSetup split;
-  split.problem = std::make_unique<DistributedProblem>(scaled);
-  const std::shared_ptr<const AmbientSpace> space = split.problem->space();
-  const int first = space->first_row();
-  const int rows = space->local_rows();
-  split.start = weights.cwiseProduct(serial.start).segment(first, rows);
-  split.domain = scale_domain(serial.domain, weights).distributed(space);
-  split.suggested_step = serial.suggested_step;
-  const CoveringResult result = cover(split, atlas, settings);
+  const CoveringResult result = cover(split_setup(serial, scaled), atlas, settings);
   ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
-
-  EXPECT_TRUE(result.mesh.space().is_distributed());
-  ASSERT_EQ(result.mesh.vertex_count(), expected.mesh.vertex_count());
-  EXPECT_EQ(result.mesh.triangles(), expected.mesh.triangles());
-  double largest_gap = 0.0;
-  for (int v = 0; v < result.mesh.vertex_count(); ++v) {
-    const Eigen::VectorXd gap =
-        result.mesh.point(v) - weights.cwiseProduct(expected.mesh.point(v)).segment(first, rows);
-    largest_gap = std::max(largest_gap, space->norm(gap));
-  }
-  EXPECT_LE(largest_gap, 1e-7);
-  EXPECT_EQ(result.summary.refined_edges, expected.summary.refined_edges);
-  EXPECT_EQ(result.summary.factorisations, expected.summary.factorisations);
-  EXPECT_EQ(result.summary.jacobian_evaluations, expected.summary.jacobian_evaluations);
-  EXPECT_EQ(result.summary.function_evaluations, expected.summary.function_evaluations);
-  ASSERT_TRUE(result.validation.has_value());
-  EXPECT_TRUE(result.validation->is_valid()) << result.validation->report();
+  expect_same_covering(result, expected, weights);
 }
 
 }  // namespace

@@ -21,7 +21,7 @@
 #include "tessera/petsc/distributed_problem.h"
 #include "tessera/petsc/petsc_bratu.h"
 #include "tessera/problems/catalogue.h"
-#include "petsc/split_rows.h"
+#include "petsc/split_support.h"
 
 namespace tessera::petsc {
 namespace {

@@ -26,7 +26,7 @@
 #include "tessera/petsc/petsc_bratu.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/view.h"
-#include "petsc/split_rows.h"
+#include "petsc/split_support.h"
 
 namespace tessera::petsc {
 namespace {

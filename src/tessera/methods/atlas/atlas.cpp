@@ -92,15 +92,7 @@ void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringRe
   builder.run(context.start.x, summary);
 
   // The mesh: the dual of the polygons, with the places where the charts disagree closed.
-  AtlasCells cells;
-  cells.ambient_dimension = builder.space()->local_rows();
-  cells.space = builder.space();
-  cells.chart_count = builder.chart_count();
-  cells.center = [&builder](int c) { return Eigen::VectorXd(builder.center(c)); };
-  cells.tangent = [&builder](int c) { return Eigen::MatrixXd(builder.tangent(c)); };
-  cells.polygon = [&builder](int c) -> const ChartPolygon& { return builder.chart(c).polygon; };
-  cells.radius = [&builder](int c) { return builder.chart(c).radius; };
-  cells.is_closed = [&builder](int c) { return builder.is_closed(c); };
+  AtlasCells cells = builder.cells();
   cells.take_centers = [&builder](const std::vector<bool>& keep) {
     return builder.take_centers(keep);
   };

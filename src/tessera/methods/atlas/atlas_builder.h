@@ -18,6 +18,7 @@
 #include "tessera/core/point_storage.h"
 #include "tessera/geometry/principal_view.h"
 #include "tessera/methods/atlas/atlas.h"
+#include "tessera/methods/atlas/atlas_triangulation.h"
 #include "tessera/methods/atlas/chart_index.h"
 #include "tessera/methods/atlas/chart_polygon.h"
 #include "tessera/methods/covering_result.h"
@@ -71,6 +72,20 @@ class AtlasBuilder {
     return tangents_[c];
   }
   const Chart& chart(int c) const { return charts_[c]; }
+  /// Read access to the charts for triangulate_atlas (centres copied; set take_centers to hand
+  /// them over instead). Valid while the builder lives.
+  AtlasCells cells() const {
+    AtlasCells cells;
+    cells.ambient_dimension = space_->local_rows();
+    cells.space = space_;
+    cells.chart_count = chart_count();
+    cells.center = [this](int c) { return Eigen::VectorXd(center(c)); };
+    cells.tangent = [this](int c) { return Eigen::MatrixXd(tangent(c)); };
+    cells.polygon = [this](int c) -> const ChartPolygon& { return charts_[c].polygon; };
+    cells.radius = [this](int c) { return charts_[c].radius; };
+    cells.is_closed = [this](int c) { return is_closed(c); };
+    return cells;
+  }
   bool is_closed(int c) const {
     const Chart& ch = charts_[c];
     if (ch.polygon.is_empty()) {
