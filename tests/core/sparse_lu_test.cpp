@@ -8,8 +8,10 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "tessera/core/bordered_jacobian.h"
 #include "tessera/core/error.h"
@@ -332,6 +334,48 @@ Eigen::SparseMatrix<double> bordered_catalogue_jacobian(const Problem& problem) 
   problem.sparse_jacobian(x, J);
   bordered_jacobian(J, {{n - 2, n - 2, 1.0}, {n - 1, n - 1, 1.0}}, A);
   return A;
+}
+
+// KLU says what a factorisation holds: at least its factors, and no more than a few times them
+// plus a workspace of n entries each. A matrix of singleton blocks (a diagonal, then a 2×2
+// block) has blocks without LU arrays, whose sizes KLU never writes: they must not be read
+// (they were, and the atlas then kept or dropped factorisations by heap garbage). The heap is
+// filled with garbage first, so that such a read shows.
+TEST(SparseLuSolvers, KluCountsTheBytesOfItsFactorisation) {
+  if (!is_available(SparseLuSolver::Klu)) {
+    GTEST_SKIP() << "KLU is not built in";
+  }
+  const int n = 50;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < n - 2; ++i) {
+    entries.emplace_back(i, i, 2.0 + i);
+  }
+  entries.emplace_back(n - 2, n - 2, 1.0);
+  entries.emplace_back(n - 2, n - 1, 2.0);
+  entries.emplace_back(n - 1, n - 2, 3.0);
+  entries.emplace_back(n - 1, n - 1, 1.0);
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  std::vector<std::size_t> bytes;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    {
+      std::vector<std::vector<unsigned char>> garbage;
+      for (int k = 0; k < 64; ++k) {
+        garbage.emplace_back(64 + 16 * k, static_cast<unsigned char>(0xA5));
+      }
+    }
+    auto lu = make_sparse_lu(SparseLuSolver::Klu);
+    ASSERT_EQ(lu->analyze(A), SparseLuStatus::Success);
+    ASSERT_EQ(lu->factorize(A), SparseLuStatus::Success);
+    const std::optional<std::size_t> counted = lu->factorisation_bytes();
+    ASSERT_TRUE(counted.has_value());
+    const auto factors = static_cast<std::size_t>(lu->factor_nonzeros().value());
+    EXPECT_GE(*counted, factors * sizeof(double));
+    EXPECT_LE(*counted, 64 * sizeof(double) * static_cast<std::size_t>(n) + 16 * factors);
+    bytes.push_back(*counted);
+  }
+  EXPECT_EQ(bytes[1], bytes[0]);
+  EXPECT_EQ(bytes[2], bytes[0]);
 }
 
 // Without TESSERA_SPARSE_LU the solver follows the fill: KLU for a 1-D problem (fill 1.2×),

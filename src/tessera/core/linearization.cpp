@@ -196,8 +196,9 @@ class SparseBackend final : public LinearizationBackend {
     };
     std::size_t factors = 0;
     if (lu_ && lu_->is_factored()) {
-      factors = static_cast<std::size_t>(lu_->factor_nonzeros().value_or(2 * bordered_.nonZeros())) *
-                (sizeof(double) + sizeof(int));
+      factors = lu_->factorisation_bytes().value_or(
+          static_cast<std::size_t>(lu_->factor_nonzeros().value_or(2 * bordered_.nonZeros())) *
+          (sizeof(double) + sizeof(int)));
     }
     return matrix(jacobian_) + matrix(bordered_) + factors +
            sizeof(double) * static_cast<std::size_t>(last_tangent_.size());

@@ -9,9 +9,6 @@
 
 #include "tessera/core/error.h"
 
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 #if defined(__linux__)
 #include <sys/mman.h>
 #include <unistd.h>
@@ -145,12 +142,6 @@ void PointStorage::move_column(int from, int to) {
                  data_ + static_cast<std::ptrdiff_t>(from) * dimension_,
                  static_cast<std::size_t>(dimension_) * sizeof(double));
   }
-}
-
-void release_free_heap() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
 }
 
 }  // namespace tessera

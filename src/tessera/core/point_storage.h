@@ -65,11 +65,4 @@ class PointStorage {
   std::size_t mapped_bytes_ = 0;  // the mapping's length; 0 if the array is malloc'ed
 };
 
-/// Returns the free pages inside the C heap to the system (glibc's malloc_trim; elsewhere
-/// nothing). At large n the tangent bases and factorisations a covering frees are n-sized
-/// blocks that glibc keeps in its heap, so that the resident memory grows like everything the
-/// run ever held instead of what it holds (the atlas on bvp:points=10000: 248 of 408 MB of heap
-/// free at the end of the build). It walks the free lists: call it every so many steps.
-void release_free_heap();
-
 }  // namespace tessera

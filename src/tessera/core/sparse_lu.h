@@ -105,6 +105,10 @@ class SparseLu {
   virtual std::optional<long> factor_nonzeros() const = 0;
   /// nnz(L) + nnz(U) as the symbolic analysis predicts it, where the solver predicts one (KLU).
   virtual std::optional<long> predicted_factor_nonzeros() const { return std::nullopt; }
+  /// The bytes the current factorisation holds (factors, permutations, scaling and the solves'
+  /// workspace; a shared symbolic analysis not counted), where the solver says (KLU); else
+  /// nothing, and callers estimate from factor_nonzeros().
+  virtual std::optional<std::size_t> factorisation_bytes() const { return std::nullopt; }
 
   /// The solver's own words about the last failure, empty after a success.
   const std::string& last_message() const { return last_message_; }

@@ -76,6 +76,27 @@ class KluSparseLu final : public SparseLu {
     return static_cast<long>(numeric_->lnz) + numeric_->unz + numeric_->nzoff;
   }
 
+  std::optional<std::size_t> factorisation_bytes() const override {
+    if (!is_factored()) {
+      return std::nullopt;
+    }
+    // klu_numeric's arrays: six of n ints (Pnum, Pinv, Lip, Uip, Llen, Ulen), two of n doubles
+    // (Udiag, Rs), the off-diagonal blocks, the factors (LUsize in Units of a double) and the
+    // permanent workspace, which alone is about as large as the factors of a banded matrix.
+    const klu_numeric& numeric = *numeric_;
+    const auto n = static_cast<std::size_t>(numeric.n);
+    std::size_t bytes = numeric.worksize + n * (6 * sizeof(int) + 2 * sizeof(double)) +
+                        (n + 1) * sizeof(int) +
+                        static_cast<std::size_t>(numeric.nzoff) * (sizeof(int) + sizeof(double));
+    for (int block = 0; block < numeric.nblocks; ++block) {
+      // A singleton block has no LUbx (null) and its LUsize is never written.
+      if (numeric.LUbx[block] != nullptr) {
+        bytes += numeric.LUsize[block] * sizeof(double);
+      }
+    }
+    return bytes;
+  }
+
   std::optional<long> predicted_factor_nonzeros() const override {
     if (symbolic_ == nullptr) {
       return std::nullopt;

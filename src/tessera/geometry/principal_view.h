@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <memory>
 
 #include "tessera/core/ambient_space.h"
@@ -47,11 +48,16 @@ class PrincipalView {
 
 template <typename PointFunction>
 void PrincipalView::fit_sample(int count, PointFunction point) {
+  // At most 256 points and 64 MB of them: at n = 10⁵ 256 points are 205 MB, held during the
+  // fit at the atlas's peak; three directions need far fewer.
   constexpr int kMaxSample = 256;
+  constexpr double kMaxSampleBytes = 64.0 * (1 << 20);
   if (n_ <= 3 || count < 2) {
     return;
   }
-  const int stride = (count + kMaxSample - 1) / kMaxSample;
+  const int max_sample = std::max(
+      32, std::min(kMaxSample, static_cast<int>(kMaxSampleBytes / (8.0 * directions_.rows()))));
+  const int stride = (count + max_sample - 1) / max_sample;
   Eigen::MatrixXd sample(directions_.rows(), (count + stride - 1) / stride);
   for (int i = 0, column = 0; i < count; i += stride, ++column) {
     sample.col(column) = point(i);

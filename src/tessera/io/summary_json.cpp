@@ -17,6 +17,11 @@ nlohmann::json statistic(const Statistic& s) {
   return {{"max", s.max}, {"mean", s.mean}, {"count", s.count}, {"population", s.population}};
 }
 
+// Whether this process held every vertex's whole state (no backend said it split them).
+bool is_whole_states(const MeshReport& report) {
+  return !report.backend || report.backend->states == "whole";
+}
+
 // The index lists of the geometric defects are complete in MeshValidation; the summary keeps
 // the first ones (a broken mesh may have 10⁵) and the complete counts beside them.
 constexpr std::size_t max_listed_in_json = 100;
@@ -168,6 +173,18 @@ std::string to_json(const MeshReport& report) {
             r.wall_seconds / V / (r.factorisation_seconds / r.factorisations);
       }
     }
+    if (r.resident_peak_bytes > 0) {
+      // The sampled resident memory; against the vertices' own states (8n bytes each) where
+      // the states are whole in this process.
+      j["run"]["memory"] = {{"resident_peak_bytes", r.resident_peak_bytes},
+                            {"resident_beyond_boundary_peak_bytes",
+                             r.resident_beyond_boundary_peak_bytes}};
+      if (r.vertex_count > 0 && is_whole_states(report)) {
+        j["run"]["memory"]["beyond_boundary_per_state"] =
+            r.resident_beyond_boundary_peak_bytes /
+            (8.0 * report.ambient_dimension * r.vertex_count);
+      }
+    }
     j["run"]["notes"] = r.notes;
   }
   if (report.backend) {
@@ -282,6 +299,13 @@ std::string to_text(const MeshReport& report) {
       out << "  per vertex   " << 1000.0 * r.wall_seconds / r.vertex_count << " ms = "
           << r.wall_seconds / r.vertex_count / one << " factorisations' time (one: " << 1000.0 * one
           << " ms, DF and analysis included)\n";
+    }
+    if (r.resident_peak_bytes > 0 && r.vertex_count > 0 && is_whole_states(report) &&
+        report.ambient_dimension > kLargeAmbientDimension) {
+      const double states = 8.0 * report.ambient_dimension * r.vertex_count;
+      out << "  memory       " << r.resident_peak_bytes / 1e6 << " MB resident at most (sampled), "
+          << r.resident_beyond_boundary_peak_bytes / states
+          << " × the vertices' states (8n bytes each) beyond the open boundary\n";
     }
     if (r.vertex_count > 0 && !r.work_by_phase.empty()) {
       // Where the work went, per vertex of the result: DF evaluations/factorisations per step.

@@ -17,6 +17,7 @@
 #include "tessera/core/error.h"
 #include "tessera/core/factorisation_cache.h"
 #include "tessera/core/linearization.h"
+#include "tessera/core/process_memory.h"
 #include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/bezier_patch.h"
 #include "tessera/geometry/mesh_topology.h"
@@ -550,6 +551,15 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
     }
     counted_so_far = counts;
     phase_start = now;
+    // What the stage freed (factorisations, bases, the atlas's charts) goes back to the system;
+    // then all that is resident counts, nothing of the atlas's boundary being held.
+    if (n >= kReleaseHeapDimension) {
+      release_free_heap();
+    }
+    const double resident = static_cast<double>(resident_bytes());
+    summary.resident_peak_bytes = std::max(summary.resident_peak_bytes, resident);
+    summary.resident_beyond_boundary_peak_bytes =
+        std::max(summary.resident_beyond_boundary_peak_bytes, resident);
   };
   auto finish = [&] {
     end_phase("finish");

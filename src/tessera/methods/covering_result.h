@@ -67,6 +67,12 @@ struct CoveringSummary {
   /// coordinates are not counted). What issue 9's memory bound calls "what the active boundary
   /// needs".
   double boundary_peak_bytes = 0.0;
+  /// The process's resident memory, sampled between the stages of the run and every 64 charts
+  /// of the atlas's build (bytes; 0 where the system does not tell): its largest sample, and
+  /// the largest sample less what the atlas's open boundary held at that moment (issue 9
+  /// bounds the latter by 1.5 × 8n bytes per vertex). Per rank on a distributed run.
+  double resident_peak_bytes = 0.0;
+  double resident_beyond_boundary_peak_bytes = 0.0;
   int refined_edges = 0;       ///< edges bisected on M to keep the distance bound
   /// Largest distance to M of the points sampled by the tolerance check (centroids, edge
   /// midpoints, circumcentres) after refinement; −1 if no check was made (tolerance 0).

@@ -11,6 +11,7 @@
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/core/point_storage.h"
+#include "tessera/core/process_memory.h"
 
 namespace tessera::detail {
 namespace {
@@ -35,9 +36,8 @@ constexpr double kShrinkFactor = 0.7;
 constexpr double kMaxRimOvershoot = 1.02;
 // Children in a row that leave their corner open before the chart is shrunk instead.
 constexpr int kMaxRepeatedTargets = 3;
-// From this dimension on, the heap's free pages go back to the system every so many charts
-// (release_free_heap); below it the bases and factorisations freed are too small to matter.
-constexpr int kReleaseHeapDimension = 1000;
+// Every so many charts the resident memory is sampled and, from kReleaseHeapDimension on, the
+// heap's free pages go back to the system (release_free_heap).
 constexpr int kReleaseHeapCharts = 64;
 
 }  // namespace
@@ -601,11 +601,16 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     }
     give_back(std::move(at_center));
     retire_finished_charts(c);
-    if (n_ >= kReleaseHeapDimension && chart_count() >= next_heap_release) {
-      // The bases of retired charts and the factorisations used: to the system, so that the
-      // resident memory follows what the atlas holds (bvp:points=10000: peak 673 → 569 MB).
+    if (chart_count() >= next_heap_release) {
+      // The resident memory against the boundary's (before the free heap is returned, so that
+      // what glibc keeps counts), then the bases of retired charts and the factorisations used
+      // go to the system, so that it follows what the atlas holds (bvp:points=10000: peak 673
+      // → 569 MB).
       next_heap_release = chart_count() + kReleaseHeapCharts;
-      release_free_heap();
+      note_resident_bytes();
+      if (n_ >= kReleaseHeapDimension) {
+        release_free_heap();
+      }
     }
     if (options_.progress && chart_count() >= next_progress) {
       next_progress = chart_count() + 1000;
@@ -613,7 +618,14 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     }
   }
   summary.charts = chart_count();
+  if (n_ >= kReleaseHeapDimension) {
+    release_free_heap();  // what the last charts freed, before the build's final sample
+  }
+  note_resident_bytes();
   summary.boundary_peak_bytes = boundary_peak_bytes_;
+  summary.resident_peak_bytes = std::max(summary.resident_peak_bytes, resident_peak_bytes_);
+  summary.resident_beyond_boundary_peak_bytes =
+      std::max(summary.resident_beyond_boundary_peak_bytes, resident_beyond_boundary_peak_bytes_);
   summary.singular_crossings = singular_crossings_;
   summary.sheet_rejections = sheet_rejections_;
   const int capped = capped_[1] + capped_[2] + capped_[3] + capped_[4] + capped_[5];

@@ -16,6 +16,7 @@
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/linearization.h"
 #include "tessera/core/point_storage.h"
+#include "tessera/core/process_memory.h"
 #include "tessera/geometry/principal_view.h"
 #include "tessera/methods/atlas/atlas.h"
 #include "tessera/methods/atlas/atlas_triangulation.h"
@@ -158,10 +159,20 @@ class AtlasBuilder {
   // Tangent bases held (charts not retired) and the boundary's largest bytes so far.
   mutable int held_tangents_ = 0;  // restore_tangent (const) brings one back
   double boundary_peak_bytes_ = 0.0;
+  double boundary_bytes() const {
+    return static_cast<double>(kept_bytes_) + 16.0 * static_cast<double>(rows_) * held_tangents_;
+  }
   void note_boundary_bytes() {
-    boundary_peak_bytes_ =
-        std::max(boundary_peak_bytes_, static_cast<double>(kept_bytes_) +
-                                           16.0 * static_cast<double>(rows_) * held_tangents_);
+    boundary_peak_bytes_ = std::max(boundary_peak_bytes_, boundary_bytes());
+  }
+  // The process's resident memory as sampled, and less the boundary's at the same moment.
+  double resident_peak_bytes_ = 0.0;
+  double resident_beyond_boundary_peak_bytes_ = 0.0;
+  void note_resident_bytes() {
+    const double resident = static_cast<double>(resident_bytes());
+    resident_peak_bytes_ = std::max(resident_peak_bytes_, resident);
+    resident_beyond_boundary_peak_bytes_ =
+        std::max(resident_beyond_boundary_peak_bytes_, resident - boundary_bytes());
   }
   int refactored_charts_ = 0;  // charts whose factorisation was dropped (over the budget)
   void keep_factorisation(int c, Linearization&& linearization);

@@ -169,9 +169,12 @@ class CornerTangents {
   }
 
  private:
+  // At most 256 bases and 32 MB of them (at n = 10⁵ a basis is 1.6 MB).
   static constexpr std::size_t kCapacity = 256;
+  static constexpr std::size_t kCapacityBytes = std::size_t{32} << 20;
   void remember(int v, const Eigen::MatrixXd& T) {
-    if (tangents_.size() >= kCapacity) {
+    const std::size_t bytes = static_cast<std::size_t>(T.size()) * sizeof(double);
+    if (tangents_.size() >= kCapacity || (tangents_.size() + 1) * bytes > kCapacityBytes) {
       tangents_.clear();  // simplest bound; the next checks refill what they need
     }
     tangents_[v] = T;

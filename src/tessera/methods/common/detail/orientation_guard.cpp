@@ -93,7 +93,8 @@ bool OrientationGuard::keeps_orientation(int v, const Eigen::VectorXd& x, const 
     } else if (is_own) {
       T = near->tangent_basis();
     }
-    found = tangents_.emplace(v, std::move(T)).first;
+    remember_tangent(v, std::move(T));
+    found = tangents_.find(v);
   }
   const Eigen::MatrixXd& T = found->second;
   if (space_->is_distributed()) {
@@ -129,9 +130,20 @@ const Linearization* OrientationGuard::cached(int v) const {
 const Linearization* OrientationGuard::factor_at(int v, const Eigen::VectorXd& x) {
   const Linearization* linearization = kept_.factor(v, problem_, x);
   if (linearization != nullptr) {
-    tangents_.emplace(v, linearization->tangent_basis());
+    remember_tangent(v, linearization->tangent_basis());
   }
   return linearization;
+}
+
+void OrientationGuard::remember_tangent(int v, Eigen::MatrixXd T) {
+  const std::size_t bytes = static_cast<std::size_t>(T.size()) * sizeof(double);
+  if (tangents_.contains(v)) {
+    return;
+  }
+  if (!tangents_.empty() && (tangents_.size() + 1) * bytes > kMaxTangentBytes) {
+    tangents_.clear();  // the simplest bound: the next checks take again what they need
+  }
+  tangents_.emplace(v, std::move(T));
 }
 
 }  // namespace tessera::detail

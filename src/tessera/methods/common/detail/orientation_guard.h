@@ -53,10 +53,17 @@ class OrientationGuard {
  private:
   // The orientation test needs the planes to a few digits only.
   static constexpr double kNearTangentTolerance = 1e-6;
-  // Factorisations kept at once: the most recent, up to 64 and 256 MB (at n = 10⁵ on a 2-D grid
-  // one holds about 100 MB, so there only the last two are kept).
-  static constexpr std::size_t kMaxKept = 64;
+  // Factorisations kept at once: the most recent, up to 16 and 256 MB (at n = 10⁵ on a 2-D grid
+  // one holds about 100 MB, so there only the last two are kept). 64 held 100 MB more at
+  // bvp:points=10000 for two factorisations fewer in 250.
+  static constexpr std::size_t kMaxKept = 16;
   static constexpr std::size_t kMaxKeptBytes = std::size_t{256} << 20;
+  // Tangent bases kept at once, in bytes: beyond it they are dropped and taken again where
+  // needed (one DF and a few solves each). Unbounded, the bases of every vertex near a face
+  // held 100 MB at n = 10⁴ (bvp:points=10000), half the mesh's own points.
+  static constexpr std::size_t kMaxTangentBytes = std::size_t{32} << 20;
+
+  void remember_tangent(int v, Eigen::MatrixXd T);
 
   const Linearization* cached(int v) const;
   const Linearization* factor_at(int v, const Eigen::VectorXd& x);
