@@ -19,6 +19,16 @@ std::size_t resident_bytes();
 /// free at the end of the build). It walks the free lists: call it every so many steps.
 void release_free_heap();
 
+/// Asks the C library to map blocks of `bytes` or more (at least its default, 128 KB, at most
+/// 32 MB) straight from the system and to unmap them when they are freed, and to return the
+/// heap's top once that much of it is free (glibc: mallopt's mmap threshold, mmap count and trim
+/// threshold; elsewhere nothing). Why: superlu_dist, which PETSc links and so the CLI, turns
+/// both off for the whole process when it is loaded (mallopt in its constructor), and glibc's
+/// own default raises the threshold past every block size freed once; either way the
+/// n-sized blocks a covering frees stay in the heap, and resident memory grows like everything
+/// the run ever held. Process-wide and not undone: a covering at large n sets it once.
+void map_large_blocks(std::size_t bytes);
+
 /// Dimensions from which a covering returns the free heap between its stages: below it the
 /// blocks freed are too small to matter and the walk would cost more than it returns.
 inline constexpr int kReleaseHeapDimension = 1000;

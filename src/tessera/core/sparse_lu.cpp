@@ -178,6 +178,41 @@ std::unique_ptr<SparseLu> make_sparse_lu(SparseLuSolver solver) {
   return nullptr;
 }
 
+// A compressed column pattern (outer and inner indices).
+struct SparsePattern {
+  std::vector<int> outer;
+  std::vector<int> inner;
+
+  bool matches(const Eigen::SparseMatrix<double>& A) const {
+    return A.isCompressed() && A.rows() == A.cols() &&
+           static_cast<std::size_t>(A.outerSize()) + 1 == outer.size() &&
+           static_cast<std::size_t>(A.nonZeros()) == inner.size() &&
+           std::equal(outer.begin(), outer.end(), A.outerIndexPtr()) &&
+           std::equal(inner.begin(), inner.end(), A.innerIndexPtr());
+  }
+};
+
+namespace {
+
+// A's pattern, shared with the objects of this thread that hold the same one: the patterns in
+// use are few (J with its border rows at a few coordinate pairs), the objects many.
+std::shared_ptr<const SparsePattern> shared_pattern(const Eigen::SparseMatrix<double>& A) {
+  thread_local std::vector<std::weak_ptr<const SparsePattern>> in_use;
+  std::erase_if(in_use, [](const auto& pattern) { return pattern.expired(); });
+  for (const auto& weak : in_use) {
+    if (auto pattern = weak.lock(); pattern && pattern->matches(A)) {
+      return pattern;
+    }
+  }
+  auto pattern = std::make_shared<SparsePattern>();
+  pattern->outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+  pattern->inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  in_use.push_back(pattern);
+  return pattern;
+}
+
+}  // namespace
+
 SparseLu::~SparseLu() = default;
 
 SparseLuStatus SparseLu::analyze(const Eigen::SparseMatrix<double>& A) {
@@ -192,18 +227,13 @@ SparseLuStatus SparseLu::analyze(const Eigen::SparseMatrix<double>& A) {
   if (status != SparseLuStatus::Success) {
     return status;
   }
-  analyzed_outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
-  analyzed_inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  pattern_ = shared_pattern(A);
   is_analyzed_ = true;
   return status;
 }
 
 bool SparseLu::is_analyzed_for(const Eigen::SparseMatrix<double>& A) const {
-  return is_analyzed_ && A.isCompressed() && A.rows() == A.cols() &&
-         static_cast<std::size_t>(A.outerSize()) + 1 == analyzed_outer_.size() &&
-         static_cast<std::size_t>(A.nonZeros()) == analyzed_inner_.size() &&
-         std::equal(analyzed_outer_.begin(), analyzed_outer_.end(), A.outerIndexPtr()) &&
-         std::equal(analyzed_inner_.begin(), analyzed_inner_.end(), A.innerIndexPtr());
+  return is_analyzed_ && pattern_->matches(A);
 }
 
 SparseLuStatus SparseLu::factorize(const Eigen::SparseMatrix<double>& A) {
@@ -220,7 +250,7 @@ SparseLuStatus SparseLu::factorize(const Eigen::SparseMatrix<double>& A) {
 void SparseLu::solve(const Eigen::Ref<const Eigen::MatrixXd>& B,
                      Eigen::Ref<Eigen::MatrixXd> X) const {
   TESSERA_CHECK(is_factored_, "SparseLu::solve: no factorisation (factorize failed or not called)");
-  const Eigen::Index n = static_cast<Eigen::Index>(analyzed_outer_.size()) - 1;
+  const Eigen::Index n = static_cast<Eigen::Index>(pattern_->outer.size()) - 1;
   TESSERA_CHECK(B.rows() == n && X.rows() == n && B.cols() == X.cols() && B.cols() >= 1,
                 "SparseLu::solve: B is " << B.rows() << "×" << B.cols() << " and X is " << X.rows()
                                          << "×" << X.cols() << ", both must be " << n << "×k");

@@ -534,6 +534,11 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
     }
     return mesh;
   };
+  // Blocks of one and a half states or more (tangent bases, factors) come from the system and
+  // go back when freed; single states, the most frequent, are reused from the heap.
+  if (n >= kReleaseHeapDimension) {
+    map_large_blocks(sizeof(double) * static_cast<std::size_t>(rows) * 3 / 2);
+  }
   CoveringResult result;
   result.mesh = empty_mesh();
   CoveringSummary& summary = result.summary;
