@@ -67,10 +67,12 @@ struct CoveringSummary {
   /// coordinates are not counted). What issue 9's memory bound calls "what the active boundary
   /// needs".
   double boundary_peak_bytes = 0.0;
-  /// The process's resident memory, sampled between the stages of the run and every 64 charts
-  /// of the atlas's build (bytes; 0 where the system does not tell): its largest sample, and
-  /// the largest sample less what the atlas's open boundary held at that moment (issue 9
-  /// bounds the latter by 1.5 × 8n bytes per vertex). Per rank on a distributed run.
+  /// The process's resident memory, sampled between the stages of the run, every 64 charts
+  /// of the atlas's build and (n ≥ 1000) every 64 vertices of the front's (bytes; 0 where the
+  /// system does not tell): its largest sample, and the largest sample less what the open
+  /// boundary held at that moment, the atlas's kept factorisations and tangent bases or the
+  /// front's tangent bases (issue 9 bounds the latter by 1.5 × 8n bytes per vertex). Per rank
+  /// on a distributed run.
   double resident_peak_bytes = 0.0;
   double resident_beyond_boundary_peak_bytes = 0.0;
   int refined_edges = 0;       ///< edges bisected on M to keep the distance bound

@@ -21,6 +21,7 @@
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
+#include "tessera/core/process_memory.h"
 #include "tessera/methods/common/clip_to_domain.h"
 #include "tessera/methods/front/front_builder.h"
 #include "tessera/methods/front/front_state.h"
@@ -155,6 +156,18 @@ double FrontBuilder::smallest_gap(int v) {
   return smallest;
 }
 
+void FrontBuilder::sample_memory(CoveringSummary& summary) const {
+  double boundary = 0.0;
+  for (const Eigen::MatrixXd& basis : tangent_cache_) {
+    boundary += static_cast<double>(sizeof(double) * basis.size());
+  }
+  const auto resident = static_cast<double>(resident_bytes());
+  summary.resident_peak_bytes = std::max(summary.resident_peak_bytes, resident);
+  summary.resident_beyond_boundary_peak_bytes =
+      std::max(summary.resident_beyond_boundary_peak_bytes, resident - boundary);
+  release_free_heap();
+}
+
 void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& start_frame,
                        CoveringSummary& summary) {
   step_ = options_.step;
@@ -180,7 +193,12 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
           refresh_priority(v);
         }
       }
-      if (options_.progress && (++processed % 1000) == 0) {
+      ++processed;
+      if (space_->local_rows() >= kReleaseHeapDimension &&
+          processed % kMemorySampleVertices == 0) {
+        sample_memory(summary);
+      }
+      if (options_.progress && processed % 1000 == 0) {
         options_.progress(
             {state_.live_vertex_count(), state_.live_triangle_count(), state_.front_size()});
       }

@@ -111,6 +111,12 @@ class FrontBuilder {
     return static_cast<std::size_t>(v) < deferrals_.size() ? kDeferralWeight * deferrals_[v]
                                                            : 0.0;
   }
+  /// The process's resident memory, and less the tangent bases the front holds (its open
+  /// boundary), into the summary's peaks; then the free heap goes back to the system. Every
+  /// kMemorySampleVertices processed vertices from kReleaseHeapDimension on: the front's peak
+  /// is inside its build, which the covering's samples between stages miss.
+  void sample_memory(CoveringSummary& summary) const;
+  static constexpr int kMemorySampleVertices = 64;
   /// Frees v's cached tangent basis (2n doubles) once v is finished: the cache then holds
   /// only the front, not the whole mesh.
   void release_tangent(int v) {
