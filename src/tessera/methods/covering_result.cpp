@@ -23,4 +23,13 @@ const char* to_string(CoveringTermination termination) {
   return "unknown";
 }
 
+void CoveringSummary::record_failure(CoveringTermination why, const std::string& what) {
+  if (is_complete()) {
+    termination = why;
+    message = what;
+  } else {
+    notes.push_back(what);
+  }
+}
+
 }  // namespace tessera

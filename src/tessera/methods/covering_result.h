@@ -85,6 +85,9 @@ struct CoveringSummary {
   int repaired_holes = 0;  ///< places where removed triangles were replaced by a new triangulation
   std::vector<std::string> notes;  ///< remarks for the user, e.g. where a crossing was met
   bool is_complete() const { return termination == CoveringTermination::Completed; }
+  /// A failure found by a step of the run: the first ends the run's status (termination and
+  /// message), later ones are kept as notes.
+  void record_failure(CoveringTermination why, const std::string& what);
 };
 
 struct CoveringResult {
