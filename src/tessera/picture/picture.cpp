@@ -16,6 +16,7 @@
 #include "tessera/core/error.h"
 #include "tessera/io/file_names.h"
 #include "tessera/geometry/mesh_topology.h"
+#include "tessera/geometry/planar.h"
 #include "tessera/io/detail/file_buffer.h"
 
 namespace tessera {
@@ -209,9 +210,6 @@ class ScreenIndex {
 
  private:
   static constexpr int kCells = 64;
-  static double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a(0) * b(1) - a(1) * b(0);
-  }
   int cell_x(double x) const {
     return std::clamp(static_cast<int>(x / width_ * kCells), 0, kCells - 1);
   }

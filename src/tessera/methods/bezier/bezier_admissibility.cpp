@@ -118,7 +118,7 @@ bool BezierBuilder::is_admissible(int a, int b, int c, int v, const Eigen::Vecto
     const Eigen::Vector2d pe = T.transpose() * (vertices_[other].x - x);
     const Eigen::Vector2d pc = T.transpose() * (vertices_[c].x - x);
     const Eigen::Vector2d py = T.transpose() * (y - x);
-    if (cross2(pe, pc) * cross2(pe, py) >= 0) {
+    if (cross(pe, pc) * cross(pe, py) >= 0) {
       return false;
     }
   }

@@ -18,6 +18,7 @@
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/linearization.h"
+#include "tessera/geometry/planar.h"
 #include "tessera/methods/bezier/bezier_continuation.h"
 #include "tessera/methods/common/point_grid.h"
 #include "tessera/methods/start_point.h"
@@ -25,10 +26,6 @@
 namespace tessera::detail {
 
 using EdgeKey = std::uint64_t;
-/// The z component of the cross product of two plane vectors.
-inline double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-  return u(0) * v(1) - u(1) * v(0);
-}
 
 inline EdgeKey edge_key(int a, int b) {
   return (static_cast<EdgeKey>(static_cast<std::uint32_t>(a)) << 32) |

@@ -159,7 +159,7 @@ double BezierBuilder::wedge_angle(int v, int u, int c, int w) const {
   const Eigen::Vector2d pc = T.transpose() * (vertices_[c].x - x);
   const Eigen::Vector2d pw = T.transpose() * (vertices_[w].x - x);
   const auto angle_from_u = [&](const Eigen::Vector2d& p) {
-    return std::atan2(cross2(pu, p), pu.dot(p));
+    return std::atan2(cross(pu, p), pu.dot(p));
   };
   const double side = angle_from_u(pc) >= 0 ? -1.0 : 1.0;
   double angle = side * angle_from_u(pw);

@@ -47,12 +47,12 @@ double PlaneFrame::offset(const Eigen::VectorXd& y) const {
 
 Eigen::Vector3d barycentric(const Eigen::Vector2d& p, const Eigen::Vector2d& A,
                             const Eigen::Vector2d& B, const Eigen::Vector2d& C) {
-  const double area = cross2(B - A, C - A);
+  const double area = cross(B - A, C - A);
   if (std::abs(area) < 1e-300) {
     return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   }
-  const double lb = cross2(p - A, C - A) / area;
-  const double lc = cross2(B - A, p - A) / area;
+  const double lb = cross(p - A, C - A) / area;
+  const double lc = cross(B - A, p - A) / area;
   return {1.0 - lb - lc, lb, lc};
 }
 
