@@ -19,9 +19,9 @@
 #include "tessera/geometry/bezier_patch.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/geometry/pinched_vertices.h"
+#include "tessera/methods/common/boundary_notches.h"
 #include "tessera/methods/common/clip_to_domain.h"
 #include "tessera/methods/common/local_repair.h"
-#include "tessera/methods/common/boundary_notches.h"
 #include "tessera/methods/common/refine_to_tolerance.h"
 #include "tessera/methods/covering_checks.h"
 #include "tessera/methods/improvement/edge_swap.h"
@@ -60,9 +60,10 @@ bool clip(const CoveringContext& context, const CoveringOptions& options, Coveri
   result.summary.clipped_half_spaces = clipped.half_spaces_crossed;
   refusal = clipped.message;
   if (clipped.interrupted) {
-    result.summary.record_failure(CoveringTermination::Interrupted,
-         "interrupted while clipping to the domain: the triangles outside the faces not yet "
-         "clipped were removed, so the boundary there is ragged, not on M ∩ ∂S");
+    result.summary.record_failure(
+        CoveringTermination::Interrupted,
+        "interrupted while clipping to the domain: the triangles outside the faces not yet "
+        "clipped were removed, so the boundary there is ragged, not on M ∩ ∂S");
     return false;
   }
   return true;
@@ -169,10 +170,11 @@ int validate_and_repair(const ImplicitProblem& problem, const Domain& domain,
       validation.vertices_outside_domain.empty()) {
     // A combinatorial defect: a method's bug, not repairable here. Report it, never hide it.
     const MeshDefect& defect = validation.defects.front();
-    result.summary.record_failure(CoveringTermination::TriangulationFailed,
-         "the final check found the mesh not valid: " + std::to_string(defect.count) + " " +
-             std::string(to_string(defect.kind)) +
-             (defect.examples.empty() ? "" : ", e.g. " + defect.examples.front()));
+    result.summary.record_failure(
+        CoveringTermination::TriangulationFailed,
+        "the final check found the mesh not valid: " + std::to_string(defect.count) + " " +
+            std::string(to_string(defect.kind)) +
+            (defect.examples.empty() ? "" : ", e.g. " + defect.examples.front()));
     return 0;
   }
   std::vector<bool> keep(mesh.triangle_count(), true);
@@ -433,7 +435,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
         swaps.stop_requested = options.stop_requested;
         if (improve_by_edge_swaps(result.mesh, problem, swaps).interrupted) {
           summary.record_failure(CoveringTermination::Interrupted,
-               "interrupted while improving the angles at the domain boundary");
+                                 "interrupted while improving the angles at the domain boundary");
         }
       }
     }
@@ -442,10 +444,11 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
     // Whatever the build held is gone; the summary still says what happened.
     result.mesh = empty_mesh();
     result.patches.clear();
-    summary.record_failure(CoveringTermination::ProjectionFailed,
-         "out of memory (n = " + std::to_string(n) +
-             "): the problem's Jacobian factorisation or the mesh did not fit; try a coarser "
-             "tolerance or step, or fewer unknowns");
+    summary.record_failure(
+        CoveringTermination::ProjectionFailed,
+        "out of memory (n = " + std::to_string(n) +
+            "): the problem's Jacobian factorisation or the mesh did not fit; try a coarser "
+            "tolerance or step, or fewer unknowns");
   }
   // 6. The distance bound, checked on every triangle and enforced by bisection on M. Not after
   //    a stop request: the user wants the partial mesh now, and at large n the bisection costs
@@ -471,8 +474,8 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
       // (−1), as for a stop before the check.
       summary.max_sampled_distance = -1.0;
       summary.record_failure(CoveringTermination::Interrupted,
-           "interrupted during the tolerance check, after " + std::to_string(refined.rounds) +
-               " round(s) of bisection");
+                             "interrupted during the tolerance check, after " +
+                                 std::to_string(refined.rounds) + " round(s) of bisection");
       summary.notes.push_back("interrupted: the tolerance " + std::to_string(options.tolerance) +
                               " was enforced on part of the mesh only");
       is_interrupted = true;

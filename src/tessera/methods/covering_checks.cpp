@@ -85,18 +85,19 @@ void check_coverage(const Domain& domain, double step, CoveringResult& result) {
         continue;
       }
       for (int l = 0; l < faces && !on_boundary; ++l) {
-        on_boundary = is_on(l, i, 1) && product(k, l) > -0.5 * std::sqrt(product(k, k)) *
-                                                           std::sqrt(product(l, l));
+        on_boundary = is_on(l, i, 1) &&
+                      product(k, l) > -0.5 * std::sqrt(product(k, k)) * std::sqrt(product(l, l));
       }
     }
     if (!on_boundary) {
       const int v = topology.edge(boundary[i])[0];
       const int w = topology.edge(boundary[i])[1];
-      result.summary.record_failure(CoveringTermination::TriangulationFailed,
-           "the mesh has a hole: its boundary edge from " + describe_point(mesh.point(v), space) +
-               " to " + describe_point(mesh.point(w), space) +
-               (domain.is_unbounded() ? " lies on M, which is closed"
-                                      : " does not lie on one face of the domain"));
+      result.summary.record_failure(
+          CoveringTermination::TriangulationFailed,
+          "the mesh has a hole: its boundary edge from " + describe_point(mesh.point(v), space) +
+              " to " + describe_point(mesh.point(w), space) +
+              (domain.is_unbounded() ? " lies on M, which is closed"
+                                     : " does not lie on one face of the domain"));
       return;
     }
   }

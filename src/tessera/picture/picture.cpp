@@ -14,10 +14,10 @@
 #include <numeric>
 
 #include "tessera/core/error.h"
-#include "tessera/io/file_names.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/planar.h"
 #include "tessera/io/detail/file_buffer.h"
+#include "tessera/io/file_names.h"
 
 namespace tessera {
 

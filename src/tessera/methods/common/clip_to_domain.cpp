@@ -27,18 +27,18 @@ namespace tessera {
 
 namespace {
 
-using detail::Corners;
-using detail::FaceSets;
 using detail::common_faces;
 using detail::compact;
+using detail::Corners;
+using detail::corners;
 using detail::describe_face;
 using detail::faces_of_vertices;
+using detail::FaceSets;
 using detail::find_corner;
 using detail::is_stop_requested;
 using detail::lengths;
 using detail::min_angles;
 using detail::OrientationGuard;
-using detail::corners;
 using detail::vertex_neighbours;
 
 // A split mesh (SPMD, docs/cluster.md): the points are this rank's rows of a distributed

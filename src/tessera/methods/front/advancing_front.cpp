@@ -117,8 +117,7 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
         }
       }
       ++processed;
-      if (space_->local_rows() >= kReleaseHeapDimension &&
-          processed % kMemorySampleVertices == 0) {
+      if (space_->local_rows() >= kReleaseHeapDimension && processed % kMemorySampleVertices == 0) {
         sample_memory(summary);
       }
       if (options_.progress && processed % 1000 == 0) {
