@@ -50,4 +50,12 @@ std::string describe_point(const Eigen::Ref<const Eigen::VectorXd>& x, const Amb
   return describe(space.dimension(), shown, [&](int i) { return space.coordinate(x, i); });
 }
 
+std::string join_words(const std::vector<std::string>& words, const std::string& separator) {
+  std::string joined;
+  for (const auto& word : words) {
+    joined += (joined.empty() ? "" : separator) + word;
+  }
+  return joined;
+}
+
 }  // namespace tessera

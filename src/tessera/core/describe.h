@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 namespace tessera {
 
@@ -18,5 +19,8 @@ class AmbientSpace;
 /// are gathered: a collective call, made on every rank). In one process, describe_point(x).
 std::string describe_point(const Eigen::Ref<const Eigen::VectorXd>& x, const AmbientSpace& space,
                            int shown = 4);
+
+/// The words with `separator` between them ("a, b, c"): lists of names in messages.
+std::string join_words(const std::vector<std::string>& words, const std::string& separator = ", ");
 
 }  // namespace tessera

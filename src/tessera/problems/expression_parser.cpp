@@ -9,6 +9,8 @@
 #include <sstream>
 #include <utility>
 
+#include "tessera/core/describe.h"
+
 namespace tessera {
 
 namespace {
@@ -16,14 +18,6 @@ namespace {
 bool is_name_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
 bool is_name_char(char c) { return is_name_start(c) || (c >= '0' && c <= '9'); }
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
-
-std::string join(const std::vector<std::string>& words) {
-  std::string joined;
-  for (const auto& word : words) {
-    joined += (joined.empty() ? "" : ", ") + word;
-  }
-  return joined;
-}
 
 // Names people carry over from other languages; a hint saves them a trip to the docs.
 std::string hint_for_unknown_function(const std::string& name) {
@@ -255,7 +249,7 @@ class Expression::Parser {
                           ", not a function (implicit multiplication is not supported: write " +
                           name + "*(…))");
         }
-        fail(start, "unknown function '" + name + "' (functions: " + join(functions) + ")" +
+        fail(start, "unknown function '" + name + "' (functions: " + join_words(functions) + ")" +
                         hint_for_unknown_function(name));
       }
       const auto operation = static_cast<Operation>(static_cast<int>(Operation::Exp) +
@@ -301,10 +295,10 @@ class Expression::Parser {
     }
     std::string known;
     if (!variables_.empty()) {
-      known = "variables: " + join(variables_);
+      known = "variables: " + join_words(variables_);
     }
     if (!parameter_names.empty()) {
-      known += (known.empty() ? "" : "; ") + std::string("parameters: ") + join(parameter_names);
+      known += (known.empty() ? "" : "; ") + std::string("parameters: ") + join_words(parameter_names);
     }
     return known.empty() ? "no variables or parameters are defined" : known;
   }

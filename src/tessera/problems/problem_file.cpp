@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/problems/detail/statement_reader.h"
 #include "tessera/problems/expression.h"
@@ -31,14 +32,6 @@ const std::vector<std::string> repeatable_keywords = {"parameter", "equation", "
 
 bool contains(const std::vector<std::string>& list, const std::string& word) {
   return std::find(list.begin(), list.end(), word) != list.end();
-}
-
-std::string join(const std::vector<std::string>& words, const std::string& separator = ", ") {
-  std::string joined;
-  for (const auto& word : words) {
-    joined += (joined.empty() ? "" : separator) + word;
-  }
-  return joined;
 }
 
 std::string format_number(double value) {
@@ -108,7 +101,7 @@ class ProblemFileParser {
     const Statement& statement = statements_[i];
     const std::string& keyword = statement.keyword.text;
     if (!contains(all_keywords, keyword)) {
-      fail(statement, "unknown keyword '" + keyword + "' (keywords: " + join(all_keywords) + ")",
+      fail(statement, "unknown keyword '" + keyword + "' (keywords: " + join_words(all_keywords) + ")",
            statement.keyword.column);
     }
     if (contains(repeatable_keywords, keyword)) {
@@ -246,7 +239,7 @@ class ProblemFileParser {
       if (parameters_.count(name) == 0) {
         fail_file(
             "parameter override '" + name + "' names no parameter of the file (" +
-            (parameter_order_.empty() ? "it has none" : "parameters: " + join(parameter_order_)) +
+            (parameter_order_.empty() ? "it has none" : "parameters: " + join_words(parameter_order_)) +
             ")");
       }
     }
@@ -266,11 +259,11 @@ class ProblemFileParser {
       fail_file("missing equations: no 'equation' line; " + counts);
     }
     if (statements.size() > expected) {
-      fail(*statements[expected], "too many equations: " + counts + " (lines " + join(lines) + ")");
+      fail(*statements[expected], "too many equations: " + counts + " (lines " + join_words(lines) + ")");
     }
     if (statements.size() < expected) {
       fail(*variables_statement_, "too few equations: " + counts + " (line" +
-                                      (lines.size() == 1 ? " " : "s ") + join(lines) + ")");
+                                      (lines.size() == 1 ? " " : "s ") + join_words(lines) + ")");
     }
     std::vector<Expression> equations;
     for (std::size_t i = 0; i < statements.size(); ++i) {
@@ -290,7 +283,7 @@ class ProblemFileParser {
     if (words.size() != variables_.size()) {
       fail(statement, what + " has " + plural(words.size(), "value") + ", expected " +
                           std::to_string(variables_.size()) +
-                          " (one per variable: " + join(variables_) + ")");
+                          " (one per variable: " + join_words(variables_) + ")");
     }
     Eigen::VectorXd point(static_cast<Eigen::Index>(words.size()));
     for (std::size_t i = 0; i < words.size(); ++i) {
@@ -304,7 +297,7 @@ class ProblemFileParser {
     start_statement_ = single("start");
     if (start_statement_ == nullptr) {
       fail_file("missing 'start' line: give a point near the manifold, one value per variable (" +
-                join(variables_, " ") + ")");
+                join_words(variables_, " ") + ")");
     }
     return read_point(*start_statement_, start_statement_->words, "start");
   }
@@ -323,7 +316,7 @@ class ProblemFileParser {
       const auto variable = std::find(variables_.begin(), variables_.end(), words[0].text);
       if (variable == variables_.end()) {
         fail(*statement,
-             "box: unknown variable '" + words[0].text + "' (variables: " + join(variables_) + ")",
+             "box: unknown variable '" + words[0].text + "' (variables: " + join_words(variables_) + ")",
              words[0].column);
       }
       if (bounded_on_line.count(words[0].text) > 0) {
@@ -391,7 +384,7 @@ class ProblemFileParser {
     if (statement.rest.empty()) {
       fail(statement,
            "view: expected functionals after 'view', e.g. 'view " +
-               join(std::vector<std::string>(variables_.begin(), variables_.begin() + 3)) +
+               join_words(std::vector<std::string>(variables_.begin(), variables_.begin() + 3)) +
                "' or 'view " + variables_[0] + ", " + variables_[1] + ", r = sqrt(" +
                variables_[0] + "^2 + " + variables_[1] + "^2)'",
            statement.rest_column);
@@ -449,7 +442,7 @@ class ProblemFileParser {
     for (const auto& name : parameter_order_) {
       values.push_back(name + " = " + format_number(parameters_.at(name)));
     }
-    return values.empty() ? text : text + " (" + join(values) + ")";
+    return values.empty() ? text : text + " (" + join_words(values) + ")";
   }
 
   // The start is the user's promise of a point near M inside S; a broken promise here is far
