@@ -356,10 +356,7 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
     if (n >= kReleaseHeapDimension) {
       release_free_heap();
     }
-    const double resident = static_cast<double>(resident_bytes());
-    summary.resident_peak_bytes = std::max(summary.resident_peak_bytes, resident);
-    summary.resident_beyond_boundary_peak_bytes =
-        std::max(summary.resident_beyond_boundary_peak_bytes, resident);
+    summary.note_resident_memory(0.0);
   };
   auto finish = [&] {
     end_phase("finish");

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/methods/covering_result.h"
 
+#include <algorithm>
+
+#include "tessera/core/process_memory.h"
+
 namespace tessera {
 
 const char* to_string(CoveringTermination termination) {
@@ -30,6 +34,13 @@ void CoveringSummary::record_failure(CoveringTermination why, const std::string&
   } else {
     notes.push_back(what);
   }
+}
+
+void CoveringSummary::note_resident_memory(double boundary_bytes) {
+  const auto resident = static_cast<double>(resident_bytes());
+  resident_peak_bytes = std::max(resident_peak_bytes, resident);
+  resident_beyond_boundary_peak_bytes =
+      std::max(resident_beyond_boundary_peak_bytes, resident - boundary_bytes);
 }
 
 }  // namespace tessera

@@ -88,6 +88,9 @@ struct CoveringSummary {
   /// A failure found by a step of the run: the first ends the run's status (termination and
   /// message), later ones are kept as notes.
   void record_failure(CoveringTermination why, const std::string& what);
+  /// Samples the process's resident memory into the two peaks above, the second less
+  /// `boundary_bytes`, what the method's open boundary holds at this moment.
+  void note_resident_memory(double boundary_bytes);
 };
 
 struct CoveringResult {

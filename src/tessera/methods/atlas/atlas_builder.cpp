@@ -607,7 +607,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       // go to the system, so that it follows what the atlas holds (bvp:points=10000: peak 673
       // → 569 MB).
       next_heap_release = chart_count() + kReleaseHeapCharts;
-      note_resident_bytes();
+      summary.note_resident_memory(boundary_bytes());
       if (n_ >= kReleaseHeapDimension) {
         release_free_heap();
       }
@@ -621,11 +621,8 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
   if (n_ >= kReleaseHeapDimension) {
     release_free_heap();  // what the last charts freed, before the build's final sample
   }
-  note_resident_bytes();
+  summary.note_resident_memory(boundary_bytes());
   summary.boundary_peak_bytes = boundary_peak_bytes_;
-  summary.resident_peak_bytes = std::max(summary.resident_peak_bytes, resident_peak_bytes_);
-  summary.resident_beyond_boundary_peak_bytes =
-      std::max(summary.resident_beyond_boundary_peak_bytes, resident_beyond_boundary_peak_bytes_);
   summary.singular_crossings = singular_crossings_;
   summary.sheet_rejections = sheet_rejections_;
   const int capped = capped_[1] + capped_[2] + capped_[3] + capped_[4] + capped_[5];

@@ -165,15 +165,6 @@ class AtlasBuilder {
   void note_boundary_bytes() {
     boundary_peak_bytes_ = std::max(boundary_peak_bytes_, boundary_bytes());
   }
-  // The process's resident memory as sampled, and less the boundary's at the same moment.
-  double resident_peak_bytes_ = 0.0;
-  double resident_beyond_boundary_peak_bytes_ = 0.0;
-  void note_resident_bytes() {
-    const double resident = static_cast<double>(resident_bytes());
-    resident_peak_bytes_ = std::max(resident_peak_bytes_, resident);
-    resident_beyond_boundary_peak_bytes_ =
-        std::max(resident_beyond_boundary_peak_bytes_, resident - boundary_bytes());
-  }
   int refactored_charts_ = 0;  // charts whose factorisation was dropped (over the budget)
   void keep_factorisation(int c, Linearization&& linearization);
   // A few factorisations of processed charts, reused (fewer allocations at small n).

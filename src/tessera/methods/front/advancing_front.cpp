@@ -84,10 +84,7 @@ void FrontBuilder::sample_memory(CoveringSummary& summary) const {
   for (const Eigen::MatrixXd& basis : tangent_cache_) {
     boundary += static_cast<double>(sizeof(double) * basis.size());
   }
-  const auto resident = static_cast<double>(resident_bytes());
-  summary.resident_peak_bytes = std::max(summary.resident_peak_bytes, resident);
-  summary.resident_beyond_boundary_peak_bytes =
-      std::max(summary.resident_beyond_boundary_peak_bytes, resident - boundary);
+  summary.note_resident_memory(boundary);
   release_free_heap();
 }
 
