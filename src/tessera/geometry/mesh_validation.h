@@ -61,16 +61,17 @@ struct ValidationOptions {
   /// mesh than any method makes; s < 0.1 is a fold, not a coarse triangle.
   double min_tangent_cosine = 0.1;
   /// Two triangles are tested on M when their projections onto the plane of the better aligned
-  /// one overlap in more than this fraction of the smaller triangle's area. Triangles sharing a
-  /// vertex overlap in area 0 up to rounding (1e-16); 1e-3 finds a fan folded by 0.1% of a
-  /// triangle and leaves the decision to the test on M.
-  double overlap_area_ratio = 1e-3;
-  /// They cover the same part of M if, for p = P(q₁) with q₁ a point of the overlap on the
-  /// first triangle and q₂ where M's normal space at p meets the second triangle's plane,
-  /// |P(q₂) − p| ≤ ratio · |q₂ − p|. On the same sheet P(q₂) returns to p up to O(κ|q₂ − p|²),
-  /// a ratio κ|q₂ − p| ≤ κ·(chord error) ≤ (κh)²/8; on another sheet (the trough's, 5e-5 away,
-  /// or the far side of a thin tube) P(q₂) stays on that sheet, a ratio near 1 (≥ 1/2 while the
-  /// chord error is below the sheets' separation). 0.25 lies between the two.
+  /// one overlap in more than this fraction of the smaller triangle's area: a filter only.
+  /// Triangles sharing a vertex overlap in area 0 up to rounding (1e-16); two needles 0.1° wide
+  /// that cross overlap in about 1e-4 of their area, so the filter must be far below that (the
+  /// test on M decides, docs/validation.md).
+  double overlap_area_ratio = 1e-9;
+  /// They cover the same part of M if (the chart overlap being wider than the chart's
+  /// distortion) the points q₁, q₂ of the two triangles over the overlap's centroid in M's
+  /// tangent plane project onto M at nearly the same point: |P(q₁) − P(q₂)| ≤ ratio·|q₁ − q₂|.
+  /// On the same sheet the ratio is at most κρ (ρ the overlap's reach, a fraction of an edge);
+  /// on another sheet (the trough's, 5e-5 away, or the far side of a thin tube) P(q₂) stays on
+  /// that sheet, a ratio near 1. 0.25 lies between the two.
   double overlap_same_point_ratio = 0.25;
   /// A vertex x is outside the domain if a half-space's signed distance is below
   /// −ratio·(1 + ‖x‖∞): rounding of a point placed on a face is a few ulp of its coordinates

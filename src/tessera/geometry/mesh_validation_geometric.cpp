@@ -244,16 +244,148 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
   }
 }
 
+namespace {
+
+// What the test on M found for a pair whose projections onto a plane overlap.
+struct OverlapOnManifold {
+  bool is_overlap = false;
+  Eigen::VectorXd point;  // a point of M that both triangles cover
+  double area = 0.0;      // of the overlap in the chart (M's tangent plane at `point`)
+  double width = 0.0;     // its area / perimeter
+};
+
+// Do the triangles `first` and `second` cover the same part of M near the point p of M (the
+// projection of a point where their planar projections overlap)? Both are mapped into the chart
+// Tᵀ(x − p) of M's tangent plane at p. Restricted to M near p this chart is one to one, and a
+// point x of a triangle, at distance e from M, lands where its projection P(x) onto M lands up
+// to e·|Tᵀν| ≤ e·κ|x − p| (ν: M's normal at P(x)). So the triangles' images overlap where their
+// projections onto M do, up to that distortion within the overlap's reach ρ from p: an overlap
+// whose width (area / perimeter) exceeds 2·E·κ·ρ, E the larger chord error, survives moving
+// every edge inward by the distortion, and is an overlap on M however thin the triangles are
+// (crossing needles 0.1° wide overlap in 1e-7 of their area). Then the overlap's centroid c is
+// lifted onto each triangle (the points q₁, q₂ whose chart image is c: inside both by
+// construction, so no slack in barycentric coordinates, which a needle's width makes
+// meaningless) and projected onto M: on the same sheet P(q₁) and P(q₂) coincide up to
+// |q₁ − q₂|·κρ; on another sheet (the trough's, the far side of a thin tube) they stay about
+// |q₁ − q₂| apart (overlap_same_point_ratio between the two).
+OverlapOnManifold overlap_on_manifold(const MeshView& view, const GeometricInput& geometry,
+                                      const Triangle& first, const Triangle& second,
+                                      Eigen::VectorXd p, Linearization& workspace,
+                                      const ValidationOptions& options) {
+  OverlapOnManifold found;
+  // Two passes: the chart at p (the projection of a point of the planar overlap), then the
+  // chart at the projection of the point of `first` over that overlap's centroid, so that the
+  // overlap's reach ρ from the chart's origin, which the distortion bound grows with, is about
+  // half its diameter.
+  for (int pass = 0; pass < 2; ++pass) {
+    const auto points = view.mesh.points();
+    const AmbientSpace& space = view.mesh.space();
+    const Eigen::MatrixXd T = workspace.tangent_basis();  // a copy: the workspace projects again
+    // Per corner (three of `first`, then three of `second`): Tᵀ(x − p) and |x − p|².
+    Eigen::Matrix<double, 3, 6> measures;
+    Eigen::VectorXd d;
+    for (int k = 0; k < 6; ++k) {
+      d = points.col(k < 3 ? first[k] : second[k - 3]) - p;
+      measures(0, k) = T.col(0).dot(d);
+      measures(1, k) = T.col(1).dot(d);
+      measures(2, k) = d.squaredNorm();
+    }
+    space.sum(measures.data(), 18);  // over the ranks of a split mesh (else nothing)
+    const Eigen::Matrix<double, 2, 3> a = measures.block<2, 3>(0, 0);
+    const Eigen::Matrix<double, 2, 3> b = measures.block<2, 3>(0, 3);
+    const PlanarOverlap chart = triangle_intersection(a, b);
+    if (!(chart.area > 0.0)) {
+      return found;
+    }
+    // The lift of c onto a triangle: x₀ + E·w with Tᵀ(x₀ + E·w − p) = c.
+    const auto lift_onto = [&](const Eigen::Matrix<double, 2, 3>& image, const Triangle& tri,
+                               Eigen::VectorXd& q) {
+      Eigen::Matrix2d edges;
+      edges.col(0) = image.col(1) - image.col(0);
+      edges.col(1) = image.col(2) - image.col(0);
+      const double longest = std::max(
+          {edges.col(0).norm(), edges.col(1).norm(), (image.col(2) - image.col(1)).norm()});
+      if (!(std::abs(edges.determinant()) > 1e-12 * longest * longest)) {
+        return false;  // the triangle stands across M at p (a flipped triangle if anything)
+      }
+      const Eigen::Vector2d w = edges.inverse() * (chart.centroid - image.col(0));
+      q = points.col(tri[0]) + w.x() * (points.col(tri[1]) - points.col(tri[0])) +
+          w.y() * (points.col(tri[2]) - points.col(tri[0]));
+      return true;
+    };
+    Eigen::VectorXd q1, q2;
+    if (!lift_onto(a, first, q1) || !lift_onto(b, second, q2)) {
+      return found;
+    }
+    Eigen::VectorXd p1 = q1, p2 = q2;
+    if (!project_onto_manifold(geometry.problem, p1, workspace)) {
+      return found;  // left unjudged
+    }
+    if (pass == 0) {
+      p = p1;
+      continue;
+    }
+    if (!project_onto_manifold(geometry.problem, p2, workspace)) {
+      return found;
+    }
+    const double floor = 1e-10 * (1.0 + space.maximum(p.lpNorm<Eigen::Infinity>()));
+    if (space.distance(p1, p2) >
+        options.overlap_same_point_ratio * space.distance(q1, q2) + floor) {
+      return found;  // another sheet of M (close sheets, the far side of a thin tube)
+    }
+    // M's curvature near p from the corners' heights over the chart (height ≈ κr²/2), and the
+    // larger chord error: measured at q₁, q₂, or κh²/8 for the triangles' longest edge h.
+    double curvature = 0.0;
+    double longest_squared = 0.0;
+    for (int k = 0; k < 6; ++k) {
+      longest_squared =
+          std::max(longest_squared, (measures.col(k).head<2>() -
+                                     measures.col(k < 3 ? (k + 1) % 3 : 3 + (k + 1) % 3).head<2>())
+                                        .squaredNorm());
+    }
+    for (int k = 0; k < 6; ++k) {
+      const double r_squared = measures.col(k).head<2>().squaredNorm();
+      if (r_squared >= 0.01 * longest_squared && r_squared > 0.0) {
+        const double height = std::sqrt(std::max(0.0, measures(2, k) - r_squared));
+        curvature = std::max(curvature, 2.0 * height / r_squared);
+      }
+    }
+    // Each triangle's image moves by at most its chord error times κρ: at most the larger of the
+    // error measured over the overlap's centroid and κh²/8 for its own longest edge h.
+    double distortion = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      double longest = 0.0;
+      for (int j = 0; j < 3; ++j) {
+        longest = std::max(longest, (measures.col(3 * k + j).head<2>() -
+                                     measures.col(3 * k + (j + 1) % 3).head<2>())
+                                        .squaredNorm());
+      }
+      const double chord_error = std::max(k == 0 ? space.distance(q1, p1) : space.distance(q2, p2),
+                                          curvature * longest / 8.0);
+      distortion += chord_error * curvature * chart.reach;
+    }
+    const double rounding = 1e-12 * (1.0 + space.maximum(p.lpNorm<Eigen::Infinity>()));
+    if (!(chart.width() > distortion + rounding)) {
+      return found;
+    }
+    found.is_overlap = true;
+    found.point = std::move(p1);
+    found.area = chart.area;
+    found.width = chart.width();
+    return found;
+  }
+  return found;
+}
+
+}  // namespace
+
 // 2. Overlap. Two triangles that share no edge must not cover the same part of M. Candidates:
 // every pair within 0.25·(longest edge) of each other in R^n (nearby_triangle_pairs, expected
 // linear time); 0.25·h exceeds the chord errors of both triangles (≤ κh²/8), so two triangles
 // on opposite sides of M are found too. A candidate pair is projected onto the plane of the
-// better aligned of the two (larger |s_t|): within O(κh) of the tangent plane of M there and
-// needing no factorisation; the planar intersection is clipped exactly. If it exceeds
-// overlap_area_ratio of the smaller area, its centroid (inside both projections) is lifted to
-// q₁ on the reference triangle and projected onto M: p = P(q₁). The second triangle covers
-// p if M's normal space at p meets it, at q₂; it covers the same part of M, and not a close
-// sheet, if P(q₂) returns to p: |P(q₂) − p| ≤ overlap_same_point_ratio · |q₂ − p|.
+// better aligned of the two (larger |s_t|), needing no factorisation, and the planar
+// intersection is clipped exactly; any overlap beyond rounding (overlap_area_ratio) is judged
+// on M by overlap_on_manifold, in M's own tangent plane.
 void check_overlaps(const MeshView& view, const GeometricInput& geometry,
                     const ValidationOptions& options, DefectRecorder& recorder,
                     MeshValidation& result) {
@@ -271,8 +403,8 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
       margins[t] = 0.25 * shapes.longest_edge[t];
     }
   }
-  std::vector<std::pair<int, int>> pairs = nearby_triangle_pairs(
-      points, triangles, margins, split ? view.mesh.shared_space() : nullptr);
+  std::vector<std::pair<int, int>> pairs =
+      nearby_triangle_pairs(points, triangles, margins, split ? view.mesh.shared_space() : nullptr);
   std::sort(pairs.begin(), pairs.end());
   // The barycentric slack for "q₂ lies in the second triangle": the overlap's centroid lies
   // inside both projections, and lifting along M's normal at p instead of the reference
@@ -385,45 +517,21 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
     if (!project_onto_manifold(geometry.problem, p, workspace) || !workspace.is_factored()) {
       continue;  // no point of M to compare at: left unjudged
     }
-    const Eigen::MatrixXd& T = workspace.tangent_basis();
-    // q₂ = b₀ + E·w on the other triangle's plane with Tᵀ(q₂ − p) = 0.
-    const Triangle& o_tri = triangles[other];
-    const Eigen::VectorXd b0 = points.col(o_tri[0]);
-    Eigen::MatrixXd E(n, 2);
-    E.col(0) = points.col(o_tri[1]) - b0;
-    E.col(1) = points.col(o_tri[2]) - b0;
-    Eigen::Matrix<double, 2, 3> products;  // [TᵀE, Tᵀ(p − b₀)]
-    products.leftCols(2) = T.transpose() * E;
-    products.col(2) = T.transpose() * (p - b0);
-    if (split) {
-      space.sum(products.data(), 6);
-    }
-    const Eigen::Matrix2d TE = products.leftCols(2);
-    if (std::abs(TE.determinant()) <= 1e-3 * 2.0 * shapes.area[other]) {
-      continue;  // the other triangle stands across M at p (a flipped triangle if anything)
-    }
-    const Eigen::Vector2d w = TE.inverse() * products.col(2);
-    if (std::min({1.0 - w.x() - w.y(), w.x(), w.y()}) < -barycentric_slack) {
-      continue;  // M's normal at p misses the other triangle: it does not cover p
-    }
-    const Eigen::VectorXd q2 = b0 + E * w;
-    Eigen::VectorXd p2 = q2;
-    if (!project_onto_manifold(geometry.problem, p2, workspace)) {
+    const OverlapOnManifold on_m =
+        overlap_on_manifold(view, geometry, triangles[s], triangles[t], p, workspace, options);
+    if (!on_m.is_overlap) {
       continue;
     }
-    // The floor is the projection's accuracy (1e-13·(1 + ‖x‖)) with a margin.
-    const double floor = 1e-10 * (1.0 + space.maximum(p.lpNorm<Eigen::Infinity>()));
-    if (space.distance(p2, p) > options.overlap_same_point_ratio * space.distance(q2, p) + floor) {
-      continue;  // another sheet of M (close sheets, the far side of a thin tube)
-    }
+    p = on_m.point;
     result.overlapping_triangle_pairs.emplace_back(view.original[s], view.original[t]);
     recorder.record(MeshDefectKind::OverlappingTriangles, [&] {
       std::ostringstream out;
       out.precision(3);
       out << triangle_name(view.original[s], triangles[s]) << " and "
           << triangle_name(view.original[t], triangles[t]) << " both cover M near "
-          << describe_point(p, space) << ": overlap " << 100.0 * overlap.area / smaller_area
-          << "% of the smaller" << (shared == 1 ? " (they share one vertex: a folded fan)" : "");
+          << describe_point(p, space) << ": overlap " << 100.0 * on_m.area / smaller_area
+          << "% of the smaller, " << on_m.width << " wide"
+          << (shared == 1 ? " (they share one vertex: a folded fan)" : "");
       return out.str();
     });
   }
@@ -458,8 +566,7 @@ void check_domain(const MeshView& view, const GeometricInput& geometry,
       std::ostringstream out;
       out.precision(3);
       out << "vertex " << v << " at " << describe_point(x, space) << " is "
-          << -nearest.signed_distance
-          << " outside the domain ("
+          << -nearest.signed_distance << " outside the domain ("
           << (face.label.empty() ? "half-space " + std::to_string(nearest.nearest_half_space)
                                  : face.label)
           << ")";

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/geometry/triangle_intersection.h"
 
+#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -73,6 +74,10 @@ PlanarOverlap triangle_intersection(const Eigen::Matrix<double, 2, 3>& a,
   }
   overlap.area = 0.5 * twice_area;
   overlap.centroid = moment / twice_area;
+  for (int i = 0; i < polygon.size; ++i) {
+    overlap.perimeter += (polygon.vertices[(i + 1) % polygon.size] - polygon.vertices[i]).norm();
+    overlap.reach = std::max(overlap.reach, polygon.vertices[i].norm());
+  }
   return overlap;
 }
 

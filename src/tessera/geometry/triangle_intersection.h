@@ -6,10 +6,18 @@
 
 namespace tessera {
 
-/// A convex polygon's area and centroid; the centroid is meaningless if area == 0.
+/// A convex polygon's area, centroid and perimeter; the centroid is meaningless if area == 0.
 struct PlanarOverlap {
   double area = 0.0;
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  double perimeter = 0.0;
+  /// The largest distance from the origin of the plane to a vertex of the polygon.
+  double reach = 0.0;
+  /// area / perimeter: a lower bound on the polygon's inradius up to a factor 2 (equal to half
+  /// the width of a thin strip), so the polygon stays non-empty when every edge moves inward
+  /// by less than this. Thin overlaps (crossing needles) have a small area but a width that is
+  /// not small against their own size; 0 if the polygon is empty.
+  double width() const { return perimeter > 0.0 ? area / perimeter : 0.0; }
 };
 
 /// The intersection of the triangles a and b (columns are the corners, in either orientation),
