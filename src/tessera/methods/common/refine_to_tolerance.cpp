@@ -283,6 +283,49 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   Eigen::VectorXd where;
   Eigen::MatrixXd samples;
   std::vector<Gram> gram;
+  // Boundary edges on ∂S: the mesh ends at the chord, M ∩ S at the curve M ∩ face, which bulges
+  // beyond the chord within M by its geodesic curvature·L²/8, a part of M ∩ S that no triangle
+  // covers and no sample of a triangle sees (on cstr's face Da = 0.3, 0.012 at a tolerance of
+  // 0.008). So each boundary edge on a face also samples the gap: the distance from its
+  // midpoint to M ∩ face, where its split would put the new vertex. `triangles_at_edge` counts
+  // each edge's triangles (rebuilt each round); the gaps are kept, since vertices never move.
+  std::unordered_map<std::uint64_t, int> triangles_at_edge;
+  std::unordered_map<std::uint64_t, double> boundary_gap;
+  int worst_edge = -1;  // after sample(): the edge whose gap is the worst sample, else −1
+  const auto count_edges = [&] {
+    triangles_at_edge.clear();
+    if (domain.is_unbounded()) {
+      return;
+    }
+    for (const Triangle& tri : mesh.triangles()) {
+      for (int e = 0; e < 3; ++e) {
+        ++triangles_at_edge[edge_key(tri[e], tri[(e + 1) % 3])];
+      }
+    }
+  };
+  const auto gap_of = [&](int u, int v) {
+    const std::uint64_t key = edge_key(u, v);
+    if (const auto known = boundary_gap.find(key); known != boundary_gap.end()) {
+      return known->second;
+    }
+    double gap = 0.0;
+    const std::vector<int> ends = {u, v};
+    const Eigen::MatrixXd distance = domain.signed_distances(mesh.points(), ends);
+    const std::vector<int> faces =
+        shared_faces(distance.col(0), distance.col(1), options.face_tolerance);
+    if (!faces.empty() && faces.size() <= 2) {
+      const Eigen::VectorXd midpoint = 0.5 * (mesh.point(u) + mesh.point(v));
+      Eigen::VectorXd x = midpoint;
+      const double length = space.distance(mesh.point(u), mesh.point(v));
+      // A midpoint that cannot be put on M ∩ face is left to the triangle samples (its edge
+      // is then unsplittable anyway).
+      if (project_onto_faces(problem, domain, faces, x, length, corrector)) {
+        gap = space.distance(x, midpoint);
+      }
+    }
+    boundary_gap.emplace(key, gap);
+    return gap;
+  };
   auto sample = [&](int anchor, int t) {
     const Triangle tri = mesh.triangle(t);
     const Eigen::VectorXd a = mesh.point(tri[0]);
@@ -356,6 +399,20 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     if (has_circumcentre) {
       consider(4, distance.back());
     }
+    worst_edge = -1;
+    for (int e = 0; e < 3 && !triangles_at_edge.empty(); ++e) {
+      const int u = tri[e];
+      const int v = tri[(e + 1) % 3];
+      const auto uses = triangles_at_edge.find(edge_key(u, v));
+      if (uses != triangles_at_edge.end() && uses->second == 1) {
+        const double gap = gap_of(u, v);
+        if (gap > worst) {
+          worst = gap;
+          worst_sample = 1 + e;
+          worst_edge = e;
+        }
+      }
+    }
     if (worst_sample == 0 || worst_sample == 4) {
       where = points.col(worst_sample == 0 ? 0 : count - 1);
     } else {
@@ -375,6 +432,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     // The edges to split, each with its length.
     std::vector<std::pair<std::pair<int, int>, double>> to_split;
     std::vector<std::uint8_t> is_far(mesh.triangle_count(), 0);
+    count_edges();
     measure_gram(mesh, candidates, gram);
     for (const auto& [anchor, t] : anchored(mesh, candidates, rings)) {
       // Checked here only, where nothing of the round has changed the mesh yet: at large n
@@ -400,6 +458,9 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
           length = l;
           longest = e;
         }
+      }
+      if (worst_edge >= 0) {
+        longest = worst_edge;  // the gap beyond a boundary edge: that edge is split
       }
       const int u = tri[longest];
       const int v = tri[(longest + 1) % 3];
@@ -586,6 +647,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   // once more, so that `remaining` and `max_distance` describe the mesh returned.
   if (exhausted) {
     double worst_remaining = -1.0;
+    count_edges();
     measure_gram(mesh, candidates, gram);
     for (const auto& [anchor, t] : anchored(mesh, candidates, rings)) {
       const double worst = sample(anchor, t);
