@@ -286,18 +286,19 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
                                 << "(Domain::distributed)");
     TESSERA_CHECK(user_start.size() == rows,
                   "start point has " << user_start.size() << " rows here, but the problem '"
-                                     << user_problem.name() << "' is distributed and holds "
-                                     << rows << " of its n = " << n << " on this rank");
+                                     << user_problem.name() << "' is distributed and holds " << rows
+                                     << " of its n = " << n << " on this rank");
     // Its metric is its own business (petsc::ScaledPetscProblem presents the metric's
     // coordinates): ScaledProblem cannot scale rows it does not hold.
     TESSERA_CHECK(metric_weights(user_problem).size() == 0,
-                  "the distributed problem '" << user_problem.name()
+                  "the distributed problem '"
+                      << user_problem.name()
                       << "' has a metric; work in the metric's coordinates "
                          "(petsc::ScaledPetscProblem) and give the start and the domain in them");
   } else {
-    TESSERA_CHECK(user_domain.is_unbounded() || user_domain.ambient_dimension() == n,
-                  "domain is in R^" << user_domain.ambient_dimension()
-                                    << " but the problem is in R^" << n);
+    TESSERA_CHECK(
+        user_domain.is_unbounded() || user_domain.ambient_dimension() == n,
+        "domain is in R^" << user_domain.ambient_dimension() << " but the problem is in R^" << n);
     TESSERA_CHECK(user_start.size() == n,
                   "start point has " << user_start.size() << " coordinates, the problem n = " << n);
   }
@@ -314,9 +315,9 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
   // A distributed problem's domain given in R^n is cut to this rank's rows.
   const bool cuts_domain =
       is_distributed && !user_domain.is_unbounded() && !user_domain.is_distributed();
-  const Domain converted_domain = is_weighted  ? scale_domain(user_domain, weights)
-                               : cuts_domain ? user_domain.distributed(space)
-                                             : Domain();
+  const Domain converted_domain = is_weighted   ? scale_domain(user_domain, weights)
+                                  : cuts_domain ? user_domain.distributed(space)
+                                                : Domain();
   const Domain& domain = is_weighted || cuts_domain ? converted_domain : user_domain;
   const Eigen::VectorXd start = is_weighted ? weights.cwiseProduct(user_start) : user_start;
   const CountedProblem problem(is_weighted ? static_cast<const ImplicitProblem&>(*scaled)
@@ -511,8 +512,8 @@ CoveringResult run_covering(const std::string& method, const ImplicitProblem& us
                                    context.boundary_snap_fraction * context.boundary_edge_length,
                                    options.tolerance, options.corrector, result);
   if (!result.patches.empty() &&
-      (result.mesh.triangle_count() != triangles_built || summary.refined_edges > 0 ||
-       summary.removed_triangles > 0 ||
+      (result.patches_need_rebuild || result.mesh.triangle_count() != triangles_built ||
+       summary.refined_edges > 0 || summary.removed_triangles > 0 ||
        static_cast<int>(result.patches.size()) != result.mesh.triangle_count())) {
     rebuild_patches(problem, result);
   }

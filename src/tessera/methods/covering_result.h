@@ -75,7 +75,7 @@ struct CoveringSummary {
   /// on a distributed run.
   double resident_peak_bytes = 0.0;
   double resident_beyond_boundary_peak_bytes = 0.0;
-  int refined_edges = 0;       ///< edges bisected on M to keep the distance bound
+  int refined_edges = 0;  ///< edges bisected on M to keep the distance bound
   /// Largest distance to M of the points sampled by the tolerance check (centroids, edge
   /// midpoints, circumcentres) after refinement; −1 if no check was made (tolerance 0).
   double max_sampled_distance = -1.0;
@@ -102,6 +102,9 @@ struct CoveringResult {
   /// l_ij/‖y_j − y_i‖ of the patches' edge curves (Hohmann eq. 3.4), so that the patches of
   /// triangles made after the build (refinement, repair) are built as the method built its own.
   double patch_edge_length_factor = 1.0;
+  /// The build changed triangles after making `patches` (bezier's shape repair): the skeleton
+  /// builds them again for the final triangles.
+  bool patches_need_rebuild = false;
   /// The final geometric check of `mesh` when it passed (validate() in the problem's metric),
   /// so that a caller's report need not repeat it; empty if the check removed triangles.
   std::optional<MeshValidation> validation;

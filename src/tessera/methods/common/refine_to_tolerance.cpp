@@ -100,8 +100,8 @@ void measure_gram(const TriangleMesh& mesh, const std::vector<int>& which,
     mesh.space().sum(values.data(), static_cast<int>(values.size()));
   }
   for (std::size_t i = 0; i < which.size(); ++i) {
-    gram[static_cast<std::size_t>(which[i])] = {values[4 * i], values[4 * i + 1],
-                                                 values[4 * i + 2], values[4 * i + 3]};
+    gram[static_cast<std::size_t>(which[i])] = {values[4 * i], values[4 * i + 1], values[4 * i + 2],
+                                                values[4 * i + 3]};
   }
 }
 
@@ -189,9 +189,9 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   ToleranceRefinement summary;
   check_mesh_of_problem(mesh, problem, "refine_to_tolerance");
   TESSERA_CHECK(domain.is_unbounded() || domain.ambient_dimension() == mesh.ambient_dimension(),
-                "refine_to_tolerance: the domain's normals have " << domain.ambient_dimension()
-                    << " rows, the mesh's points " << mesh.ambient_dimension()
-                    << " (a split mesh needs Domain::distributed)");
+                "refine_to_tolerance: the domain's normals have "
+                    << domain.ambient_dimension() << " rows, the mesh's points "
+                    << mesh.ambient_dimension() << " (a split mesh needs Domain::distributed)");
   // A split mesh (each rank its rows of every vertex) measures through its space: every
   // decision below is taken on sums over the ranks, the same on every rank. In one process
   // these are Eigen's own expressions.
@@ -252,11 +252,10 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
   auto distance_without_anchor = [&](const Eigen::VectorXd& point, const Triangle& tri) {
     if (frozen_at != tri[0] && frozen_at != tri[1] && frozen_at != tri[2]) {
       const Linearization* corner = corner_of(tri);
-      const double bound =
-          corner != nullptr
-              ? chord_distance_bound(problem, *corner, point, accuracy, options.corrector,
-                                     clear_below)
-              : std::numeric_limits<double>::infinity();
+      const double bound = corner != nullptr
+                               ? chord_distance_bound(problem, *corner, point, accuracy,
+                                                      options.corrector, clear_below)
+                               : std::numeric_limits<double>::infinity();
       if (std::isfinite(bound)) {
         return bound;
       }
@@ -370,7 +369,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     const auto points = samples.leftCols(count);
     std::vector<double> distance =
         frozen_ok ? chord_distance_bounds(problem, frozen, points, accuracy, options.corrector,
-                                        clear_below)
+                                          clear_below)
                   : std::vector<double>(static_cast<std::size_t>(count),
                                         std::numeric_limits<double>::infinity());
     for (Eigen::Index j = 0; j < count; ++j) {
@@ -464,7 +463,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       }
       const int u = tri[longest];
       const int v = tri[(longest + 1) % 3];
-      if (!unsplittable.contains(edge_key(u, v)) && midpoint_of.emplace(edge_key(u, v), -1).second) {
+      if (!unsplittable.contains(edge_key(u, v)) &&
+          midpoint_of.emplace(edge_key(u, v), -1).second) {
         to_split.push_back({{u, v}, length});
       }
     }
@@ -523,8 +523,8 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
           projected = project_patiently(x) && space.distance(x, start) <= length;
         }
       } else {
-        projected = faces.size() <= 2 &&
-                    project_onto_faces(problem, domain, faces, x, length, corrector);
+        projected =
+            faces.size() <= 2 && project_onto_faces(problem, domain, faces, x, length, corrector);
       }
       if (projected) {
         midpoint_of[edge_key(u, v)] = mesh.add_vertex(x);
@@ -544,9 +544,9 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     std::vector<Triangle> triangles = mesh.triangles();
     struct Subdivision {
       std::array<int, 3> mid{-1, -1, -1};  // the new vertex on edge e, −1 if not split
-      int count = 0;                        // split edges
-      std::array<int, 4> quad{};            // count == 2: the quadrilateral q0 q1 q2 q3
-      std::array<int, 6> sides{};           // its sides q0q1, q1q2, q2q3, q3q0, q0q2, q1q3
+      int count = 0;                       // split edges
+      std::array<int, 4> quad{};           // count == 2: the quadrilateral q0 q1 q2 q3
+      std::array<int, 6> sides{};          // its sides q0q1, q1q2, q2q3, q3q0, q0q2, q1q3
     };
     std::vector<Subdivision> subdivision(triangles.size());
     PairLengths lengths;
@@ -625,10 +625,10 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
         const std::array<int, 4>& q = sub.quad;
         const std::array<int, 6>& s = sub.sides;
         // Cut by q0q2, or by q1q3.
-        const double via_q0 = std::min(lengths.min_angle(s[0], s[1], s[4]),
-                                       lengths.min_angle(s[4], s[2], s[3]));
-        const double via_q1 = std::min(lengths.min_angle(s[0], s[5], s[3]),
-                                       lengths.min_angle(s[1], s[2], s[5]));
+        const double via_q0 =
+            std::min(lengths.min_angle(s[0], s[1], s[4]), lengths.min_angle(s[4], s[2], s[3]));
+        const double via_q1 =
+            std::min(lengths.min_angle(s[0], s[5], s[3]), lengths.min_angle(s[1], s[2], s[5]));
         if (via_q0 >= via_q1) {
           result.push_back({q[0], q[1], q[2]});
           result.push_back({q[0], q[2], q[3]});
