@@ -7,7 +7,12 @@
 //  (a) the mesh is valid by validate(mesh, problem, domain) and, for n = 3 where DF orients M,
 //      by the independent centroid-gradient orientation check (tests/support), for every exit;
 //  (b) a Completed run has the known Euler characteristic of the start's component;
-//  (c) a Completed run with a tolerance has centroid and edge-midpoint distances ≤ 1.01·tol;
+//  (c) a Completed run with a tolerance lies within it at ten points of every triangle
+//      (sampled_coverage.h: centroid, near the corners, between, edge midpoints);
+//  (f) no point of a triangle, projected onto M, lies strictly inside another triangle over
+//      the same sheet (a part of M covered twice: crossing needles, folds), for every exit;
+//  (g) a Completed run with a tolerance leaves no random point of M ∩ S near the mesh farther
+//      than the tolerance from it (a hole, or M ∩ S beyond a boundary chord);
 //  (d) every vertex lies in the domain (1e-12 relative);
 //  (e) a run that did not complete says where (a "(" in its message); counted, not fatal.
 // The methods are called directly (CoveringMethod::run), not through cover(), which would turn
@@ -39,6 +44,7 @@
 #include <string>
 #include <vector>
 
+#include "stress/sampled_coverage.h"
 #include "support/orientation_check.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
@@ -68,6 +74,10 @@ struct Surface {
   bool region_starts = true;
   /// DF orients M (no singular curve on M): the centroid-gradient check applies.
   bool gradient_orients = true;
+  /// No other sheet of M lies within a few edges of the start's component, so that random
+  /// points of M near the mesh must be covered by it (false: the trough's lower sheets, the
+  /// crossing plane, torus_slab's inner band).
+  bool samples_holes = true;
 };
 
 std::vector<Surface> surfaces() {
@@ -77,15 +87,15 @@ std::vector<Surface> surfaces() {
       {"torus", "torus"},
       {"equipotential", "equipotential"},
       {"whitney_pleat", "whitney_pleat"},
-      {"trough", "trough", false, false, false, true},
+      {"trough", "trough", false, false, false, true, false},
       {"cstr", "cstr", false, false, false, true},
       {"flat_torus", "flat_torus"},
       // z(|x|²−1): DF vanishes on the crossing circle and its sign turns over across it.
-      {"crossing", "crossing", false, false, false, false},
+      {"crossing", "crossing", false, false, false, false, false},
       {"thin_torus", "tests/stress/problems/thin_torus.tsr", true, true},
       {"sphere_r5", "tests/stress/problems/sphere_r5.tsr", true, false},
       {"sphere_box", "tests/stress/problems/sphere_box.tsr", true, false},
-      {"torus_slab", "tests/stress/problems/torus_slab.tsr", true, false},
+      {"torus_slab", "tests/stress/problems/torus_slab.tsr", true, false, false, true, false},
       {"tilted_torus_box", "tests/stress/problems/tilted_torus_box.tsr", true, false},
       {"sphere_belt", "tests/stress/problems/sphere_belt.tsr", true, false},
   };
@@ -120,16 +130,23 @@ struct Outcome {
   int euler = 0;
   std::optional<int> expected_euler;
   bool euler_mismatch = false;
-  double max_distance = -1.0;  ///< centroid/midpoint, when measured
+  double max_distance = -1.0;  ///< at ten points of every triangle, when measured
   bool over_tolerance = false;
+  double min_angle = 180.0;  ///< degrees
+  int doubly_covered = 0;    ///< (f)
+  int uncovered = 0;         ///< (g)
+  double uncovered_distance = 0.0;
+  std::string coverage_example;
   bool message_has_place = true;
   std::string message;
   int vertices = 0;
   int triangles = 0;
   double seconds = 0.0;
 
-  bool invalid() const { return !valid || !orientation_ok || !domain_ok; }
-  bool bad() const { return invalid() || euler_mismatch || over_tolerance || exception || crashed; }
+  bool invalid() const { return !valid || !orientation_ok || !domain_ok || doubly_covered > 0; }
+  bool bad() const {
+    return invalid() || euler_mismatch || over_tolerance || uncovered > 0 || exception || crashed;
+  }
 };
 
 std::string one_line(std::string text) {
@@ -306,10 +323,19 @@ Outcome judge(const Case& c, const std::string& source_dir) {
     if (o.completed && o.expected_euler && o.euler != *o.expected_euler) {
       o.euler_mismatch = true;
     }
+    const bool judges_holes = o.completed && c.tolerance > 0 && c.surface->samples_holes;
+    const tessera::testing::SampledCoverage coverage = tessera::testing::sample_coverage(
+        mesh, *setup.problem, setup.domain, judges_holes ? c.tolerance : 0.0, 3000,
+        static_cast<std::uint64_t>(c.index) + 1);
+    o.min_angle = coverage.min_angle_degrees;
+    // Where DF vanishes on M (crossing's circle) two sheets cross: not a double cover.
+    o.doubly_covered = c.surface->gradient_orients ? coverage.doubly_covered : 0;
+    o.uncovered = coverage.uncovered;
+    o.uncovered_distance = coverage.uncovered_distance;
+    o.coverage_example = coverage.example;
     if (o.completed && c.tolerance > 0 && mesh.triangle_count() > 0) {
-      const tessera::MeshQuality quality = tessera::measure_quality(mesh, *setup.problem);
-      o.max_distance = std::max(quality.centroid_distance.max, quality.midpoint_distance.max);
-      o.over_tolerance = o.max_distance > 1.01 * c.tolerance;
+      o.max_distance = coverage.max_distance;
+      o.over_tolerance = o.max_distance > c.tolerance;
     }
     if (!o.completed) {
       o.message_has_place = o.message.find('(') != std::string::npos;
@@ -331,7 +357,9 @@ std::string encode(const Outcome& o) {
       << '\t' << o.euler << '\t' << (o.expected_euler ? std::to_string(*o.expected_euler) : "-")
       << '\t' << o.euler_mismatch << '\t' << o.max_distance << '\t' << o.over_tolerance << '\t'
       << o.message_has_place << '\t' << one_line(o.message) << '\t' << o.vertices << '\t'
-      << o.triangles << '\t' << o.seconds << '\n';
+      << o.triangles << '\t' << o.seconds << '\t' << o.min_angle << '\t' << o.doubly_covered << '\t'
+      << o.uncovered << '\t' << o.uncovered_distance << '\t' << one_line(o.coverage_example)
+      << '\n';
   return out.str();
 }
 
@@ -343,7 +371,7 @@ Outcome decode(const std::string& line) {
     f.push_back(field);
   }
   Outcome o;
-  if (f.size() < 21) {
+  if (f.size() < 26) {
     o.crashed = true;
     o.exception_text = "child wrote no result";
     return o;
@@ -371,6 +399,11 @@ Outcome decode(const std::string& line) {
   o.vertices = std::stoi(f[18]);
   o.triangles = std::stoi(f[19]);
   o.seconds = std::stod(f[20]);
+  o.min_angle = std::stod(f[21]);
+  o.doubly_covered = std::stoi(f[22]);
+  o.uncovered = std::stoi(f[23]);
+  o.uncovered_distance = std::stod(f[24]);
+  o.coverage_example = f.size() > 25 ? f[25] : "";
   return o;
 }
 
@@ -442,8 +475,20 @@ Outcome run_isolated(const Case& c, const std::string& source_dir, double max_se
 
 struct Row {
   int cases = 0, completed = 0, clean_failures = 0, invalid = 0, euler_mismatches = 0,
-      over_tolerance = 0, without_place = 0, exceptions = 0, timeouts = 0;
+      over_tolerance = 0, without_place = 0, exceptions = 0, timeouts = 0, doubly_covered = 0,
+      uncovered = 0;
   double seconds = 0.0;
+  double min_angle = 180.0;     ///< the smallest angle of any mesh
+  std::vector<double> angles;   ///< each mesh's smallest angle, for the median
+  double distance_ratio = 0.0;  ///< the largest sampled distance / tolerance (completed)
+  double median_angle() const {
+    if (angles.empty()) {
+      return 0.0;
+    }
+    std::vector<double> sorted = angles;
+    std::sort(sorted.begin(), sorted.end());
+    return sorted[sorted.size() / 2];
+  }
 };
 
 void print_row(std::ostream& out, const std::string& name, const std::string& method,
@@ -451,7 +496,10 @@ void print_row(std::ostream& out, const std::string& name, const std::string& me
   out << "| " << name << " | " << method << " | " << r.cases << " | " << r.completed << " | "
       << r.clean_failures << " | " << r.invalid << " | " << r.euler_mismatches << " | "
       << r.over_tolerance << " | " << r.without_place << " | " << r.exceptions << " | "
-      << r.timeouts << " | " << std::llround(r.seconds * 10) / 10.0 << " |\n";
+      << r.timeouts << " | " << r.doubly_covered << " | " << r.uncovered << " | "
+      << std::setprecision(3) << r.min_angle << "° / " << r.median_angle() << "° | "
+      << r.distance_ratio << std::setprecision(6) << " | " << std::llround(r.seconds * 10) / 10.0
+      << " |\n";
 }
 
 }  // namespace
@@ -526,12 +574,22 @@ int main(int argc, char** argv) {
       row->exceptions += o.exception || o.crashed;
       row->timeouts += o.timed_out;
       row->seconds += o.seconds;
+      row->doubly_covered += o.doubly_covered > 0;
+      row->uncovered += o.uncovered > 0;
+      if (o.triangles > 0 && !o.exception && !o.crashed && !o.timed_out) {
+        row->min_angle = std::min(row->min_angle, o.min_angle);
+        row->angles.push_back(o.min_angle);
+      }
+      if (o.max_distance >= 0 && c.tolerance > 0) {
+        row->distance_ratio = std::max(row->distance_ratio, o.max_distance / c.tolerance);
+      }
     }
     if (verbose || o.bad()) {
       std::cout << "case " << index << " " << c.surface->name << " " << c.method << " step "
-                << c.step << " tolerance " << c.tolerance << " " << o.termination << (o.bad() ? " BAD" : "") << " (" << o.seconds << " s, "
-                << o.triangles << " triangles)"
-                << (verbose && !o.completed ? "\n    " + o.message : std::string()) << "\n";
+                << c.step << " tolerance " << c.tolerance << " " << o.termination
+                << (o.bad() ? " BAD" : "") << " (" << o.seconds << " s, " << o.triangles
+                << " triangles)" << (verbose && !o.completed ? "\n    " + o.message : std::string())
+                << "\n";
     }
     if (!o.completed && !o.bad() && !o.timed_out) {
       failure_examples.try_emplace({c.surface->name, c.method}, c, o);
@@ -545,7 +603,8 @@ int main(int argc, char** argv) {
   }
   std::cout << "\n| surface | method | cases | completed | clean failures | INVALID | χ mismatch "
                "| over tolerance | no place in message | exceptions/crashes | timeouts | "
-               "seconds |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+               "covered twice | holes | smallest angle (min / median) | max distance / tolerance "
+               "| seconds |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Surface* surface : chosen) {
     for (const std::string& method : kMethods) {
       const auto it = rows.find({surface->name, method});
@@ -556,7 +615,12 @@ int main(int argc, char** argv) {
   }
   print_row(std::cout, "**total**", "", total);
   std::cout << "\nKnown χ: every surface but tilted_torus_box. The orientation check (n = 3) "
-               "is skipped on crossing (DF vanishes on its crossing circle).\n";
+               "is skipped on crossing (DF vanishes on its crossing circle). Covered twice: "
+               "cases where a point of a triangle, projected onto M, lies inside another "
+               "triangle (counted as INVALID too); holes: completed cases with a random point of "
+               "M ∩ S near the mesh farther than the tolerance from it (not judged on trough and "
+               "crossing, whose other sheets lie near the mesh); smallest angle: over the "
+               "meshes of the row; max distance: at ten points of every triangle.\n";
   std::cout << "\n## Bad cases (" << bad.size() << ")\n";
   for (const auto& [c, o] : bad) {
     std::cout << "\n- case " << c.index << ", " << c.surface->name << ", " << c.method << ", start "
@@ -569,9 +633,16 @@ int main(int argc, char** argv) {
       std::cout << "; χ = " << o.euler << ", expected " << *o.expected_euler;
     }
     if (o.over_tolerance) {
-      std::cout << "; max centroid/midpoint distance " << o.max_distance << " > tolerance "
-                << c.tolerance;
+      std::cout << "; max sampled distance " << o.max_distance << " > tolerance " << c.tolerance;
     }
+    if (o.doubly_covered > 0) {
+      std::cout << "; " << o.doubly_covered << " sampled point(s) covered twice";
+    }
+    if (o.uncovered > 0) {
+      std::cout << "; " << o.uncovered << " random point(s) of M ∩ S uncovered, up to "
+                << o.uncovered_distance << " from the mesh";
+    }
+    if (!o.coverage_example.empty()) std::cout << "; " << o.coverage_example;
     if (!o.message.empty()) std::cout << "; message: " << o.message;
     std::cout << "\n\n      " << reproducer(c) << "\n";
   }

@@ -318,7 +318,9 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const double length = space.distance(mesh.point(u), mesh.point(v));
       // A midpoint that cannot be put on M ∩ face is left to the triangle samples (its edge
       // is then unsplittable anyway).
-      if (project_onto_faces(problem, domain, faces, x, length, corrector)) {
+      // The chord from the triangle's anchor first: at large n no factorisation at all.
+      if (project_onto_faces(problem, domain, faces, x, length, corrector, nullptr,
+                             frozen_ok ? &frozen : nullptr)) {
         gap = space.distance(x, midpoint);
       }
     }
