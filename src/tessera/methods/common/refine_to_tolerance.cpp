@@ -48,6 +48,27 @@ std::vector<int> shared_faces(const Eigen::Ref<const Eigen::VectorXd>& distance_
   return faces;
 }
 
+// A boundary edge that cuts a corner of the domain: one end on face a only, the other on face b
+// only. M ∩ S reaches beyond it to the corner point M ∩ a ∩ b (isolated: M is a surface), so
+// the gap is measured there and the edge is split at that point ({a, b}); empty otherwise.
+std::vector<int> corner_faces(const Eigen::Ref<const Eigen::VectorXd>& distance_a,
+                              const Eigen::Ref<const Eigen::VectorXd>& distance_b,
+                              double tolerance) {
+  std::vector<int> on_a, on_b;
+  for (int k = 0; k < static_cast<int>(distance_a.size()); ++k) {
+    if (std::abs(distance_a(k)) <= tolerance) {
+      on_a.push_back(k);
+    }
+    if (std::abs(distance_b(k)) <= tolerance) {
+      on_b.push_back(k);
+    }
+  }
+  if (on_a.size() == 1 && on_b.size() == 1 && on_a[0] != on_b[0]) {
+    return {on_a[0], on_b[0]};
+  }
+  return {};
+}
+
 // Squared distances between pairs of mesh vertices, measured in one pass: each rank's partial
 // sums, then one reduction for all (in one process, (q − p).squaredNorm() as before, whose root
 // is (q − p).norm() to the bit).
@@ -310,8 +331,10 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     double gap = 0.0;
     const std::vector<int> ends = {u, v};
     const Eigen::MatrixXd distance = domain.signed_distances(mesh.points(), ends);
-    const std::vector<int> faces =
-        shared_faces(distance.col(0), distance.col(1), options.face_tolerance);
+    std::vector<int> faces = shared_faces(distance.col(0), distance.col(1), options.face_tolerance);
+    if (faces.empty()) {
+      faces = corner_faces(distance.col(0), distance.col(1), options.face_tolerance);
+    }
     if (!faces.empty() && faces.size() <= 2) {
       const Eigen::VectorXd midpoint = 0.5 * (mesh.point(u) + mesh.point(v));
       Eigen::VectorXd x = midpoint;
@@ -503,8 +526,14 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const Eigen::VectorXd b = mesh.point(v);
       Eigen::VectorXd x = 0.5 * (a + b);
       const auto column = static_cast<Eigen::Index>(2 * i);
-      const std::vector<int> faces = shared_faces(
-          face_distance.col(column), face_distance.col(column + 1), options.face_tolerance);
+      std::vector<int> faces = shared_faces(face_distance.col(column),
+                                            face_distance.col(column + 1), options.face_tolerance);
+      const auto uses = triangles_at_edge.find(edge_key(u, v));
+      if (faces.empty() && uses != triangles_at_edge.end() && uses->second == 1) {
+        // A boundary edge across a corner of S: split at the corner point M ∩ a ∩ b.
+        faces = corner_faces(face_distance.col(column), face_distance.col(column + 1),
+                             options.face_tolerance);
+      }
       bool projected = false;
       if (faces.empty()) {
         // Sparse problems: the chord frozen at an endpoint first (the pairs are sorted, so one
