@@ -3,7 +3,8 @@
 # problems as the grid is refined: the cusp's (λ, ε, max u), the fold points and their cost.
 # Usage: bench/folds.sh [tessera binary] [problem ...]
 #   default problems: bvp:points=100 bvp:points=1000 bvp:points=10000 bratu2d:N=32
-# Prints a Markdown table (bench/RESULTS.md section 12); the runs' files stay in a temporary folder.
+# Prints a Markdown table (bench/RESULTS.md, "Fold curves and cusps"); the runs' files stay in a
+# temporary folder.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tessera="${1:-build/tessera}"

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // KLU's solve with 1, 2, 4 and 8 right-hand sides on a bordered 1-D matrix like bvp's (a
 // tridiagonal block, two dense parameter columns, two coordinate border rows): why tessera's
-// chord iterations solve the points of one factorisation together (bench/RESULTS.md section 10,
-// seventh step). A 1-D triangular solve is latency-bound; several columns fill the pipeline.
+// chord iterations solve the points of one factorisation together (bench/history/RESULTS-log.md
+// section 10, seventh step). A 1-D triangular solve is latency-bound; several columns fill the
+// pipeline.
 // Build and run (Debian's libsuitesparse-dev):
 //   g++ -O2 -I/usr/include/suitesparse bench/klu_columns.cpp -lklu -o /tmp/klu_columns
 //   /tmp/klu_columns 1002 && /tmp/klu_columns 10002 && /tmp/klu_columns 100002

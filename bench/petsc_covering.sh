@@ -4,7 +4,7 @@
 # against the serial backend: strong scaling (one N, 1 … RANKS ranks) and weak scaling (about
 # the same n per rank), time per vertex against one factorisation, factorisations per vertex and
 # peak memory per rank. Writes bench/results/petsc_covering.jsonl and prints the table of
-# bench/RESULTS.md section 13.
+# bench/RESULTS.md, "PETSc / MPI backend" (history: bench/history/RESULTS-log.md sections 13b, 13c).
 #
 #     bench/petsc_covering.sh                       strong N = 50, weak N = 50 → 71 on 1, 2 ranks
 #     STRONG=100 RANKS="1 2 4 8" bench/petsc_covering.sh   on a bigger machine

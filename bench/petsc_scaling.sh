@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 # Strong and weak scaling of the PETSc backend's kernel (bench/petsc_kernel.cpp: one MUMPS
 # factorisation and a chord projection per step along bratu2d's M) on 1 … RANKS ranks.
-# Writes bench/results/petsc_scaling.jsonl and prints the tables of bench/RESULTS.md section 13.
+# Writes bench/results/petsc_scaling.jsonl and prints the tables of bench/RESULTS.md,
+# "PETSc / MPI backend" (history: bench/history/RESULTS-log.md section 13).
 #
 #     bench/petsc_scaling.sh            ranks 1 2 (the 2-core machine)
 #     RANKS="1 2 4 8" bench/petsc_scaling.sh

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-"""The price of problems written in Python (bench/RESULTS.md section 11).
+"""The price of problems written in Python (bench/RESULTS.md, "Python callbacks";
+the history in bench/history/RESULTS-log.md section 11).
 
 Meshes the same surface twice with the same options: once as the C++ catalogue problem, once as
 a Python tessera.Problem with the same F, J, start and step (they make the same mesh, triangle

@@ -4,7 +4,7 @@
 #   front.json       BM_Front_* (5 repetitions: mean, median, stddev, cv)   Google Benchmark JSON
 #   corrector.json   BM_Factor_*, BM_FirstFactor_*, BM_Chord_*, BM_GaussNewton_* (3 repetitions)
 #   memory.json      tessera_front_memory, one fresh process per run
-#   tables.md        the tables printed at the end (the format of bench/RESULTS.md)
+#   tables.md        the tables printed at the end (bench/history/RESULTS-log.md sections 1–3)
 # Run it on a quiet machine: the load average is printed before and after, and recorded in each
 # JSON file's "context"; the CV column (stddev/mean of the repetitions) shows how noisy a row was.
 #

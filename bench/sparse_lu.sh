@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 # Builds tessera_sparse_lu_bench (Release, build-bench/), runs it over every available sparse LU
 # solver and the bordered Jacobians of bvp (N = 10²…10⁵) and bratu2d (N = 10…316), writes
-# bench/results/sparse_lu.json and prints the table of bench/RESULTS.md section 9.
+# bench/results/sparse_lu.json and prints the table of bench/history/RESULTS-log.md section 9.
 #
 #     bench/sparse_lu.sh              3 repetitions (about 15 minutes on 2 cores)
 #     bench/sparse_lu.sh --table      only the table, from an existing bench/results/sparse_lu.json

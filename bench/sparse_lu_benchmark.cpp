@@ -142,7 +142,7 @@ const bool registered = [] {
             ->Unit(benchmark::kMicrosecond);
       }
       // Eigen's SparseLU with COLAMD, its ordering before nested dissection (and where the
-      // build has no METIS), for the comparison of bench/RESULTS.md section 9.
+      // build has no METIS), for the comparison of bench/history/RESULTS-log.md section 9.
       if (tessera::detail::has_nested_dissection()) {
         const std::string name = family + "/eigen-colamd/" + specification;
         benchmark::RegisterBenchmark(

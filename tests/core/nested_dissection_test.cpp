@@ -118,7 +118,7 @@ TEST(NestedDissection, EveryBorderAndEveryThreadGetTheSameOrdering) {
 }
 
 // bratu2d N = 100 (n = 10⁴): COLAMD fills 666 k entries, nested dissection 403 k (section 9 of
-// bench/RESULTS.md); both solve the system to rounding.
+// bench/history/RESULTS-log.md); both solve the system to rounding.
 TEST(NestedDissection, HalvesTheFillOfColamdOnA2dPdeAndSolvesTheSameSystem) {
   if (!detail::has_nested_dissection()) {
     GTEST_SKIP() << "this build has no METIS";

@@ -161,8 +161,9 @@ TEST(AtlasReliability, Bratu2dChartsThatCannotReachTheirCornersAreShrunk) {
   // failed) or, at the rim, landed on another sheet, and the same useless child came back until
   // the children bound stopped the run ("could not be closed": N = 10 at 0.8, a child 0.7503
   // from a chart of radius 0.7; N = 32 at 0.7, the same inner child 746 times). Such a chart
-  // is now shrunk, as where pointOnDisk fails on its rim. (N = 32 is left to bench/RESULTS.md
-  // section 10: the geometric checks below cost 40 s at n = 1026.)
+  // is now shrunk, as where pointOnDisk fails on its rim. (N = 32 is left to
+  // bench/history/RESULTS-log.md section 10, tenth step: the geometric checks below cost 40 s
+  // at n = 1026.)
   struct Case {
     int grid;
     double step;

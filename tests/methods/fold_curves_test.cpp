@@ -139,8 +139,8 @@ TEST(FoldCurves, GelfandBratuFoldsAgreeWithOneParameterContinuationAndTheCuspIsN
   EXPECT_GE(checked, 5);
   for (const FoldPoint& point : points) {
     if (point.is_cusp) {
-      // Brown, Ibrahim & Shivaji: the continuous problem's cusp at ε ≈ 0.2457; 30 points are
-      // within a few 10⁻⁴ of it (0.24578 at N = 100 and 1000, bench/RESULTS.md).
+      // Brown, Ibrahim & Shivaji: the continuous problem's cusp at ε ≈ 0.2457; 30 points are within
+      // a few 10⁻⁴ of it (0.24578 at N = 100 and 1000, bench/RESULTS.md, "Fold curves and cusps").
       EXPECT_NEAR(point.x(N + 1), 0.2457, 2e-3);
     }
   }

@@ -33,8 +33,9 @@ bool coordinate_tangent_basis(Eigen::MatrixXd& kernel, const Eigen::MatrixXd* gu
 bool coordinate_tangent_basis(Eigen::MatrixXd& kernel, const Eigen::MatrixXd* reference,
                               Eigen::MatrixXd& last);
 
-/// Two dense pseudo-random rows (fixed seed): transversal to ker J with probability one, the
-/// last resort when no tangent guides the border. They fill the LU (bench/RESULTS.md, section 6).
+/// Two dense pseudo-random rows (fixed seed): transversal to ker J with probability one, the last
+/// resort when no tangent guides the border. They fill the LU (bench/history/RESULTS-log.md,
+/// section 6).
 JacobianBorder random_border(int n);
 
 /// A = [J; border], n×n, compressed. \pre J is (n−2)×n; the border's rows are n−2 and n−1.

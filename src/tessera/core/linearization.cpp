@@ -148,7 +148,7 @@ class SparseBackend final : public LinearizationBackend {
     // PITCON): A stays as sparse as J and its LU costs O(n) for banded J. (i, j) maximises
     // |det| of the reference tangent's rows i, j, so A is as well conditioned as the reference
     // allows. The last resort is two dense pseudo-random rows: transversal to ker J with
-    // probability one, but they fill the LU (O(n²); bench/RESULTS.md).
+    // probability one, but they fill the LU (O(n²); bench/history/RESULTS-log.md section 6).
     const Eigen::MatrixXd* guide = reference != nullptr        ? reference
                                    : last_tangent_.rows() == n ? &last_tangent_
                                                                : nullptr;

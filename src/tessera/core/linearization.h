@@ -49,8 +49,9 @@ class Linearization {
                           Eigen::Ref<Eigen::VectorXd> dx) const;
   /// The minimum-norm solves of several right-hand sides (the columns of rhs, (n−2)×k) in one
   /// call: points projected from the same factorisation in lockstep, or a tangent basis. For
-  /// sparse problems one sweep over the LU serves all columns, about 2.4× cheaper per column
-  /// than separate solves at k = 4 (KLU on bvp, bench/RESULTS.md section 10). \pre is_factored().
+  /// sparse problems one sweep over the LU serves all columns, about 2.4× cheaper per column than
+  /// separate solves at k = 4 (KLU on bvp, bench/history/RESULTS-log.md section 10, seventh step).
+  /// \pre is_factored().
   void solve_minimum_norm_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs,
                                   Eigen::Ref<Eigen::MatrixXd> dx) const;
   /// Heap bytes this factorisation holds (factors, Jacobian, point, basis), approximately: what

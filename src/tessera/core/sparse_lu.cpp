@@ -111,10 +111,10 @@ SparseLuSolver sparse_lu_solver_for(const Eigen::SparseMatrix<double>& A) {
   if ((requested != nullptr && *requested != '\0') || !is_available(SparseLuSolver::Klu)) {
     return default_sparse_lu_solver();
   }
-  // Measured (bench/RESULTS.md section 9): KLU is the fastest where the fill is low, nnz(L + U)
-  // ≤ 5.5·nnz(A) (bvp at every n, bratu2d up to N = 32), and 1.7–10× slower than Eigen's
-  // supernodal SparseLU where it is high (bratu2d N = 100: 12×, N = 316: 26×). The map keeps
-  // one entry per pattern a run factors (a handful: the borders differ in two rows).
+  // Measured (bench/history/RESULTS-log.md section 9): KLU is the fastest where the fill is low,
+  // nnz(L + U) ≤ 5.5·nnz(A) (bvp at every n, bratu2d up to N = 32), and 1.7–10× slower than Eigen's
+  // supernodal SparseLU where it is high (bratu2d N = 100: 12×, N = 316: 26×). The map keeps one
+  // entry per pattern a run factors (a handful: the borders differ in two rows).
   constexpr double kLowFill = 6.0;
   static std::mutex mutex;
   static std::map<std::pair<long, std::uint64_t>, SparseLuSolver> decided;

@@ -16,8 +16,8 @@
 namespace tessera {
 
 /// The sparse direct solvers. Which ones a build has depends on the libraries found when it was
-/// configured (`is_available`); Eigen is always there. bench/RESULTS.md section 9 compares them
-/// on tessera's bordered Jacobians.
+/// configured (`is_available`); Eigen is always there. bench/history/RESULTS-log.md section 9
+/// compares them on tessera's bordered Jacobians.
 enum class SparseLuSolver {
   Eigen,    ///< Eigen's SparseLU: supernodal, partial pivoting, ordered by nested dissection
             ///< (METIS) where the build has it, else (or TESSERA_SPARSE_LU_ORDERING=colamd) COLAMD
@@ -47,9 +47,9 @@ SparseLuSolver default_sparse_lu_solver();
 /// otherwise KLU where its symbolic analysis predicts little fill, nnz(L + U) at most
 /// 6·nnz(A) (1-D and small 2-D problems, where it is 2–7× faster than the others: no
 /// supernodes to set up, and a refactorisation that keeps the pivots), else Eigen's SparseLU,
-/// the fastest on 2-D problems at n ≥ 10⁴ (bench/RESULTS.md section 9). The choice depends on
-/// the pattern only, so it is deterministic; it is remembered per (n, nnz(A)), so the analysis
-/// that decides is paid once per pattern size, not per factorisation.
+/// the fastest on 2-D problems at n ≥ 10⁴ (bench/history/RESULTS-log.md section 9). The choice
+/// depends on the pattern only, so it is deterministic; it is remembered per (n, nnz(A)), so the
+/// analysis that decides is paid once per pattern size, not per factorisation.
 SparseLuSolver sparse_lu_solver_for(const Eigen::SparseMatrix<double>& A);
 
 /// The outcome of an analysis or a factorisation. Numerical outcomes are values, not exceptions.

@@ -66,8 +66,8 @@ class EigenSparseLu final : public SparseLu {
 
   SparseLuStatus do_factorize(const Eigen::SparseMatrix<double>& A) override {
     // Eigen's SparseLU does not throw when an allocation fails inside the factorisation (it can
-    // crash in SparseLUImpl::expand; bench/RESULTS.md section 6), so OutOfMemory is only seen
-    // when it reports it.
+    // crash in SparseLUImpl::expand; bench/history/RESULTS-log.md section 6), so OutOfMemory is
+    // only seen when it reports it.
     try {
       lu_.factorize(A);
     } catch (const std::bad_alloc&) {

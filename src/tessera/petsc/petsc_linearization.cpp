@@ -95,8 +95,8 @@ void DistributedLinearization::make_solver() {
   check(KSPGetPC(solver_, &preconditioner), "KSPGetPC");
   check(PCSetType(preconditioner, PCLU), "PCSetType");
   // On one rank SuiteSparse's KLU (the serial backend's solver for these matrices), on more
-  // MUMPS: bench/RESULTS.md section 13b. KLU's analysis costs 1–2 factorisations where MUMPS's
-  // costs 10–40, and its solves are 1.5–5× faster at n = 10⁴–10⁵.
+  // MUMPS: bench/history/RESULTS-log.md section 13b. KLU's analysis costs 1–2 factorisations where
+  // MUMPS's costs 10–40, and its solves are 1.5–5× faster at n = 10⁴–10⁵.
   int ranks = 1;
   MPI_Comm_size(problem_.communicator(), &ranks);
   const char* package = nullptr;

@@ -313,8 +313,8 @@ ProblemSetup make_bratu2d(const ParameterValues& values) {
   // the strip near u = 0 where ε hardly matters): by that area a covering has a few thousand to
   // 10⁴ vertices, one to three minutes at the default N = 32 if a vertex costs 2–5
   // factorisations of the bordered n×n Jacobian (≈ 2 ms each there, ≈ 30 ms at N = 100,
-  // ≈ 0.5 s at N = 316; bench/RESULTS.md section 9). An estimate: the coverings do not measure in
-  // the weighted metric yet.
+  // ≈ 0.5 s at N = 316; bench/history/RESULTS-log.md section 9). An estimate: the coverings do not
+  // measure in the weighted metric yet.
   setup.suggested_step = 0.1;
   // M is a graph over (u_c, ε) (point_with_amplitude's bordered Newton system is regular along
   // every line scanned). Scans of λ along u_c ∈ [0, 20] every 0.25 for ε = 0, 0.01, …, 0.3 at

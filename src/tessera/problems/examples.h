@@ -245,8 +245,8 @@ class ArrheniusBratu final : public ImplicitProblem {
 class ArrheniusBratu2D final : public ImplicitProblem {
  public:
   /// Grids up to 1000×1000 (n ≈ 10⁶). The sparse LU of the bordered Jacobian grows like
-  /// n log n in memory (10⁷ nonzeros at N = 316, bench/RESULTS.md section 9), so the largest
-  /// grids need gigabytes and seconds per factorisation.
+  /// n log n in memory (10⁷ nonzeros at N = 316, bench/history/RESULTS-log.md section 9), so the
+  /// largest grids need gigabytes and seconds per factorisation.
   static constexpr int kMaxGridSize = 1000;
 
   /// \throw InvalidArgument unless 1 <= grid_size <= kMaxGridSize.
