@@ -136,8 +136,9 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app
       ->add_option("--report-samples", mesh.report_samples,
                    "the report measures distances to M at this many vertices, centroids and edge "
-                   "midpoints each, drawn uniformly (0: all; default all for n < 500, else 300); "
-                   "each is a Gauss-Newton projection, the report's cost at large n")
+                   "midpoints each, drawn uniformly (0: all; default all for n < 500, else 300 "
+                   "within a tenth of the run's time or 10 s if longer: docs/summary-json.md); "
+                   "each is a projection onto M, the report's cost at large n")
       ->check(CLI::Range(0, 100'000'000));
   mesh_app->add_flag("--quiet,-q", mesh.quiet, "print nothing but errors");
   mesh_app

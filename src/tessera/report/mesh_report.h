@@ -97,15 +97,15 @@ struct MeshReport {
 /// How make_report measures.
 struct ReportOptions {
   /// Distances measured at this many points of each kind (0: all; −1: all below n = 500, else
-  /// 300; within a time budget: see run_seconds).
+  /// 300 within a time budget: see run_seconds).
   int samples = -1;
   /// false leaves the distances to M unmeasured (their counts 0 of their populations): the
   /// summary `tessera mesh` writes before the measurement, which at large n takes minutes, so
   /// that a run killed during it still leaves one.
   bool measure_distances = true;
-  /// How long the covering took. With the default `samples`, the distances get a tenth of
-  /// that, at least 10 s, and then stop (at least 30 samples of each kind; the report says how
-  /// many it measured): at n = 10⁵ a sample costs a factorisation.
+  /// How long the covering took. With the default `samples` from n = 500 on, the distances get
+  /// a tenth of that, at least 10 s, and then stop (at least 30 samples of each kind; the report
+  /// says how many it measured): at n = 10⁵ a sample costs a factorisation.
   double run_seconds = 0.0;
   /// Polled before every distance sample (Ctrl-C ends the measurement).
   std::function<bool()> stop_requested;
