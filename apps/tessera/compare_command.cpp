@@ -6,10 +6,9 @@
 #include <iostream>
 
 #include "cli_support.h"
-#include "tessera/core/error.h"
-#include "tessera/geometry/mesh_quality.h"
-#include "tessera/geometry/mesh_validation.h"
 #include "tessera/problems/catalogue.h"
+#include "tessera/problems/start_and_box.h"
+#include "tessera/report/method_comparison.h"
 
 namespace tessera::app {
 
@@ -37,42 +36,6 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommand& command) {
                    "stop each method after this many vertices")
       ->check(CLI::Range(7, 100'000'000));
   return compare;
-}
-
-bool CompareReport::passes() const {
-  for (const CompareRow& row : rows) {
-    if (!row.passes()) {
-      return false;
-    }
-  }
-  return true;
-}
-
-CompareReport compare_methods(const std::function<ProblemSetup()>& make_setup,
-                              const MethodSettings& settings,
-                              const std::function<void(const CompareRow&)>& on_row) {
-  CompareReport report;
-  for (const CoveringMethod& method : covering_methods()) {
-    const ProblemSetup setup = make_setup();
-    report.expected_euler_characteristic = setup.expected_euler_characteristic;
-    const CoveringResult result = cover(setup, method, settings);
-    const MeshValidation validation = validate(result.mesh, *setup.problem, setup.domain);
-    const MeshQuality quality = measure_quality(result.mesh, *setup.problem);
-    CompareRow row;
-    row.method = method.name;
-    row.run = result.summary;
-    row.vertex_count = validation.referenced_vertex_count;
-    row.triangle_count = validation.triangle_count;
-    row.max_distance = std::max(quality.centroid_distance.max, quality.midpoint_distance.max);
-    row.min_angle_degrees = quality.min_angle_degrees;
-    row.euler_characteristic = validation.euler_characteristic;
-    row.valid = validation.is_valid();
-    if (on_row) {
-      on_row(row);
-    }
-    report.rows.push_back(std::move(row));
-  }
-  return report;
 }
 
 int run_compare(const CompareCommand& command) {

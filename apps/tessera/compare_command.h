@@ -3,10 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <functional>
-#include <optional>
 #include <string>
-#include <vector>
 
 #include "tessera/methods/covering_methods.h"
 
@@ -21,34 +18,8 @@ struct CompareCommand {
 
 CLI::App* add_compare_command(CLI::App& app, CompareCommand& command);
 
-/// One method's row of the table, measured independently of the method.
-struct CompareRow {
-  std::string method;
-  CoveringSummary run;   ///< termination, message, wall time, tolerance asked for
-  int vertex_count = 0;  ///< vertices referenced by a triangle
-  int triangle_count = 0;
-  /// The larger of the centroid and edge-midpoint distances to M, measured by projecting those
-  /// points (not produced by any method) onto M.
-  double max_distance = 0.0;
-  double min_angle_degrees = 0.0;
-  int euler_characteristic = 0;
-  bool valid = false;  ///< validate(mesh, problem, domain): no defect
-  bool passes() const { return valid && run.is_complete(); }
-};
-
-struct CompareReport {
-  std::vector<CompareRow> rows;  ///< covering_methods()'s order, the default first
-  std::optional<int> expected_euler_characteristic;
-  bool passes() const;  ///< every row passes (the CLI's exit status 0)
-};
-
-/// Runs every covering method on a fresh make_setup() each (`tessera compare` and the
-/// bindings' tessera.compare); `on_row` (optional) sees each row as soon as it is measured.
-CompareReport compare_methods(const std::function<ProblemSetup()>& make_setup,
-                              const MethodSettings& settings,
-                              const std::function<void(const CompareRow&)>& on_row = {});
-
-/// Prints the table; returns 1 if any method failed or gave an invalid mesh, else 0.
+/// Prints the table of compare_methods (report/method_comparison.h); returns 1 if any method
+/// failed or gave an invalid mesh, else 0.
 int run_compare(const CompareCommand& command);
 
 }  // namespace tessera::app

@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "ddt_command.h"
 
-#include "malcolm_tables.h"
-#include "output_checks.h"
-
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
@@ -13,12 +10,14 @@
 
 #include "tessera/core/error.h"
 #include "tessera/io/mesh_io.h"
+#include "tessera/io/output_checks.h"
 #include "tessera/io/scattered_data_csv.h"
 #include "tessera/methods/planar/delaunay.h"
 #include "tessera/methods/planar/equidistribution_criterion.h"
 #include "tessera/methods/planar/franke_functions.h"
 #include "tessera/methods/planar/interpolation_error.h"
 #include "tessera/methods/planar/local_optimisation.h"
+#include "tessera/methods/planar/malcolm_tables.h"
 
 namespace tessera::app {
 namespace {

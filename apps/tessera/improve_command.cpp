@@ -2,7 +2,6 @@
 #include "improve_command.h"
 
 #include "cli_support.h"
-#include "output_checks.h"
 
 #include <cstdio>
 #include <iostream>
@@ -12,10 +11,12 @@
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/io/mesh_io.h"
+#include "tessera/io/output_checks.h"
 #include "tessera/io/text_file.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/methods/improvement/tangential_smoothing.h"
 #include "tessera/problems/catalogue.h"
+#include "tessera/report/improvement_report.h"
 
 namespace tessera::app {
 namespace {

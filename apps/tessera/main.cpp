@@ -9,22 +9,22 @@
 #include "compare_command.h"
 #include "ddt_command.h"
 #include "improve_command.h"
-#include "picture_command.h"
 #include "mesh_command.h"
+#include "picture_command.h"
 #include "solver_backend.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/io/mesh_io.h"
-#include "tessera/io/summary_json.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/view.h"
+#include "tessera/report/mesh_report.h"
+#include "tessera/report/summary_json.h"
 
 namespace {
 
 using tessera::app::kComputationFailed;
 using tessera::app::kUsageError;
-using tessera::app::make_report;
 
 int run_problems() {
   for (const auto& entry : tessera::catalogue()) {
@@ -62,7 +62,7 @@ int run_check(const std::string& mesh_path, const std::string& problem, bool jso
                    "--states (FILE.npy) or a mesh written with --view all"
              : ""));
   }
-  const tessera::MeshReport report = make_report(mesh, setup, problem);
+  const tessera::MeshReport report = tessera::make_report(mesh, setup, problem);
   std::cout << (json ? tessera::to_json(report) : tessera::to_text(report));
   // A mesh passes the check if it is valid, has the known topology, and its vertices lie on
   // M (1e-6 leaves room for meshes written by other tools in single precision).

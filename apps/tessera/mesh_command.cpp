@@ -14,9 +14,7 @@
 #include <optional>
 
 #include "cli_support.h"
-#include "fold_output.h"
 #include "picture_command.h"
-#include "output_checks.h"
 #include "solver_backend.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/bezier_surface.h"
@@ -24,12 +22,16 @@
 #include "tessera/io/bezier_patches.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/npy.h"
+#include "tessera/io/output_checks.h"
 #include "tessera/io/split_mesh_output.h"
-#include "tessera/io/summary_json.h"
 #include "tessera/io/view_mesh.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/problems/catalogue.h"
+#include "tessera/problems/start_and_box.h"
 #include "tessera/problems/view.h"
+#include "tessera/report/fold_output.h"
+#include "tessera/report/mesh_report.h"
+#include "tessera/report/summary_json.h"
 
 namespace tessera::app {
 namespace {
@@ -134,8 +136,9 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app
       ->add_option("--report-samples", mesh.report_samples,
                    "the report measures distances to M at this many vertices, centroids and edge "
-                   "midpoints each, drawn uniformly (0: all; default all for n < 500, else 300); "
-                   "each is a Gauss-Newton projection, the report's cost at large n")
+                   "midpoints each, drawn uniformly (0: all; default all for n < 500, else 300 "
+                   "within a tenth of the run's time or 10 s if longer: docs/summary-json.md); "
+                   "each is a projection onto M, the report's cost at large n")
       ->check(CLI::Range(0, 100'000'000));
   mesh_app->add_flag("--quiet,-q", mesh.quiet, "print nothing but errors");
   mesh_app
@@ -401,9 +404,12 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
       view.is_all_coordinates() ? std::vector<std::string>() : view.names(), chosen.origin};
   // The run's summary before the distances are measured (minutes at large n): a run killed
   // during the measurement still leaves it. Replaced below by the complete one.
-  MeshReport before = make_report(result.mesh, setup, command.problem,
-                                  result.validation ? &*result.validation : nullptr,
-                                  command.report_samples, /*measure_distances=*/false);
+  ReportOptions report_options;
+  report_options.samples = command.report_samples;
+  report_options.measure_distances = false;
+  MeshReport before =
+      make_report(result.mesh, setup, command.problem,
+                  result.validation ? &*result.validation : nullptr, report_options);
   if (!command.summary.empty() && is_root) {
     before.run = result.summary;
     before.view = view_report;
@@ -411,15 +417,17 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     write_summary_json(command.summary, before);
   }
   const bool stopped_before = backend.any_rank(InterruptGuard::requested());
-  MeshReport report = make_report(result.mesh, setup, command.problem, &before.validation,
-                                  command.report_samples, /*measure_distances=*/true,
-                                  result.summary.wall_seconds,
-                                  [stopped_before] {
-                                    // After a stop in the covering, a second signal ends the
-                                    // process (the summary above is written).
-                                    return !stopped_before && InterruptGuard::requested();
-                                  },
-                                  [&backend](bool stop) { return backend.any_rank(stop); });
+  report_options.measure_distances = true;
+  report_options.run_seconds = result.summary.wall_seconds;
+  report_options.stop_requested = [stopped_before] {
+    // After a stop in the covering, a second signal ends the process (the summary above is
+    // written).
+    return !stopped_before && InterruptGuard::requested();
+  };
+  // Every rank measures the same samples (collective projections) and stops at the same one.
+  report_options.decide_together = [&backend](bool stop) { return backend.any_rank(stop); };
+  MeshReport report =
+      make_report(result.mesh, setup, command.problem, &before.validation, report_options);
   report.run = result.summary;
   report.view = view_report;
   report.backend = backend_report;

@@ -11,13 +11,13 @@
 #include <sstream>
 
 #include "cli_support.h"
-#include "output_checks.h"
 #include "tessera/core/error.h"
 #include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/io/file_names.h"
 #include "tessera/io/mesh_io.h"
+#include "tessera/io/output_checks.h"
 #include "tessera/io/view_mesh.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/view.h"

@@ -5,13 +5,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "malcolm_tables.h"
 #include "tessera/core/error.h"
 #include "tessera/methods/planar/delaunay.h"
 #include "tessera/methods/planar/equidistribution_criterion.h"
 #include "tessera/methods/planar/franke_functions.h"
 #include "tessera/methods/planar/interpolation_error.h"
 #include "tessera/methods/planar/local_optimisation.h"
+#include "tessera/methods/planar/malcolm_tables.h"
 
 namespace tessera::python {
 
@@ -110,8 +110,8 @@ std::vector<DataDependentTriangulation> triangulate_all_criteria(
   TESSERA_CHECK(all.compare_report == 0 || all.compare_report == 33 || all.compare_report == 100,
                 "compare_report: " << all.compare_report << " is not 33 or 100");
   std::vector<DataDependentTriangulation> results;
-  for (std::size_t r = 0; r < app::kAllCriteriaRowCount; ++r) {
-    const app::AllCriteriaRow& row = app::kAllCriteriaRows[r];
+  for (std::size_t r = 0; r < kAllCriteriaRowCount; ++r) {
+    const AllCriteriaRow& row = kAllCriteriaRows[r];
     if (std::string(row.criterion) == "equid" && !has_function) {
       continue;  // as the CLI: equid needs the function's second derivatives
     }
@@ -138,10 +138,10 @@ std::vector<DataDependentTriangulation> triangulate_all_criteria(
             {"count", all.orders}, {"lowest_mean", lowest}, {"highest_mean", highest}};
       }
       if (all.compare_report != 0) {
-        const double value = app::malcolm_table_value(all.compare_report, r, *function);
+        const double value = malcolm_table_value(all.compare_report, r, *function);
         json["report"] = {{"table", all.compare_report == 33 ? 1 : 2}, {"mean", value}};
         if (all.orders > 1) {
-          json["report"]["in_spread"] = app::is_in_spread(value, lowest, highest);
+          json["report"]["in_spread"] = is_in_spread(value, lowest, highest);
         }
       }
     }

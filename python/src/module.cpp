@@ -21,13 +21,9 @@
 #include <string>
 #include <vector>
 
-#include "cli_support.h"
-#include "compare_command.h"
 #include "ddt.h"
 #include "handles.h"
 #include "interrupt_handler.h"
-#include "fold_output.h"
-#include "output_checks.h"
 #include "python_problem.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/bezier_surface.h"
@@ -36,13 +32,19 @@
 #include "tessera/io/bezier_patches.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/npy.h"
-#include "tessera/io/summary_json.h"
+#include "tessera/io/output_checks.h"
 #include "tessera/io/view_mesh.h"
 #include "tessera/methods/covering_methods.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/problem_file.h"
+#include "tessera/problems/start_and_box.h"
 #include "tessera/problems/view.h"
+#include "tessera/report/fold_output.h"
+#include "tessera/report/improvement_report.h"
+#include "tessera/report/mesh_report.h"
+#include "tessera/report/method_comparison.h"
+#include "tessera/report/summary_json.h"
 
 namespace tessera::python {
 namespace {
@@ -128,12 +130,12 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
                                          MeshRequest request, const py::object& progress,
                                          bool handle_interrupt) {
   ProblemSetup setup = problem->setup();
-  app::apply_start_and_box(setup, request.start.empty() ? "" : join_numbers(request.start),
-                           box_text(request));
+  apply_start_and_box(setup, request.start.empty() ? "" : join_numbers(request.start),
+                      box_text(request));
   const CoveringMethod& method = request.method.empty() ? covering_methods().front()
                                                         : find_covering_method(request.method);
   // As `tessera mesh`: a method's own options given to another method would be ignored.
-  app::refuse_options_of_other_methods(request.settings, method.name, /*keyword_names=*/true);
+  refuse_options_of_other_methods(request.settings, method.name, /*keyword_names=*/true);
   const bool wants_patches = request.refine > 0 || request.wants_patches;
   TESSERA_CHECK(!wants_patches || method.name == "bezier",
                 "refine and patches need the cubic surface of method 'bezier', not '"
@@ -144,7 +146,7 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
   const View view = choose_view(request.view, *problem);
   std::optional<ParameterPlane> fold_plane;
   if (!request.folds.empty()) {
-    fold_plane = app::parse_folds_option(request.folds, *setup.problem);
+    fold_plane = parse_folds_option(request.folds, *setup.problem);
   }
 
   MethodSettings settings = request.settings;
@@ -187,10 +189,12 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
       result.mesh = refine_bezier_surface(result.mesh, result.patches, request.refine);
       result.validation.reset();
     }
-    MeshReport report = app::make_report(result.mesh, setup, problem->argument,
-                                         result.validation ? &*result.validation : nullptr,
-                                         request.report_samples, /*measure_distances=*/true,
-                                         result.summary.wall_seconds);
+    ReportOptions report_options;
+    report_options.samples = request.report_samples;
+    report_options.run_seconds = result.summary.wall_seconds;
+    MeshReport report =
+        make_report(result.mesh, setup, problem->argument,
+                    result.validation ? &*result.validation : nullptr, report_options);
     report.run = result.summary;
     report.backend = BackendReport{"serial", 1};  // the bindings solve in this process
     report.view = ViewReport{view.specification(),
@@ -199,7 +203,7 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
                                                   : "--view"};
     if (fold_plane && result.mesh.triangle_count() > 0) {
       // As `tessera mesh --folds`, in the view; the curves are in the summary, no file.
-      report.folds = app::compute_folds(setup, result.mesh, *fold_plane, view, "", {}).report;
+      report.folds = compute_folds(setup, result.mesh, *fold_plane, view, "", {}).report;
     }
     handle->summary_json = to_json(report);
     handle->termination = to_string(result.summary.termination);
@@ -226,11 +230,11 @@ void write_mesh_file(const MeshHandle& handle, const std::string& path, bool asc
                 "write " << path << ": the mesh is empty (the run made no triangle)");
   if (std::filesystem::path(path).extension() == ".npy") {
     // `tessera mesh --states`: every coordinate, and the triangles beside.
-    app::check_output_folder(path);
+    check_output_folder(path);
     write_states_npy(path, handle.mesh);
     return;
   }
-  app::check_mesh_output(path);
+  check_mesh_output(path);
   MeshFileOptions options;
   options.binary = !ascii;
   options.vertex_scalars = handle.vertex_scalars;
@@ -281,8 +285,10 @@ py::tuple check_mesh(const MeshHandle& mesh, const std::shared_ptr<ProblemHandle
   {
     py::gil_scoped_release release;
     const ProblemSetup setup = problem->setup();
-    const MeshReport report = app::make_report(mesh.mesh, setup, problem->argument, nullptr,
-                                               samples);
+    ReportOptions report_options;
+    report_options.samples = samples;
+    const MeshReport report =
+        make_report(mesh.mesh, setup, problem->argument, nullptr, report_options);
     json = to_json(report);
     if (!report.validation.is_valid()) {
       failures.push_back("the mesh is not valid:\n" + report.validation.report());
@@ -341,8 +347,8 @@ std::shared_ptr<MeshHandle> improve(const MeshHandle& given,
         {"rejected_non_convex", swaps.rejected_non_convex},
         {"rejected_existing_edge", swaps.rejected_existing_edge},
         {"rejected_projection_failed", swaps.rejected_projection_failed},
-        {"before", app::improvement_quality_json(quality_before, validation_before)},
-        {"after", app::improvement_quality_json(quality_after, validation_after)}};
+        {"before", improvement_quality_json(quality_before, validation_before)},
+        {"after", improvement_quality_json(quality_after, validation_after)}};
     handle->summary_json = json.dump(2);
     if (!validation_after.is_valid()) {
       handle->failure = "the improved mesh is not valid:\n" + validation_after.report();
@@ -407,22 +413,22 @@ py::tuple compare_methods(const std::shared_ptr<ProblemHandle>& problem,
   {
     // Checks --start and --box before any computation.
     ProblemSetup setup = problem->setup();
-    app::apply_start_and_box(setup, start, box);
+    apply_start_and_box(setup, start, box);
   }
   const InterruptHandler interrupt(handle_interrupt);
   settings.stop_requested = [&interrupt] { return interrupt.is_requested(); };
   nlohmann::json json;
   {
     py::gil_scoped_release release;
-    const app::CompareReport report = app::compare_methods(
+    const CompareReport report = tessera::compare_methods(
         [&] {
           ProblemSetup setup = problem->setup();
-          app::apply_start_and_box(setup, start, box);
+          apply_start_and_box(setup, start, box);
           return setup;
         },
         settings);
     nlohmann::json rows = nlohmann::json::array();
-    for (const app::CompareRow& row : report.rows) {
+    for (const CompareRow& row : report.rows) {
       rows.push_back({{"method", row.method},
                       {"vertex_count", row.vertex_count},
                       {"triangle_count", row.triangle_count},
@@ -539,7 +545,7 @@ PYBIND11_MODULE(_tessera, module) {
             handle->argument = name;
             if (!box.empty()) {
               ProblemSetup setup = handle->setup();
-              app::apply_start_and_box(setup, "", join_numbers(box));
+              apply_start_and_box(setup, "", join_numbers(box));
               handle->domain = setup.domain;
             }
             return handle;
@@ -593,7 +599,7 @@ PYBIND11_MODULE(_tessera, module) {
              TESSERA_CHECK(!m.patches.empty(),
                            "write_patches: only a mesh of method 'bezier' (not refined, not "
                            "improved) has Bezier patches");
-             app::check_output_folder(path);
+             check_output_folder(path);
              write_bezier_patches(path, {m.mesh, m.patches, m.problem->problem->coordinate_names()});
            })
       .def_static("read", [](const std::string& path) {

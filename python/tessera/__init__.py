@@ -479,7 +479,7 @@ def mesh(
     folds: the parameter plane of the fold curves, e.g. "lambda,epsilon" (``--folds``,
         docs/algorithms/folds.md): `Mesh.fold_curves` holds them, ``summary["folds"]`` the rest.
     report_samples: distances in the summary measured at this many points of each kind (0: all;
-        default all for n < 500, else 300).
+        default all for n < 500, else 300 within a tenth of the run's time or 10 s if longer).
     max_vertices, max_start_distance: stop after this many vertices; how far the start may be
         from M (default 10 steps).
     min_gap_angle, max_valence, order: front method's α_min (default 45.8), most triangles per

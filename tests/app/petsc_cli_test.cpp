@@ -31,7 +31,9 @@ bool contains(const std::string& text, const std::string& fragment) {
 }
 
 // The catalogue's bvp with N = 20 in a small box around its start, so that the test covers a
-// few hundred vertices: MUMPS's set-up costs milliseconds per factorisation at this n.
+// few hundred vertices: MUMPS's set-up costs milliseconds per factorisation at this n. The
+// report measures 30 points of each kind: below n = 500 it measures every one by default, a
+// few collective solves each on two ranks (BothBackendsReportTheSameMeshTheSameWay does).
 std::string small_bvp_run() {
   const ProblemSetup setup = make_catalogue_problem("bvp:points=20");
   const int n = setup.problem->ambient_dimension();
@@ -39,10 +41,20 @@ std::string small_bvp_run() {
   const double epsilon = setup.start(n - 1);
   return "mesh bvp:points=20 --box lambda=" + std::to_string(lambda - 0.3) + ":" +
          std::to_string(lambda + 0.3) + ",epsilon=" + std::to_string(epsilon - 0.05) + ":" +
-         std::to_string(epsilon + 0.05) + " --tolerance 0.02";
+         std::to_string(epsilon + 0.05) + " --tolerance 0.02 --report-samples 30";
 }
 
 #if defined(TESSERA_MPIEXEC)
+
+// bratu2d with N = 8 (n = 66, grid values weighted by the mesh width in its metric) in a box
+// around its start: about 300 vertices.
+std::string small_bratu2d_run() {
+  const ProblemSetup setup = make_catalogue_problem("bratu2d:N=8");
+  const int n = setup.problem->ambient_dimension();
+  const double lambda = setup.start(n - 2);
+  return "mesh bratu2d:N=8 --box lambda=" + std::to_string(lambda - 0.35) + ":" +
+         std::to_string(lambda + 0.35) + ",epsilon=0.15:0.25 --tolerance 0.02";
+}
 
 std::string mpiexec(int ranks) {
   // CI runs as root, which Open MPI refuses unless told; 2 ranks on 2 cores may oversubscribe.
@@ -109,6 +121,103 @@ TEST(PetscCli, TwoRanksWriteTheSerialBackendsMeshOnce) {
 TEST(PetscCli, TheFrontOnTwoRanksSplitsTheStatesAndGivesTheSerialMesh) {
   expect_two_ranks_give_the_serial_mesh(small_bvp_run() + " --method front",
                                         testing::temporary_directory("petsc_cli_front"));
+}
+
+nlohmann::json read_summary(const std::string& path) {
+  std::ifstream file(path);
+  return nlohmann::json::parse(file);
+}
+
+// Two reports of the same mesh (its vertices within 1e-10, the same triangles) agree: counts,
+// topology, validity, shape and area, and the distances with the number of points measured.
+void expect_same_report(const nlohmann::json& serial, const nlohmann::json& petsc) {
+  EXPECT_EQ(petsc["counts"], serial["counts"]);
+  EXPECT_EQ(petsc["topology"], serial["topology"]);
+  EXPECT_EQ(petsc["valid"], serial["valid"]);
+  const auto near = [](const nlohmann::json& a, const nlohmann::json& b, const char* what) {
+    const double x = a.get<double>();
+    const double y = b.get<double>();
+    // Vertices 1e-10 apart move angles, lengths and areas by ~1e-10 relative to the shortest
+    // edge (1.7e-3 here).
+    EXPECT_NEAR(x, y, 1e-6 * (1.0 + std::abs(y))) << what;
+  };
+  for (const char* key :
+       {"min_angle_degrees", "max_angle_degrees", "min_edge_length", "max_edge_length", "area"}) {
+    near(petsc["shape"][key], serial["shape"][key], key);
+  }
+  // An angle within 1e-6° of 30° would be a coincidence.
+  EXPECT_EQ(petsc["shape"]["fraction_angles_below_30_degrees"],
+            serial["shape"]["fraction_angles_below_30_degrees"]);
+  const auto& distances = petsc["distance_to_manifold"];
+  const auto& serial_distances = serial["distance_to_manifold"];
+  EXPECT_EQ(distances["failed_projections"], serial_distances["failed_projections"]);
+  for (const char* kind : {"vertex_residual_F", "vertices", "centroids", "edge_midpoints"}) {
+    SCOPED_TRACE(kind);
+    EXPECT_EQ(distances[kind]["count"], serial_distances[kind]["count"]);
+    EXPECT_EQ(distances[kind]["population"], serial_distances[kind]["population"]);
+    // Every point below n = 500 (--report-samples' help), within the time budget.
+    EXPECT_EQ(distances[kind]["count"], distances[kind]["population"]);
+  }
+  // The vertices lie on M to the corrector's tolerance on both backends: their distances and
+  // residuals are rounding, not comparable digit by digit.
+  EXPECT_LE(distances["vertices"]["max"].get<double>(), 1e-8);
+  EXPECT_LE(distances["vertex_residual_F"]["max"].get<double>(), 1e-8);
+  // Centroids and midpoints are O(h²) off M: the same projections give the same distances.
+  for (const char* kind : {"centroids", "edge_midpoints"}) {
+    for (const char* statistic : {"max", "mean"}) {
+      const double x = distances[kind][statistic].get<double>();
+      const double y = serial_distances[kind][statistic].get<double>();
+      EXPECT_NEAR(x, y, 1e-6 * y + 1e-12) << kind << " " << statistic;
+    }
+  }
+}
+
+// One code path measures the report for every backend (issue 33): bratu2d's split mesh on the
+// PETSc backend, on one rank and on two, gets the serial report of the same mesh. Its shape was
+// measured in x instead of the problem's metric (at N = 32 angles 0.6°…179° for the serial
+// 6.5°…143°, area 10454 for 128.65), its distances by Gauss–Newton instead of the serial chord,
+// and the time budget of the report's samples from n = 500 on cut it below too (356 of N = 8's
+// points on two ranks, where a factorisation by MUMPS costs a hundred serial ones).
+TEST(PetscCli, BothBackendsReportTheSameMeshTheSameWay) {
+  const std::string folder = testing::temporary_directory("petsc_cli_report");
+  const std::string run = small_bratu2d_run() + " -q";
+  const auto serial =
+      run_cli(run + " -o " + folder + "/serial.ply --summary " + folder + "/serial.json");
+  ASSERT_EQ(serial.exit_code, 0) << serial.output;
+  const nlohmann::json serial_summary = read_summary(folder + "/serial.json");
+  EXPECT_EQ(serial_summary["ambient_dimension"], 66);
+  for (int ranks : {1, 2}) {
+    SCOPED_TRACE(std::to_string(ranks) + " rank(s)");
+    const std::string name = folder + "/petsc" + std::to_string(ranks);
+    const auto petsc = run_shell(mpiexec(ranks) + TESSERA_CLI + " " + run + " --backend petsc -o " +
+                                 name + ".ply --summary " + name + ".json");
+    ASSERT_EQ(petsc.exit_code, 0) << petsc.output;
+    const nlohmann::json summary = read_summary(name + ".json");
+    EXPECT_EQ(summary["backend"]["ranks"], ranks);
+    EXPECT_EQ(summary["backend"]["states"], "split");
+    expect_same_report(serial_summary, summary);
+  }
+}
+
+// A run without a valid mesh (here: the start is too far from M) is validated by the report,
+// not by the covering: on split states that threw ("has a metric; work in the metric's
+// coordinates", exit 2) until 2026-11-28; now the report of the empty mesh, exit 1, as serially.
+TEST(PetscCli, ARunWithoutAMeshIsReportedAsOnTheSerialBackend) {
+  const std::string folder = testing::temporary_directory("petsc_cli_no_mesh");
+  std::string start;
+  for (int i = 0; i < 64; ++i) {
+    start += "1,";
+  }
+  const std::string run = "mesh bratu2d:N=8 --start " + start +
+                          "8,0.2 --max-start-distance 0.001 -q --summary " + folder +
+                          "/summary.json -o " + folder + "/never.ply";
+  const auto petsc = run_shell(mpiexec(1) + TESSERA_CLI + " " + run + " --backend petsc");
+  EXPECT_EQ(petsc.exit_code, 1) << petsc.output;
+  EXPECT_TRUE(contains(petsc.output, "start point failed")) << petsc.output;
+  const nlohmann::json summary = read_summary(folder + "/summary.json");
+  EXPECT_EQ(summary["run"]["termination"], "start point failed");
+  EXPECT_EQ(summary["counts"]["triangles"], 0);
+  EXPECT_FALSE(fs::exists(folder + "/never.ply"));
 }
 
 TEST(PetscCli, AProblemWithoutAPetscImplementationIsAUsageErrorOnEveryRank) {

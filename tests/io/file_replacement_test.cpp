@@ -15,8 +15,8 @@
 #include "tessera/io/detail/file_buffer.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/npy.h"
-#include "tessera/io/summary_json.h"
 #include "tessera/io/text_file.h"
+#include "tessera/report/summary_json.h"
 
 namespace tessera {
 namespace {

@@ -12,9 +12,9 @@
 #include <string>
 
 #include "tessera/geometry/mesh_validation.h"
-#include "tessera/io/summary_json.h"
 #include "tessera/methods/covering_methods.h"
 #include "tessera/problems/catalogue.h"
+#include "tessera/report/summary_json.h"
 
 namespace tessera {
 namespace {

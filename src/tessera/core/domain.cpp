@@ -72,6 +72,25 @@ void Domain::add_half_space(const Eigen::VectorXd& normal, const Eigen::VectorXd
   half_spaces_.push_back(std::move(half_space));
 }
 
+Domain Domain::scaled(const Eigen::VectorXd& weights) const {
+  TESSERA_CHECK(half_spaces_.empty() || weights.size() == dimension_,
+                "metric has " << weights.size() << " weights, the domain is in R^" << dimension_);
+  Domain result = *this;
+  std::vector<double> squared_lengths;
+  for (HalfSpace& h : result.half_spaces_) {
+    h.normal = h.normal.cwiseQuotient(weights);  // the same nonzero entries: the support stays
+    h.point = h.point.cwiseProduct(weights);
+    squared_lengths.push_back(h.normal.squaredNorm());
+  }
+  if (space_ && !squared_lengths.empty()) {
+    space_->sum(squared_lengths.data(), static_cast<int>(squared_lengths.size()));
+  }
+  for (std::size_t k = 0; k < squared_lengths.size(); ++k) {
+    result.half_spaces_[k].normal /= std::sqrt(squared_lengths[k]);
+  }
+  return result;
+}
+
 Domain Domain::distributed(std::shared_ptr<const AmbientSpace> space) const {
   TESSERA_CHECK(space && (half_spaces_.empty() || space->dimension() == dimension_),
                 "Domain::distributed: the domain is in R^" << dimension_ << ", the space in R^"

@@ -49,6 +49,11 @@ class Domain {
   /// collective call, made on every rank, the same bits everywhere). \pre a domain in R^n
   /// with n = space->dimension().
   Domain distributed(std::shared_ptr<const AmbientSpace> space) const;
+  /// The domain W S for W = diag(weights) (scale_domain, core/scaled_problem.h), on the same
+  /// rows: {x : b·(x − p) ≥ 0} becomes {y : (W⁻¹b)·(y − W p) ≥ 0}, the normals of unit length
+  /// again (a distributed domain's over the ranks: collective). \pre weights.size() ==
+  /// ambient_dimension(), all finite and > 0.
+  Domain scaled(const Eigen::VectorXd& weights) const;
   bool is_distributed() const { return space_ != nullptr; }
   bool is_unbounded() const { return half_spaces_.empty(); }
   const std::vector<HalfSpace>& half_spaces() const { return half_spaces_; }

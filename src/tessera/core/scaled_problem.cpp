@@ -146,6 +146,9 @@ Domain scale_domain(const Domain& domain, const Eigen::VectorXd& weights) {
   if (domain.is_unbounded()) {
     return domain;
   }
+  if (domain.is_distributed()) {
+    return domain.scaled(weights);  // this rank's rows of the normals and weights
+  }
   TESSERA_CHECK(weights.size() == domain.ambient_dimension(),
                 "metric has " << weights.size() << " weights, the domain is in R^"
                               << domain.ambient_dimension());

@@ -55,7 +55,8 @@ class ScaledProblem final : public ImplicitProblem {
 };
 
 /// The domain W S in y = W x: {x : b·(x − p) ≥ 0} becomes {y : (W⁻¹b)·(y − W p) ≥ 0}.
-/// \pre weights.size() == domain.ambient_dimension() (or the domain is unbounded).
+/// \pre weights.size() == domain.ambient_dimension() (or the domain is unbounded): for a
+/// distributed domain, this rank's rows of the weights (Domain::scaled; collective).
 Domain scale_domain(const Domain& domain, const Eigen::VectorXd& weights);
 
 }  // namespace tessera

@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <utility>
 #include <vector>
@@ -21,18 +22,6 @@
 
 namespace tessera {
 namespace {
-
-double triangle_area(const Eigen::Ref<const Eigen::VectorXd>& a,
-                     const Eigen::Ref<const Eigen::VectorXd>& b,
-                     const Eigen::Ref<const Eigen::VectorXd>& c) {
-  // Gram determinant: valid in any dimension.
-  const auto u = b - a;
-  const auto v = c - a;
-  const double uu = u.squaredNorm();
-  const double vv = v.squaredNorm();
-  const double uv = u.dot(v);
-  return 0.5 * std::sqrt(std::max(0.0, uu * vv - uv * uv));
-}
 
 void accumulate(Statistic& statistic, double value) {
   statistic.max = std::max(statistic.max, value);
@@ -103,88 +92,64 @@ namespace {
 
 // The shape measures of the mesh whose vertex v is at point(v): the mesh's own points, or
 // their images in a problem's metric (computed on the fly: a scaled copy of the mesh would
-// double the memory of a large-n run at its end).
-// A split mesh (SPMD, each rank its rows of every vertex): every measure of a triangle comes from
-// its Gram matrix (|u|², |v|², u·v for u = b − a, v = c − a), summed over the ranks at once.
-MeshQuality shape_of_split(const TriangleMesh& mesh) {
+// double the memory of a large-n run at its end). Every measure of a triangle (a, b, c) comes
+// from the inner products of its edges e0 = b − a, e1 = c − b, e2 = a − c: the angle at the
+// start of e_r is atan2(|e_r ∧ e_(r+2)|, −e_r·e_(r+2)), the area ½|e0 ∧ e2|. For a split mesh
+// (SPMD, each rank its rows of every vertex) these are sums over the ranks, reduced for a block
+// of triangles at once; in one process the sum is the identity, so that one code path measures
+// every backend's mesh (the PETSc backend's report measured its split meshes in x, not in the
+// metric, until 2026-11-28: bratu2d's angles 0.6°…179° for the serial 6.5°…143°).
+template <class PointOf>
+MeshQuality shape_of(const TriangleMesh& mesh, const PointOf& point) {
   MeshQuality quality;
+  const AmbientSpace& space = mesh.space();
   const int count = mesh.triangle_count();
-  std::vector<double> gram(3 * static_cast<std::size_t>(count));
-  for (int t = 0; t < count; ++t) {
-    const Triangle& tri = mesh.triangle(t);
-    const auto u = mesh.point(tri[1]) - mesh.point(tri[0]);
-    const auto v = mesh.point(tri[2]) - mesh.point(tri[0]);
-    gram[3 * static_cast<std::size_t>(t)] = u.squaredNorm();
-    gram[3 * static_cast<std::size_t>(t) + 1] = v.squaredNorm();
-    gram[3 * static_cast<std::size_t>(t) + 2] = u.dot(v);
-  }
-  if (count > 0) {
-    mesh.space().sum(gram.data(), 3 * count);
-  }
+  constexpr int kBlock = 4096;  // triangles per reduction: 192 KB of products
+  std::vector<double> products(6 * static_cast<std::size_t>(std::min(count, kBlock)));
   double min_angle = std::numeric_limits<double>::infinity();
   double max_angle = 0.0;
   double min_edge = std::numeric_limits<double>::infinity();
   double max_edge = 0.0;
   long below = 0;
-  for (int t = 0; t < count; ++t) {
-    const double uu = gram[3 * static_cast<std::size_t>(t)];
-    const double vv = gram[3 * static_cast<std::size_t>(t) + 1];
-    const double uv = gram[3 * static_cast<std::size_t>(t) + 2];
-    const double wedge = std::sqrt(std::max(0.0, uu * vv - uv * uv));  // twice the area
-    quality.area += 0.5 * wedge;
-    // Corners a: u, v; b: a − b = −u, c − b = v − u; c: a − c = −v, b − c = u − v.
-    const std::array<double, 3> dots = {uv, uu - uv, vv - uv};
-    for (double dot : dots) {
-      const double angle = std::atan2(wedge, dot) * 180.0 / std::numbers::pi;
-      min_angle = std::min(min_angle, angle);
-      max_angle = std::max(max_angle, angle);
-      below += angle < 30.0 ? 1 : 0;
+  for (int first = 0; first < count; first += kBlock) {
+    const int size = std::min(kBlock, count - first);
+    for (int k = 0; k < size; ++k) {
+      const Triangle& t = mesh.triangle(first + k);
+      using Point = decltype(point(0));  // a Map of the mesh's column, or a scaled copy
+      const std::array<Point, 3> corners = {point(t[0]), point(t[1]), point(t[2])};
+      double* e = products.data() + 6 * static_cast<std::size_t>(k);
+      for (int r = 0; r < 3; ++r) {
+        const auto edge = corners[(r + 1) % 3] - corners[r];            // e_r
+        const auto next = corners[(r + 2) % 3] - corners[(r + 1) % 3];  // e_(r+1)
+        e[r] = edge.squaredNorm();                                      // |e_r|²
+        e[3 + r] = edge.dot(next);                                      // e_r · e_(r+1)
+      }
     }
-    for (double squared : {uu, vv, std::max(0.0, uu + vv - 2.0 * uv)}) {
-      min_edge = std::min(min_edge, std::sqrt(squared));
-      max_edge = std::max(max_edge, std::sqrt(squared));
+    space.sum(products.data(), 6 * size);
+    for (int k = 0; k < size; ++k) {
+      const double* e = products.data() + 6 * static_cast<std::size_t>(k);
+      // The corner at the start of e_r: u = e_r, w = −e_(r+2), u·w = −e_(r+2)·e_r.
+      const auto corner_dot = [e](int r) { return -e[3 + (r + 2) % 3]; };
+      const auto wedge = [e, &corner_dot](int r) {  // |e_r ∧ e_(r+2)| by Lagrange's identity
+        const double dot = corner_dot(r);
+        return std::sqrt(std::max(0.0, e[r] * e[(r + 2) % 3] - dot * dot));
+      };
+      quality.area += 0.5 * wedge(0);
+      for (int r = 0; r < 3; ++r) {
+        const double angle = std::atan2(wedge(r), corner_dot(r)) * 180.0 / std::numbers::pi;
+        min_angle = std::min(min_angle, angle);
+        max_angle = std::max(max_angle, angle);
+        below += angle < 30.0 ? 1 : 0;
+        const double length = std::sqrt(e[r]);
+        min_edge = std::min(min_edge, length);
+        max_edge = std::max(max_edge, length);
+      }
     }
   }
   if (count > 0) {
     quality.min_angle_degrees = min_angle;
     quality.max_angle_degrees = max_angle;
     quality.fraction_angles_below_30 = static_cast<double>(below) / (3.0 * count);
-    quality.min_edge_length = min_edge;
-    quality.max_edge_length = max_edge;
-  }
-  return quality;
-}
-
-template <class PointOf>
-MeshQuality shape_of(const TriangleMesh& mesh, const PointOf& point) {
-  if (mesh.space().is_distributed()) {
-    return shape_of_split(mesh);  // (point is the mesh's own: split meshes have no metric)
-  }
-  MeshQuality quality;
-  double min_angle = std::numeric_limits<double>::infinity();
-  double max_angle = 0.0;
-  double min_edge = std::numeric_limits<double>::infinity();
-  double max_edge = 0.0;
-  long below = 0;
-  for (const Triangle& t : mesh.triangles()) {
-    using Point = decltype(point(0));  // a Map of the mesh's column, or a scaled copy
-    const std::array<Point, 3> corners = {point(t[0]), point(t[1]), point(t[2])};
-    const auto p = [&](int r) -> const Point& { return corners[r % 3]; };
-    quality.area += triangle_area(p(0), p(1), p(2));
-    for (int r = 0; r < 3; ++r) {
-      const double angle = corner_angle(p(r), p(r + 1), p(r + 2)) * 180.0 / std::numbers::pi;
-      min_angle = std::min(min_angle, angle);
-      max_angle = std::max(max_angle, angle);
-      below += angle < 30.0 ? 1 : 0;
-      const double length = (p(r + 1) - p(r)).norm();
-      min_edge = std::min(min_edge, length);
-      max_edge = std::max(max_edge, length);
-    }
-  }
-  if (mesh.triangle_count() > 0) {
-    quality.min_angle_degrees = min_angle;
-    quality.max_angle_degrees = max_angle;
-    quality.fraction_angles_below_30 = static_cast<double>(below) / (3.0 * mesh.triangle_count());
     quality.min_edge_length = min_edge;
     quality.max_edge_length = max_edge;
   }
@@ -230,6 +195,54 @@ bool project_onto_manifold(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vec
 
 namespace {
 
+// M in the coordinates of its metric, y = W x, where lengths are the problem's own (the norm
+// the covering methods use): the problem itself where its metric is Euclidean; in one process
+// ScaledProblem; a distributed problem's own twin in y (metric_problem(): ScaledProblem cannot
+// wrap a distributed problem). `weights`: this rank's rows of W, empty where W = I.
+class InMetric {
+ public:
+  explicit InMetric(const ImplicitProblem& problem) : problem_(&problem) {
+    const AmbientSpace& space = *problem.space();
+    const ImplicitProblem* twin = problem.metric_problem();
+    if (space.is_distributed() && twin == nullptr) {
+      return;  // check_mesh_of_problem refuses it if it has a metric
+    }
+    const Eigen::VectorXd weights = metric_weights(problem);
+    if (weights.size() == 0) {
+      return;
+    }
+    weights_ = weights.segment(space.first_row(), space.local_rows());
+    if (space.is_distributed()) {
+      problem_ = twin;
+    } else {
+      scaled_.emplace(problem, weights);
+      problem_ = &*scaled_;
+    }
+  }
+  InMetric(const InMetric&) = delete;
+  InMetric& operator=(const InMetric&) = delete;
+
+  const ImplicitProblem& problem() const { return *problem_; }
+  const Eigen::VectorXd& weights() const { return weights_; }
+
+ private:
+  std::optional<ScaledProblem> scaled_;
+  const ImplicitProblem* problem_;
+  Eigen::VectorXd weights_;
+};
+
+// f(point) with point(v) the image of vertex v in the metric's coordinates: one code path for
+// every problem and backend, instantiated for the mesh's own columns (W = I) and for scaled
+// copies of them.
+template <class Measure>
+MeshQuality in_metric(const TriangleMesh& mesh, const InMetric& metric, const Measure& measure) {
+  if (metric.weights().size() == 0) {
+    return measure([&mesh](int v) { return mesh.point(v); });
+  }
+  const Eigen::VectorXd& weights = metric.weights();
+  return measure([&](int v) -> Eigen::VectorXd { return weights.cwiseProduct(mesh.point(v)); });
+}
+
 template <class PointOf>
 MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
                        const ImplicitProblem& problem, const QualityOptions& options);
@@ -240,31 +253,17 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& pro
                             const QualityOptions& options) {
   TESSERA_CHECK(options.max_samples >= 0,
                 "QualityOptions::max_samples = " << options.max_samples << " must be >= 0");
-  if (const ImplicitProblem* scaled = problem.metric_problem();
-      scaled != nullptr && problem.space()->is_distributed()) {
-    // In the metric's coordinates y = W x, as in one process below, by the problem's own twin
-    // there (a distributed problem cannot be wrapped in ScaledProblem).
-    check_mesh_of_problem(mesh, *scaled, "measure_quality");
-    const AmbientSpace& space = *problem.space();
-    const Eigen::VectorXd weights =
-        metric_weights(problem).segment(space.first_row(), space.local_rows());
-    return quality_of(
-        mesh, [&](int v) -> Eigen::VectorXd { return weights.cwiseProduct(mesh.point(v)); },
-        *scaled, options);
-  }
-  check_mesh_of_problem(mesh, problem, "measure_quality");
-  if (problem.space()->is_distributed()) {
-    return quality_of(mesh, [&mesh](int v) { return mesh.point(v); }, problem, options);
-  }
-  const Eigen::VectorXd weights = metric_weights(problem);
-  if (weights.size() > 0) {
-    // In the metric's coordinates y = W x, where lengths are the problem's own.
-    const ScaledProblem scaled(problem, weights);
-    return quality_of(
-        mesh, [&](int v) -> Eigen::VectorXd { return weights.cwiseProduct(mesh.point(v)); },
-        scaled, options);
-  }
-  return quality_of(mesh, [&mesh](int v) { return mesh.point(v); }, problem, options);
+  const InMetric metric(problem);
+  check_mesh_of_problem(mesh, metric.problem(), "measure_quality");
+  return in_metric(mesh, metric, [&](const auto& point) {
+    return quality_of(mesh, point, metric.problem(), options);
+  });
+}
+
+MeshQuality measure_shape(const TriangleMesh& mesh, const ImplicitProblem& problem) {
+  const InMetric metric(problem);
+  check_mesh_of_problem(mesh, metric.problem(), "measure_shape");
+  return in_metric(mesh, metric, [&](const auto& point) { return shape_of(mesh, point); });
 }
 
 namespace {
@@ -282,10 +281,10 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
   // of Gauss–Newton's three or four factorisations (the report of bvp at ε = 10⁻⁴ took 300 s,
   // longer than the covering). The chord's offset is normal to the corner's tangent plane, so
   // it measures the distance to the same order as P; where it does not converge, P does.
-  // (A split mesh's corner chord has no tangent_basis_near to correct its foot with, so its
-  // samples are projected by Gauss–Newton, normal to M at the foot, as the serial estimate is
-  // after its correction.)
-  const bool is_sparse = problem.has_sparse_jacobian() && !space.is_distributed();
+  // A split mesh's samples are measured the same way, every step reduced over the ranks (they
+  // were projected by Gauss–Newton until 2026-11-28: three or four factorisations by MUMPS per
+  // sample, and other feet than the serial report's).
+  const bool is_sparse = problem.has_sparse_jacobian();
   FactorisationCache corners(32, std::size_t{512} << 20);
   CorrectorOptions chord;
   chord.tolerance = 1e-13;
@@ -310,14 +309,14 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
           if (!tangent_basis_near(problem, *at_corner, y, tangent, 1e-6, 8)) {
             break;
           }
-          Eigen::VectorXd z = y + tangent * (tangent.transpose() * (x - y));
+          Eigen::VectorXd z = y + tangent * space.tangent_coordinates(tangent, x - y);
           if (!project_chord(problem, *at_corner, z, chord).is_success() ||
-              (z - x).norm() >= (y - x).norm()) {
+              space.distance(z, x) >= space.distance(y, x)) {
             break;
           }
           y = z;
         }
-        accumulate(statistic, (y - x).norm());
+        accumulate(statistic, space.distance(y, x));
         return;
       }
       y = x;
@@ -337,17 +336,62 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
   const auto& edges = topology.edges();
   const std::vector<int> vertices = sample_indices(mesh.vertex_count(), options.max_samples);
   const std::vector<int> triangles = sample_indices(mesh.triangle_count(), options.max_samples);
-  const std::vector<int> midpoints = sample_indices(static_cast<int>(edges.size()), options.max_samples);
+  const std::vector<int> midpoints =
+      sample_indices(static_cast<int>(edges.size()), options.max_samples);
   quality.vertex_distance.population = mesh.vertex_count();
   quality.centroid_distance.population = mesh.triangle_count();
   quality.midpoint_distance.population = static_cast<int>(edges.size());
-  // The three kinds in turn, so that a spent time budget leaves a uniform sample of each.
   const auto started = std::chrono::steady_clock::now();
   const auto has_time = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() <
            options.max_seconds;
   };
-  const std::size_t rounds = std::max({vertices.size(), triangles.size(), midpoints.size()});
+  // Every point, without a time budget, of a sparse problem: by corner, a vertex and then the
+  // triangles and edges whose first corner it is, all from the vertex's factorisation: one
+  // factorisation per vertex instead of one per point (in index order the corners of the
+  // three kinds drift apart and leave the cache; on the PETSc backend a factorisation is
+  // collective). Otherwise the three kinds in turn, so that a spent time budget leaves a
+  // uniform sample of each.
+  const bool by_corner =
+      is_sparse && options.max_samples == 0 && !std::isfinite(options.max_seconds);
+  std::vector<int> first_triangle;  // triangles and edges by first corner (CSR)
+  std::vector<int> triangles_at;
+  std::vector<int> first_edge;
+  std::vector<int> edges_at;
+  if (by_corner) {
+    const auto group = [&mesh](int count, const auto& first_corner, std::vector<int>& first,
+                               std::vector<int>& members) {
+      first.assign(static_cast<std::size_t>(mesh.vertex_count()) + 1, 0);
+      for (int k = 0; k < count; ++k) {
+        ++first[static_cast<std::size_t>(first_corner(k)) + 1];
+      }
+      for (std::size_t v = 1; v < first.size(); ++v) {
+        first[v] += first[v - 1];
+      }
+      members.resize(static_cast<std::size_t>(count));
+      std::vector<int> next(first.begin(), first.end() - 1);
+      for (int k = 0; k < count; ++k) {
+        members[static_cast<std::size_t>(next[static_cast<std::size_t>(first_corner(k))]++)] = k;
+      }
+    };
+    group(
+        mesh.triangle_count(), [&mesh](int t) { return mesh.triangle(t)[0]; }, first_triangle,
+        triangles_at);
+    group(
+        static_cast<int>(edges.size()), [&edges](int e) { return edges[e][0]; }, first_edge,
+        edges_at);
+  }
+  const std::size_t rounds =
+      by_corner ? vertices.size() : std::max({vertices.size(), triangles.size(), midpoints.size()});
+  const auto centroid = [&](int t) {
+    const Triangle& tri = mesh.triangle(t);
+    distance((point(tri[0]) + point(tri[1]) + point(tri[2])) / 3.0, tri[0],
+             quality.centroid_distance);
+  };
+  const auto midpoint = [&](int e) {
+    const auto& edge = edges[static_cast<std::size_t>(e)];
+    distance(0.5 * (point(edge[0]) + point(edge[1])), edge[0], quality.midpoint_distance);
+  };
   for (std::size_t i = 0; i < rounds; ++i) {
     bool stop = (i >= static_cast<std::size_t>(kMinDistanceSamples) && !has_time()) ||
                 (options.stop_requested && options.stop_requested());
@@ -361,14 +405,20 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
       // The vertex's own factorisation: the chord from it lands in a step or two.
       distance(point(vertices[i]), is_sparse ? vertices[i] : -1, quality.vertex_distance);
     }
+    if (by_corner) {
+      for (int k = first_triangle[i]; k < first_triangle[i + 1]; ++k) {
+        centroid(triangles_at[static_cast<std::size_t>(k)]);
+      }
+      for (int k = first_edge[i]; k < first_edge[i + 1]; ++k) {
+        midpoint(edges_at[static_cast<std::size_t>(k)]);
+      }
+      continue;
+    }
     if (i < triangles.size()) {
-      const Triangle& tri = mesh.triangle(triangles[i]);
-      distance((point(tri[0]) + point(tri[1]) + point(tri[2])) / 3.0, tri[0],
-               quality.centroid_distance);
+      centroid(triangles[i]);
     }
     if (i < midpoints.size()) {
-      const auto& edge = edges[midpoints[i]];
-      distance(0.5 * (point(edge[0]) + point(edge[1])), edge[0], quality.midpoint_distance);
+      midpoint(midpoints[i]);
     }
   }
   return quality;

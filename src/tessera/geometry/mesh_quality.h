@@ -26,7 +26,9 @@ struct QualityOptions {
   /// Gauss–Newton projection, a few factorisations of DF: at large n the full report would cost
   /// more than the covering. The largest of s uniform samples exceeds the q-quantile of the
   /// population with probability 1 − q^s (for s = 300: the 99th percentile with 95 %).
-  /// The residual |F| is evaluated at every vertex whatever this is.
+  /// The residual |F| is evaluated at every vertex whatever this is. With 0 and no time budget,
+  /// a sparse problem's points are measured vertex by vertex, each with the triangles and edges
+  /// whose first corner it is, from its one factorisation.
   int max_samples = 0;
   /// Time for the distances, in seconds: the samples (vertices, centroids and midpoints in turn,
   /// each kind in random order) are measured until it is spent, and then at least
@@ -66,8 +68,11 @@ struct MeshQuality {
 /// normal to M up to O(‖x − P(x)‖²), so it measures the distance to that order. For sparse
 /// problems centroids and midpoints are projected by the chord from the factorisation at a
 /// corner (offset normal to M there, the same order; P where it does not converge), which
-/// costs solves instead of factorisations. O(N) projections (or options.max_samples per kind). Lengths, angles, areas and distances are measured in the
-/// problem's metric (CoordinateBlock weights), the norm the covering methods use.
+/// costs solves instead of factorisations. O(N) projections (or options.max_samples per kind).
+/// Lengths, angles, areas and distances are measured in the problem's metric (CoordinateBlock
+/// weights), the norm the covering methods use. One code path for every backend: a split mesh
+/// of a distributed problem (TriangleMesh::set_space) is measured in the problem's
+/// metric_problem(), every sum reduced over the ranks, and gives the serial report.
 /// \throw InvalidArgument if the mesh and the problem live in different dimensions.
 MeshQuality measure_quality(const TriangleMesh& mesh, const ImplicitProblem& problem,
                             const QualityOptions& options = {});
@@ -89,8 +94,12 @@ void check_mesh_of_problem(const TriangleMesh& mesh, const ImplicitProblem& prob
 bool project_onto_manifold(const ImplicitProblem& problem, Eigen::Ref<Eigen::VectorXd> x,
                            Linearization& workspace);
 
-/// Angles, areas and edge lengths only (no problem needed).
+/// Angles, areas and edge lengths only, in R^n (no problem needed).
 MeshQuality measure_shape(const TriangleMesh& mesh);
+/// Angles, areas and edge lengths in the problem's metric, as measure_quality() measures them
+/// (the distances left unmeasured).
+/// \throw InvalidArgument as measure_quality().
+MeshQuality measure_shape(const TriangleMesh& mesh, const ImplicitProblem& problem);
 
 /// Angle (radians) at `apex` of the triangle (apex, p, q) in R^n, as atan2(|u ∧ w|, u·w):
 /// accurate near 0 and π, where acos of the cosine is not.

@@ -549,6 +549,20 @@ MeshValidation validate(const TriangleMesh& mesh, const ImplicitProblem& problem
   TESSERA_CHECK(options.domain_tolerance_ratio >= 0,
                 "ValidationOptions::domain_tolerance_ratio = " << options.domain_tolerance_ratio
                                                                << " must be >= 0");
+  if (const ImplicitProblem* twin = problem.metric_problem();
+      twin != nullptr && problem.space()->is_distributed() && metric_weights(problem).size() > 0) {
+    // A distributed problem in x (the PETSc backend's, whose mesh came back to x): judged in
+    // the metric's coordinates by its twin there, as the covering judged it and as one process
+    // judges it below (the report of a run without a valid mesh threw here until 2026-11-28).
+    const AmbientSpace& space = *problem.space();
+    const Eigen::VectorXd weights =
+        metric_weights(problem).segment(space.first_row(), space.local_rows());
+    TriangleMesh scaled_mesh = mesh;
+    for (int v = 0; v < scaled_mesh.vertex_count(); ++v) {
+      scaled_mesh.mutable_point(v).array() *= weights.array();
+    }
+    return validate(scaled_mesh, *twin, scale_domain(domain, weights), options);
+  }
   check_mesh_of_problem(mesh, problem, "validate");
   TESSERA_CHECK(domain.is_unbounded() || domain.ambient_dimension() == mesh.ambient_dimension(),
                 "the domain (" << domain.describe() << ") is in R^" << domain.ambient_dimension()

@@ -121,4 +121,35 @@ CoveringResult cover(const ProblemSetup& setup, const CoveringMethod& method,
   return result;
 }
 
+void refuse_options_of_other_methods(const MethodSettings& given, const std::string& method,
+                                     bool keyword_names) {
+  const auto spelled = [&](std::string options) {
+    if (keyword_names) {  // "--max-step, --edge-length-factor" → "max_step, edge_length_factor"
+      std::string keywords;
+      for (std::size_t i = 0; i < options.size(); ++i) {
+        if (options.compare(i, 2, "--") == 0) {
+          ++i;
+        } else {
+          keywords += options[i] == '-' ? '_' : options[i];
+        }
+      }
+      options = keywords;
+    }
+    return options;
+  };
+  const auto refuse_unless = [&](bool applies, const char* options, const char* owner) {
+    TESSERA_CHECK(applies, spelled(options) << ": only for method '" << owner
+                                            << "', not for method '" << method << "'");
+  };
+  refuse_unless(given.atlas_placement == "disk" || method == "atlas", "--placement", "atlas");
+  refuse_unless((given.front_order == "gap" && given.front_min_gap_degrees == 0 &&
+                 given.front_max_valence == 0) ||
+                    method == "front",
+                "--order, --min-gap-angle, --max-valence", "front");
+  refuse_unless((given.bezier_max_step == 0 && given.bezier_edge_length_factor == 0 &&
+                 given.bezier_min_tangent_cosine == 0) ||
+                    method == "bezier",
+                "--max-step, --edge-length-factor, --min-tangent-cosine", "bezier");
+}
+
 }  // namespace tessera

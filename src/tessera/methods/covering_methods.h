@@ -60,4 +60,10 @@ const CoveringMethod& find_covering_method(const std::string& name);
 CoveringResult cover(const ProblemSetup& setup, const CoveringMethod& method,
                      const MethodSettings& settings);
 
+/// A method's own options given to another method would be ignored silently: refuses them
+/// (InvalidArgument naming them), as the command line spells them (`--max-step`) or, with
+/// `keyword_names`, as the bindings do (`max_step`).
+void refuse_options_of_other_methods(const MethodSettings& given, const std::string& method,
+                                     bool keyword_names);
+
 }  // namespace tessera

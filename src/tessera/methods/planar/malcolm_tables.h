@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The rows of `tessera ddt --all-criteria` and Malcolm's published errors beside them
-// (--compare-report), shared by the CLI (ddt_command.cpp) and the bindings (python/src/ddt.cpp).
+// (--compare-report), shared by the CLI (apps/tessera/ddt_command.cpp) and the bindings
+// (python/src/ddt.cpp).
 #pragma once
 
 #include <cstddef>
@@ -9,7 +10,7 @@
 #include "tessera/methods/planar/franke_functions.h"
 #include "tessera/methods/planar/swap_criterion.h"
 
-namespace tessera::app {
+namespace tessera {
 
 /// One row of the --all-criteria table: a criterion with its cost-vector ordering.
 struct AllCriteriaRow {
@@ -76,4 +77,4 @@ inline bool is_in_spread(double value, double lowest, double highest) {
   return value >= lowest - 0.5e-5 && value <= highest + 0.5e-5;
 }
 
-}  // namespace tessera::app
+}  // namespace tessera

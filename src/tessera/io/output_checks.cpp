@@ -1,20 +1,20 @@
 // SPDX-License-Identifier: MIT
-#include "output_checks.h"
+#include "tessera/io/output_checks.h"
 
 #include <filesystem>
 
 #include "tessera/core/error.h"
 
-namespace tessera::app {
+namespace tessera {
 
 void check_output_folder(const std::string& path) {
   if (path.empty()) {
     return;
   }
   const auto parent = std::filesystem::path(path).parent_path();
-  TESSERA_CHECK(parent.empty() || std::filesystem::is_directory(parent),
-                "cannot write '" << path << "': the folder '" << parent.string()
-                                 << "' does not exist");
+  TESSERA_CHECK(
+      parent.empty() || std::filesystem::is_directory(parent),
+      "cannot write '" << path << "': the folder '" << parent.string() << "' does not exist");
 }
 
 void check_mesh_output(const std::string& path) {
@@ -26,4 +26,4 @@ void check_mesh_output(const std::string& path) {
             << (extension == ".npy" ? "; the states go to a .npy file with --states" : "") << ")");
 }
 
-}  // namespace tessera::app
+}  // namespace tessera

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "fold_output.h"
+#include "tessera/report/fold_output.h"
 
 #include <filesystem>
 
@@ -8,7 +8,7 @@
 #include "tessera/io/view_mesh.h"
 #include "tessera/methods/folds/fold_curves.h"
 
-namespace tessera::app {
+namespace tessera {
 
 std::string default_fold_file(const std::string& mesh_path) {
   std::filesystem::path path(mesh_path);
@@ -67,7 +67,8 @@ FoldOutput compute_folds(const ProblemSetup& setup, const TriangleMesh& mesh,
       reported.points.emplace_back(column.data(), column.data() + k);
       if (point.is_cusp) {
         const Eigen::Vector2d in_plane = plane.value(point.x);
-        report.cusps.push_back({reported.points.back(), {in_plane(0), in_plane(1)}, point.is_refined});
+        report.cusps.push_back(
+            {reported.points.back(), {in_plane(0), in_plane(1)}, point.is_refined});
       }
     }
     report.curves.push_back(std::move(reported));
@@ -83,4 +84,4 @@ FoldOutput compute_folds(const ProblemSetup& setup, const TriangleMesh& mesh,
   return output;
 }
 
-}  // namespace tessera::app
+}  // namespace tessera

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "tessera/io/summary_json.h"
+#include "tessera/report/summary_json.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,10 +58,11 @@ nlohmann::json folds_json(const FoldReport& folds) {
   };
   nlohmann::json cusps = nlohmann::json::array();
   for (const auto& cusp : folds.cusps) {
-    cusps.push_back({{"point", named(cusp.point)},
-                     {"plane", {{folds.plane_names.at(0), cusp.plane[0]},
-                                {folds.plane_names.at(1), cusp.plane[1]}}},
-                     {"refined", cusp.is_refined}});
+    cusps.push_back(
+        {{"point", named(cusp.point)},
+         {"plane",
+          {{folds.plane_names.at(0), cusp.plane[0]}, {folds.plane_names.at(1), cusp.plane[1]}}},
+         {"refined", cusp.is_refined}});
   }
   nlohmann::json curves = nlohmann::json::array();
   for (const auto& curve : folds.curves) {
@@ -176,9 +177,9 @@ std::string to_json(const MeshReport& report) {
     if (r.resident_peak_bytes > 0) {
       // The sampled resident memory; against the vertices' own states (8n bytes each) where
       // the states are whole in this process.
-      j["run"]["memory"] = {{"resident_peak_bytes", r.resident_peak_bytes},
-                            {"resident_beyond_boundary_peak_bytes",
-                             r.resident_beyond_boundary_peak_bytes}};
+      j["run"]["memory"] = {
+          {"resident_peak_bytes", r.resident_peak_bytes},
+          {"resident_beyond_boundary_peak_bytes", r.resident_beyond_boundary_peak_bytes}};
       if (r.vertex_count > 0 && is_whole_states(report)) {
         j["run"]["memory"]["beyond_boundary_per_state"] =
             r.resident_beyond_boundary_peak_bytes /
@@ -296,9 +297,9 @@ std::string to_text(const MeshReport& report) {
     if (r.vertex_count > 0 && r.factorisations > 0 && r.factorisation_seconds > 0 &&
         report.ambient_dimension > kLargeAmbientDimension) {
       const double one = r.factorisation_seconds / r.factorisations;
-      out << "  per vertex   " << 1000.0 * r.wall_seconds / r.vertex_count << " ms = "
-          << r.wall_seconds / r.vertex_count / one << " factorisations' time (one: " << 1000.0 * one
-          << " ms, DF and analysis included)\n";
+      out << "  per vertex   " << 1000.0 * r.wall_seconds / r.vertex_count
+          << " ms = " << r.wall_seconds / r.vertex_count / one
+          << " factorisations' time (one: " << 1000.0 * one << " ms, DF and analysis included)\n";
     }
     if (r.resident_peak_bytes > 0 && r.vertex_count > 0 && is_whole_states(report) &&
         report.ambient_dimension > kLargeAmbientDimension) {

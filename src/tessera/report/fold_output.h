@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "tessera/io/polylines.h"
-#include "tessera/io/summary_json.h"
 #include "tessera/methods/folds/parameter_plane.h"
 #include "tessera/problems/problem_setup.h"
+#include "tessera/report/mesh_report.h"
 
-namespace tessera::app {
+namespace tessera {
 
 /// The fold file beside the mesh when --folds-output is not given: "out.ply" → "out.folds.ply";
 /// meshes in formats without lines (.obj) get "out.folds.csv".
@@ -26,9 +26,9 @@ struct FoldOutput {
 };
 
 /// Finds the fold curves of `mesh` over `plane`, writes them to `path` in `view` (unless `path`
-/// is empty) and reports them.
+/// is empty) and reports them (`tessera mesh --folds` and the bindings' folds=).
 FoldOutput compute_folds(const ProblemSetup& setup, const TriangleMesh& mesh,
                          const ParameterPlane& plane, const View& view, const std::string& path,
                          const std::vector<std::string>& comments);
 
-}  // namespace tessera::app
+}  // namespace tessera
