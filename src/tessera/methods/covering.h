@@ -36,7 +36,7 @@ struct CoveringOptions {
   /// The corrector of the start projection, clipping and refinement (and of the method's own
   /// projections where it uses the shared corrector).
   CorrectorOptions corrector;
-  ProgressCallback progress;  ///< called every ~1000 vertices when set
+  ProgressCallback progress;   ///< called every ~1000 vertices when set
   StopRequest stop_requested;  ///< polled about once per vertex when set (see StopRequest)
 
   /// \throw InvalidArgument naming the first shared option that is out of range; `owner` names
@@ -71,17 +71,24 @@ struct CoveringContext {
 /// surface). It must leave a combinatorially valid mesh whatever the termination.
 using CoveringBuild = std::function<void(CoveringContext& context, CoveringResult& result)>;
 
-/// The run skeleton shared by all methods:
+/// The run skeleton shared by all methods, a pipeline of stages (covering_stages.h has each
+/// one's contract, docs/architecture.md the pipeline):
 ///  1. checks the shared options and the domain's dimension;
-///  2. wraps the problem to count evaluations of F and DF;
+///  2. wraps the problem to count evaluations of F and DF (per step: work_by_phase);
 ///  3. projects `start` onto M inside the domain (failure: termination StartFailed, empty mesh);
 ///  4. runs `build`;
-///  5. clips the mesh to the domain (when bounded and the build asked for it);
+///  5. clips the mesh to the domain (when bounded and the build asked for it), closes notches
+///     in the clipped boundary and swaps edges at it (when the build asked for that);
 ///  6. refines it until sampled points lie within options.tolerance of M (when > 0);
 ///  7. validates it geometrically against M and the domain; flipped or overlapping triangles
 ///     and vertices outside the domain are removed (the run then fails with a message giving
 ///     their coordinates and the valid rest is returned), never returned as a success;
-///  8. finishes the summary (counts, evaluations, wall time, measured distance).
+///  8. checks that a completed run left no hole, and rebuilds the cubic patches of a method
+///     that has them for the final triangles;
+///  9. finishes the summary (counts, evaluations, wall time, measured distance).
+/// After a stop request (options.stop_requested) the stages after the one it ended skip their
+/// work or run in a form that does not project (clipping) or check (the tolerance), and the
+/// partial mesh is still validated.
 /// \return a valid mesh whatever the termination; summary.message says where and why a run
 ///         that is not Completed stopped.
 /// \throw InvalidArgument for bad options or sizes.
