@@ -19,13 +19,26 @@
 namespace tessera::testing {
 namespace {
 
-// Triangles by the cells of a uniform grid over the first three coordinates that their box,
+// Triangles by the cells of a uniform grid over the three coordinates of largest extent (for
+// n > 3: cstr's B spans 11 where x1 spans 1; hashing x1..x3 put whole rows of B in one cell)
+// that their box,
 // enlarged by a quarter of their longest edge (more than their chord error), overlaps: a point
 // of M that a triangle's normal projection covers lies in one of them.
 class TriangleGrid {
  public:
   TriangleGrid(const TriangleMesh& mesh, double cell) : cell_(cell) {
     const int dims = std::min(3, mesh.ambient_dimension());
+    const Eigen::VectorXd extent =
+        mesh.points().rowwise().maxCoeff() - mesh.points().rowwise().minCoeff();
+    std::vector<int> order(static_cast<std::size_t>(mesh.ambient_dimension()));
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      order[i] = static_cast<int>(i);
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return extent[a] > extent[b]; });
+    for (int d = 0; d < dims; ++d) {
+      axis_[d] = order[static_cast<std::size_t>(d)];
+    }
     for (int t = 0; t < mesh.triangle_count(); ++t) {
       const Triangle& tri = mesh.triangle(t);
       double longest = 0.0;
@@ -57,7 +70,7 @@ class TriangleGrid {
   const std::vector<int>& near(const Eigen::VectorXd& x) const {
     std::array<long, 3> c{0, 0, 0};
     for (int d = 0; d < dims_; ++d) {
-      c[d] = std::lround(std::floor(x[d] / cell_));
+      c[d] = std::lround(std::floor(x[axis_[d]] / cell_));
     }
     const auto it = cells_.find(key(c[0], c[1], c[2]));
     return it == cells_.end() ? empty_ : it->second;
@@ -70,6 +83,7 @@ class TriangleGrid {
   }
   double cell_;
   int dims_ = 3;
+  std::array<int, 3> axis_{0, 1, 2};  // the coordinates hashed
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
   std::vector<int> empty_;
 };
