@@ -21,9 +21,8 @@ namespace {
 
 // Triangles by the cells of a uniform grid over the three coordinates of largest extent (for
 // n > 3: cstr's B spans 11 where x1 spans 1; hashing x1..x3 put whole rows of B in one cell)
-// that their box,
-// enlarged by a quarter of their longest edge (more than their chord error), overlaps: a point
-// of M that a triangle's normal projection covers lies in one of them.
+// that their box, enlarged by a quarter of their longest edge (more than their chord error),
+// overlaps: a point of M that a triangle's normal projection covers lies in one of them.
 class TriangleGrid {
  public:
   TriangleGrid(const TriangleMesh& mesh, double cell) : cell_(cell) {
@@ -47,11 +46,12 @@ class TriangleGrid {
       }
       std::array<long, 3> low{0, 0, 0}, high{0, 0, 0};
       for (int d = 0; d < dims; ++d) {
+        const int a = axis_[d];
         const double lo =
-            std::min({mesh.point(tri[0])[d], mesh.point(tri[1])[d], mesh.point(tri[2])[d]}) -
+            std::min({mesh.point(tri[0])[a], mesh.point(tri[1])[a], mesh.point(tri[2])[a]}) -
             0.25 * longest;
         const double hi =
-            std::max({mesh.point(tri[0])[d], mesh.point(tri[1])[d], mesh.point(tri[2])[d]}) +
+            std::max({mesh.point(tri[0])[a], mesh.point(tri[1])[a], mesh.point(tri[2])[a]}) +
             0.25 * longest;
         low[d] = std::lround(std::floor(lo / cell_));
         high[d] = std::lround(std::floor(hi / cell_));
