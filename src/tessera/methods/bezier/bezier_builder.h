@@ -149,4 +149,9 @@ class BezierBuilder {
   int next_progress_ = 1000;
 };
 
+/// Collapses the build's needles and swaps its caps away (bezier_shape_repair.cpp,
+/// docs/algorithms/bezier.md "Shape repair"); notes what it did in result.summary.
+void repair_shapes(const ImplicitProblem& problem, const BezierOptions& options,
+                   CoveringResult& result);
+
 }  // namespace tessera::detail
