@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tessera/core/domain.h"
@@ -91,6 +92,13 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
 void check_overlaps(const MeshView& view, const GeometricInput& geometry,
                     const ValidationOptions& options, DefectRecorder& recorder,
                     MeshValidation& result);
+// Thin triangles (an angle below 10° or above 150°) sampled on M against their nearby
+// triangles `pairs` (mesh_validation_thin.cpp); called by check_overlaps.
+void check_thin_triangles(const MeshView& view, const GeometricInput& geometry,
+                          const std::vector<std::pair<int, int>>& pairs, DefectRecorder& recorder,
+                          MeshValidation& result);
+// "triangle 17 (vertices 3, 8, 9)"
+std::string triangle_name(int t, const Triangle& tri);
 void check_domain(const MeshView& view, const GeometricInput& geometry,
                   const ValidationOptions& options, DefectRecorder& recorder,
                   MeshValidation& result);
