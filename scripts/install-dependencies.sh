@@ -8,6 +8,8 @@ set -euo pipefail
 # nested-dissection ordering of Eigen's SparseLU (half the fill of COLAMD on 2-D PDEs).
 # python3-numpy: tests/io/npy_test.cpp and tests/app/view_cli_test.cpp check that numpy.load reads
 # the .npy states tessera writes (meshio depends on it too).
+# libspectra-dev: shift-invert Lanczos/Arnoldi (header-only) for the stability of steady states
+# at large n (src/tessera/methods/stability).
 # libcairo2-dev: pictures (`tessera render`, `mesh --picture`), PNG and SVG from one drawing.
 # petsc-dev (with Open MPI, MUMPS, SuperLU_dist, hypre): the PETSc backend for problems beyond one
 # machine (src/tessera/petsc, docs/cluster.md); about 100 packages, 90 s to install.
@@ -15,7 +17,7 @@ set -euo pipefail
 # docs/python.md) for Debian's /usr/bin/python3, and its tests.
 packages=(cmake ninja-build g++ libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev
           libbenchmark-dev ccache libcgal-dev python3-meshio python3-numpy libsuitesparse-dev
-          libsuperlu-dev libmetis-dev python3-dev python3-pybind11 python3-pytest python3-scipy libcairo2-dev petsc-dev "$@")
+          libsuperlu-dev libmetis-dev libspectra-dev python3-dev python3-pybind11 python3-pytest python3-scipy libcairo2-dev petsc-dev "$@")
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||

@@ -83,6 +83,7 @@ class SharedProblem final : public ImplicitProblem {
   std::vector<CoordinateBlock> coordinate_blocks() const override {
     return problem_->coordinate_blocks();
   }
+  std::optional<Dynamics> dynamics() const override { return problem_->dynamics(); }
 
  private:
   std::shared_ptr<const ImplicitProblem> problem_;

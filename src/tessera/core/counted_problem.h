@@ -58,6 +58,7 @@ class CountedProblem final : public ImplicitProblem {
   std::vector<CoordinateBlock> coordinate_blocks() const override {
     return inner_.coordinate_blocks();
   }
+  std::optional<Dynamics> dynamics() const override { return inner_.dynamics(); }
   std::shared_ptr<const AmbientSpace> space() const override { return inner_.space(); }
   std::unique_ptr<LinearizationBackend> make_linearization_backend() const override {
     return inner_.make_linearization_backend();

@@ -5,8 +5,11 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "tessera/core/dynamics.h"
 
 namespace tessera {
 
@@ -72,6 +75,13 @@ class ImplicitProblem {
   /// Named ranges of coordinates and their weights in the metric (see CoordinateBlock); the
   /// default is none: M is measured in the Euclidean norm of R^n.
   virtual std::vector<CoordinateBlock> coordinate_blocks() const { return {}; }
+
+  /// The dynamics B·u' = ±F(u, p) whose steady states M is (core/dynamics.h): which two
+  /// coordinates are the parameters, the sign and the mass matrix. Nothing (the default): F is
+  /// not declared the right-hand side of an evolution equation, and stability cannot be asked.
+  /// Decorators that keep the coordinates forward it; ScaledProblem does not (its coordinates are
+  /// the metric's, and stability is computed in the problem's own).
+  virtual std::optional<Dynamics> dynamics() const { return std::nullopt; }
 
   /// Where the problem's vectors live and how they are reduced (AmbientSpace): R^n in one
   /// process by default. A distributed problem (src/tessera/petsc) returns its split over the

@@ -583,4 +583,34 @@ Eigen::VectorXd ArrheniusBratu2D::point_with_amplitude(double amplitude, double 
   return x;
 }
 
+std::optional<Dynamics> WhitneyPleat::dynamics() const {
+  Dynamics dynamics;
+  dynamics.parameters = {1, 2};
+  dynamics.sign = -1.0;
+  return dynamics;
+}
+
+std::optional<Dynamics> StirredTankReactor::dynamics() const {
+  Dynamics dynamics;
+  dynamics.parameters = {2, 3};
+  return dynamics;
+}
+
+std::optional<Dynamics> ArrheniusBratu::dynamics() const {
+  const double h = 1.0 / (point_count_ + 1);
+  Dynamics dynamics;
+  dynamics.parameters = {point_count_, point_count_ + 1};
+  dynamics.mass_diagonal = Eigen::VectorXd::Constant(point_count_, h * h);
+  return dynamics;
+}
+
+std::optional<Dynamics> ArrheniusBratu2D::dynamics() const {
+  const double h = 1.0 / (grid_size_ + 1);
+  const int states = grid_size_ * grid_size_;
+  Dynamics dynamics;
+  dynamics.parameters = {states, states + 1};
+  dynamics.mass_diagonal = Eigen::VectorXd::Constant(states, h * h);
+  return dynamics;
+}
+
 }  // namespace tessera

@@ -104,6 +104,9 @@ class WhitneyPleat final : public ImplicitProblem {
                 Eigen::Ref<Eigen::MatrixXd> J) const override;
   std::string name() const override { return "whitney_pleat"; }
   std::vector<std::string> coordinate_names() const override { return {"x", "lambda", "mu"}; }
+  /// x' = −F = −V'(x) for the potential V = x⁴/4 − λx²/2 − μx: the outer sheets (3x² > λ) are
+  /// stable, the middle one unstable; parameters (lambda, mu).
+  std::optional<Dynamics> dynamics() const override;
 };
 
 /// Melville and Mackey's trough F(x, y, z) = z (a² z² (b² − z²) − x²) + ε, a cylinder in y over a
@@ -153,6 +156,11 @@ class StirredTankReactor final : public ImplicitProblem {
                 Eigen::Ref<Eigen::MatrixXd> J) const override;
   std::string name() const override { return "cstr"; }
   std::vector<std::string> coordinate_names() const override { return {"x1", "x2", "Da", "B"}; }
+  /// (x₁, x₂)' = (f₁, f₂), parameters (Da, B). On M, with a = x₁/(1 − x₁), D_uF has trace
+  /// B x₁ − (2 + β) − a and determinant (1 + β)/(1 − x₁) − B x₁: folds where the determinant
+  /// vanishes, Hopf bifurcations where the trace does with a positive determinant (x₁ > 1/(1+β)),
+  /// a Bogdanov–Takens point where both do (x₁ = 1/(1 + β)).
+  std::optional<Dynamics> dynamics() const override;
 
   /// The point of M with concentration x1 and temperature rise B (exact parametrisation).
   /// \pre x1 < 1.
@@ -199,6 +207,9 @@ class ArrheniusBratu final : public ImplicitProblem {
   void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                        Eigen::SparseMatrix<double>& J) const override;
   std::string name() const override { return "bvp"; }
+  /// The heat equation u_t = u'' + λ exp(u/(1 + εu)) discretised like F: h²·u' = F, so B = h²·I
+  /// and the eigenvalues are those of the discrete operator; parameters (lambda, epsilon).
+  std::optional<Dynamics> dynamics() const override;
   std::vector<std::string> coordinate_names() const override;
   /// One block "u" (the N grid values) of weight √h, h = 1/(N + 1): the metric's norm of u is
   /// the discrete L² norm, so lengths on M do not grow with N.
@@ -270,6 +281,9 @@ class ArrheniusBratu2D final : public ImplicitProblem {
   void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                        Eigen::SparseMatrix<double>& J) const override;
   std::string name() const override { return "bratu2d"; }
+  /// u_t = Δu + λ exp(u/(1 + εu)) discretised like F: h²·u' = F, B = h²·I; parameters
+  /// (lambda, epsilon).
+  std::optional<Dynamics> dynamics() const override;
   /// u_1_1 … u_N_N (row, column), lambda, epsilon.
   std::vector<std::string> coordinate_names() const override;
   /// One block "u" (the N² grid values) of weight h = 1/(N + 1): the metric's norm of u,
