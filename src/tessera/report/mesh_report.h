@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The report of a mesh of M: its validation and quality against the problem (measured the same
 // way for every backend), and what the run that made it was (summary, view, backend, states,
-// fold curves). `tessera mesh`, `tessera check` and the bindings make it with make_report;
-// report/summary_json.h writes it.
+// fold and level curves). `tessera mesh`, `tessera check` and the bindings make it with
+// make_report; report/summary_json.h writes it.
 #pragma once
 
 #include <functional>
@@ -79,6 +79,32 @@ struct FoldReport {
   double seconds = 0.0;
 };
 
+/// The level curves of one functional on M (`tessera mesh --level`, methods/folds/level_curves.h),
+/// with their points in the mesh file's view.
+struct LevelReport {
+  std::string level;                 ///< LevelSet::specification(): "x1 = 0.5"
+  std::string functional;            ///< the functional's label: "x1", "mean:u", "r = x^2 + y^2"
+  std::string functional_name;       ///< its column name: "x1", "mean_u", "r"
+  double value = 0.0;                ///< c
+  std::string file;                  ///< the polylines file (empty: not written)
+  std::vector<std::string> columns;  ///< names of the view coordinates of the points below
+  struct Curve {
+    bool is_closed = false;
+    std::vector<std::vector<double>> points;  ///< in the view, in order along the curve
+  };
+  std::vector<Curve> curves;
+  int point_count = 0;
+  int crossing_count = 0;
+  int unrefined_count = 0;
+  int undefined_vertex_count = 0;  ///< vertices where the functional is not finite
+  int newton_iterations = 0;
+  int max_point_iterations = 0;
+  double max_residual = 0.0;        ///< largest ‖F‖ over the refined points
+  double max_level_residual = 0.0;  ///< largest |f − c| over the refined points
+  WorkCounts work;
+  double seconds = 0.0;
+};
+
 /// What one report is made of; `run` is absent for `tessera check` of an existing mesh.
 struct MeshReport {
   std::string problem;
@@ -87,6 +113,7 @@ struct MeshReport {
   std::optional<BackendReport> backend;  ///< absent for `tessera check`
   std::optional<StatesReport> states;    ///< present when the states were written
   std::optional<FoldReport> folds;       ///< present when fold curves were asked for
+  std::optional<LevelReport> level;      ///< present when level curves were asked for
   std::optional<CoveringSummary> run;
   MeshValidation validation;
   MeshQuality quality;

@@ -47,7 +47,34 @@ nlohmann::json geometry(const MeshValidation& v) {
       {"unoriented_triangles", v.unoriented_triangle_count}};
 }
 
-// A block is one entry with its range, a coordinate outside blocks one entry of size 1: the
+nlohmann::json level_json(const LevelReport& level) {
+  nlohmann::json curves = nlohmann::json::array();
+  for (const auto& curve : level.curves) {
+    curves.push_back({{"closed", curve.is_closed}, {"points", curve.points}});
+  }
+  return {{"level", level.level},
+          {"functional", level.functional},
+          {"name", level.functional_name},
+          {"value", level.value},
+          {"file", level.file},
+          {"columns", level.columns},
+          {"curve_count", level.curves.size()},
+          {"point_count", level.point_count},
+          {"edge_crossings", level.crossing_count},
+          {"unrefined_points", level.unrefined_count},
+          {"undefined_vertices", level.undefined_vertex_count},
+          {"max_residual", level.max_residual},
+          {"max_level_residual", level.max_level_residual},
+          {"newton_iterations", level.newton_iterations},
+          {"max_point_iterations", level.max_point_iterations},
+          {"work",
+           {{"function_evaluations", level.work.function_evaluations},
+            {"jacobian_evaluations", level.work.jacobian_evaluations},
+            {"factorisations", level.work.factorisations}}},
+          {"seconds", level.seconds},
+          {"curves", std::move(curves)}};
+}
+
 nlohmann::json folds_json(const FoldReport& folds) {
   auto named = [&](const std::vector<double>& point) {
     nlohmann::json values = nlohmann::json::object();
@@ -88,6 +115,7 @@ nlohmann::json folds_json(const FoldReport& folds) {
           {"curves", std::move(curves)}};
 }
 
+// A block is one entry with its range, a coordinate outside blocks one entry of size 1: the
 // column ranges of the states array without n names.
 nlohmann::json state_columns(const StatesReport& states) {
   nlohmann::json columns = nlohmann::json::array();
@@ -210,6 +238,9 @@ std::string to_json(const MeshReport& report) {
   }
   if (report.folds) {
     j["folds"] = folds_json(*report.folds);
+  }
+  if (report.level) {
+    j["level"] = level_json(*report.level);
   }
   j["counts"] = {
       {"vertices", v.referenced_vertex_count},   {"edges", v.edge_count},
@@ -361,6 +392,19 @@ std::string to_text(const MeshReport& report) {
           << (cusp.is_refined ? "" : " (bracketed, not refined)");
     }
     out << (folds.file.empty() ? "" : " → " + folds.file) << "\n";
+  }
+  if (report.level) {
+    const LevelReport& level = *report.level;
+    out << "level          " << level.curves.size() << " curve(s) where " << level.level << ", "
+        << level.point_count << " points on it to solver tolerance";
+    if (level.unrefined_count > 0) {
+      out << " (" << level.unrefined_count << " NOT refined: at the mesh's estimate)";
+    }
+    if (level.undefined_vertex_count > 0) {
+      out << " (" << level.functional << " not finite at " << level.undefined_vertex_count
+          << " vertices: curves may end there)";
+    }
+    out << (level.file.empty() ? "" : " → " + level.file) << "\n";
   }
   out << "mesh           " << v.referenced_vertex_count << " vertices, " << v.edge_count
       << " edges, " << v.triangle_count << " triangles, " << v.boundary_loop_count

@@ -4,8 +4,6 @@
 #include <Eigen/SparseCore>
 #include <chrono>
 #include <cmath>
-#include <deque>
-#include <map>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -14,6 +12,7 @@
 #include "tessera/core/linearization.h"
 #include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/mesh_topology.h"
+#include "tessera/methods/common/zero_set_curves.h"
 
 namespace tessera {
 
@@ -248,8 +247,8 @@ class FoldSolver {
   Eigen::VectorXd point_;
 };
 
-// Positive or not: a vertex with det exactly 0 counts as positive, so that every triangle has 0
-// or 2 edges across which the sign changes.
+// Positive or not, as the zero set's marching counts signs (0 is positive): for the orientations
+// of the projected triangles that seed it.
 bool is_positive(double value) { return value >= 0.0; }
 
 }  // namespace
@@ -319,46 +318,31 @@ FoldCurves find_fold_curves(const ImplicitProblem& problem, const TriangleMesh& 
     return std::vector<Eigen::Matrix<double, -1, 2>>{std::move(pair)};
   };
 
-  // det(Dπ·T) at the vertices that need it; where DF cannot be factored, the mean orientation
-  // of the projected triangles around the vertex stands in (its sign is what matters).
-  std::vector<double> vertex_value(static_cast<std::size_t>(vertex_count),
-                                   std::numeric_limits<double>::quiet_NaN());
+  // det(Dπ·T) at the vertices the marching reaches; where DF cannot be factored, the mean
+  // orientation of the projected triangles around the vertex stands in (its sign is what
+  // matters).
   // Vertices where det(Dπ·T) vanishes to rounding (|det| ≤ 10⁻¹⁰‖Dπ‖²): on a generic fold
   // curve only by a coincidence of 10⁻¹⁰ of an edge; where Dπ·T is singular on a whole region
   // (a plane M does not fold over along curves, e.g. a cylinder seen along its axis) at
   // every vertex there.
   std::vector<char> is_singular(static_cast<std::size_t>(vertex_count), 0);
-  auto ensure_value = [&](int v) {
-    double& value = vertex_value[static_cast<std::size_t>(v)];
-    if (!std::isnan(value)) {
-      return;
-    }
+  auto vertex_value = [&](int v) {
     ++result.tangent_evaluations;
     if (const auto exact = solver.vertex_determinant(y_of(v), edges_around(v))) {
-      value = exact->first;
       is_singular[static_cast<std::size_t>(v)] = std::abs(exact->first) <= 1e-10 * exact->second;
-      return;
+      return exact->first;
     }
     double sum = 0.0;
     for (const int t : topology.vertex_triangles(v)) {
       sum += triangle_orientation[static_cast<std::size_t>(t)];
     }
-    value = sum;
+    return sum;
   };
 
-  // Marching triangles, grown from the seeds along the sign changes: a triangle is processed once
-  // its three vertices have values; every triangle beside an edge with a sign change is processed.
-  std::vector<char> is_processed(triangles.size(), 0);
-  std::deque<int> queue;
-  auto push_triangle = [&](int t) {
-    if (is_processed[static_cast<std::size_t>(t)]) {
-      return;
-    }
-    for (const int v : triangles[static_cast<std::size_t>(t)]) {
-      ensure_value(v);
-    }
-    queue.push_back(t);
-  };
+  // The marching starts from the triangles whose orientation differs from a neighbour's, and
+  // those around their corners: the exact sign change lies within.
+  ZeroSetOptions marching;
+  marching.seed_triangles.emplace();
   for (int t = 0; t < static_cast<int>(triangles.size()); ++t) {
     bool changes = false;
     for (int k = 0; k < 3; ++k) {
@@ -371,127 +355,38 @@ FoldCurves find_fold_curves(const ImplicitProblem& problem, const TriangleMesh& 
     if (!changes) {
       continue;
     }
-    // The triangle and those around its corners: the exact sign change lies within.
     for (const int v : triangles[static_cast<std::size_t>(t)]) {
       for (const int around : topology.vertex_triangles(v)) {
-        push_triangle(around);
+        marching.seed_triangles->push_back(around);
       }
     }
   }
-  std::map<int, int> crossing_of_edge;  // edge id → index into `crossings`
-  struct Crossing {
-    int edge = -1;
-    int triangle = -1;               // a triangle beside it, to orient the tangent basis
-    std::vector<int> segments;       // indices into `segments`
-  };
-  std::vector<Crossing> crossings;
-  std::vector<std::pair<int, int>> segments;  // pairs of crossings joined inside a triangle
-  auto crossing_at = [&](int edge, int triangle) {
-    const auto [it, inserted] = crossing_of_edge.emplace(edge, static_cast<int>(crossings.size()));
-    if (inserted) {
-      crossings.push_back({edge, triangle, {}});
-    }
-    return it->second;
-  };
-  while (!queue.empty()) {
-    const int t = queue.front();
-    queue.pop_front();
-    if (is_processed[static_cast<std::size_t>(t)]) {
-      continue;
-    }
-    is_processed[static_cast<std::size_t>(t)] = 1;
+  // The signs there are rounding: no curve to follow.
+  marching.skip_triangle = [&](int t) {
     const Triangle& tri = triangles[static_cast<std::size_t>(t)];
-    if (is_singular[static_cast<std::size_t>(tri[0])] && is_singular[static_cast<std::size_t>(tri[1])] &&
-        is_singular[static_cast<std::size_t>(tri[2])]) {
-      ++result.singular_triangle_count;  // the signs there are rounding: no curve to follow
-      continue;
-    }
-    std::vector<int> crossed;
-    for (int k = 0; k < 3; ++k) {
-      const int a = tri[static_cast<std::size_t>(k)];
-      const int b = tri[static_cast<std::size_t>((k + 1) % 3)];
-      if (is_positive(vertex_value[static_cast<std::size_t>(a)]) ==
-          is_positive(vertex_value[static_cast<std::size_t>(b)])) {
-        continue;
-      }
-      const int edge = topology.triangle_edges(t)[static_cast<std::size_t>(k)];
-      crossed.push_back(crossing_at(edge, t));
-      for (const int other : topology.edge_triangles(edge)) {
-        push_triangle(other);
-      }
-    }
-    if (crossed.size() == 2) {
-      const int segment = static_cast<int>(segments.size());
-      segments.emplace_back(crossed[0], crossed[1]);
-      crossings[static_cast<std::size_t>(crossed[0])].segments.push_back(segment);
-      crossings[static_cast<std::size_t>(crossed[1])].segments.push_back(segment);
-    }
-  }
-  result.crossing_count = static_cast<int>(crossings.size());
-
-  // Polylines: walk from the open ends (crossings on one segment: the mesh's boundary), then
-  // around the loops that remain.
-  std::vector<char> is_walked(segments.size(), 0);
-  std::vector<std::pair<std::vector<int>, bool>> chains;  // crossings in order, is closed
-  auto walk = [&](int first) {
-    std::vector<int> chain{first};
-    int current = first;
-    for (;;) {
-      int next_segment = -1;
-      for (const int s : crossings[static_cast<std::size_t>(current)].segments) {
-        if (!is_walked[static_cast<std::size_t>(s)]) {
-          next_segment = s;
-          break;
-        }
-      }
-      if (next_segment < 0) {
-        break;
-      }
-      is_walked[static_cast<std::size_t>(next_segment)] = 1;
-      const auto& [p, q] = segments[static_cast<std::size_t>(next_segment)];
-      current = p == current ? q : p;
-      if (current == first) {
-        return std::make_pair(chain, true);
-      }
-      chain.push_back(current);
-    }
-    return std::make_pair(chain, false);
+    return is_singular[static_cast<std::size_t>(tri[0])] &&
+           is_singular[static_cast<std::size_t>(tri[1])] &&
+           is_singular[static_cast<std::size_t>(tri[2])];
   };
-  for (int c = 0; c < static_cast<int>(crossings.size()); ++c) {
-    if (crossings[static_cast<std::size_t>(c)].segments.size() == 1 &&
-        !is_walked[static_cast<std::size_t>(crossings[static_cast<std::size_t>(c)].segments[0])]) {
-      chains.push_back(walk(c));
-    }
-  }
-  for (int c = 0; c < static_cast<int>(crossings.size()); ++c) {
-    for (const int s : crossings[static_cast<std::size_t>(c)].segments) {
-      if (!is_walked[static_cast<std::size_t>(s)]) {
-        chains.push_back(walk(c));
-        break;
-      }
-    }
-  }
-  for (int c = 0; c < static_cast<int>(crossings.size()); ++c) {
-    if (crossings[static_cast<std::size_t>(c)].segments.empty()) {
-      chains.push_back({{c}, false});  // an isolated crossing (a triangle left unprocessed)
-    }
-  }
+  const ZeroSetCurves zero_set = find_zero_set_curves(mesh, topology, vertex_value, marching);
+  result.crossing_count = zero_set.crossing_count;
+  result.singular_triangle_count = zero_set.skipped_triangle_count;
+  const std::vector<ZeroSetCrossing>& crossings = zero_set.crossings;
 
   // Each crossing: the zero of the linear interpolant on its edge, refined by Newton.
   auto estimate = [&](int c) {
-    const auto& edge = topology.edge(crossings[static_cast<std::size_t>(c)].edge);
-    const double sa = vertex_value[static_cast<std::size_t>(edge[0])];
-    const double sb = vertex_value[static_cast<std::size_t>(edge[1])];
-    const double s = sa / (sa - sb);
-    const Eigen::VectorXd ya = y_of(edge[0]);
-    return Eigen::VectorXd(ya + s * (y_of(edge[1]) - ya));
+    const ZeroSetCrossing& crossing = crossings[static_cast<std::size_t>(c)];
+    const Eigen::VectorXd ya = y_of(crossing.vertices[0]);
+    return Eigen::VectorXd(ya + crossing.fraction * (y_of(crossing.vertices[1]) - ya));
   };
   auto edge_length = [&](int c) {
-    const auto& edge = topology.edge(crossings[static_cast<std::size_t>(c)].edge);
-    return (y_of(edge[1]) - y_of(edge[0])).norm();
+    const ZeroSetCrossing& crossing = crossings[static_cast<std::size_t>(c)];
+    return (y_of(crossing.vertices[1]) - y_of(crossing.vertices[0])).norm();
   };
 
-  for (const auto& [chain, is_closed] : chains) {
+  for (const ZeroSetChain& zero_set_chain : zero_set.chains) {
+    const std::vector<int>& chain = zero_set_chain.crossings;
+    const bool is_closed = zero_set_chain.is_closed;
     FoldCurve curve;
     curve.is_closed = is_closed;
     const int m = static_cast<int>(chain.size());
