@@ -149,8 +149,8 @@ std::pair<std::string, std::string> parse_parameter_pair(const std::string& text
   const auto comma = text.find(',');
   const bool is_pair = comma != std::string::npos && comma > 0 && comma + 1 < text.size() &&
                        text.find(',', comma + 1) == std::string::npos;
-  TESSERA_CHECK(is_pair, "--diagram " << text
-                                      << ": expected two column names P1,P2, e.g. --diagram Da,B");
+  TESSERA_CHECK(is_pair,
+                "--diagram " << text << ": expected two column names P1,P2, e.g. --diagram Da,B");
   return {text.substr(0, comma), text.substr(comma + 1)};
 }
 
@@ -348,8 +348,10 @@ CLI::App* add_render_command(CLI::App& app, RenderCommand& command) {
 
 int run_diagram(const RenderCommand& command, int width, int height) {
   const auto [p1, p2] = parse_parameter_pair(command.diagram);
-  TESSERA_CHECK(command.mesh.empty(), "--diagram draws the --curves files alone; leave out the "
-                                      "mesh '" << command.mesh << "'");
+  TESSERA_CHECK(command.mesh.empty(),
+                "--diagram draws the --curves files alone; leave out the "
+                "mesh '"
+                    << command.mesh << "'");
   TESSERA_CHECK(!command.curves.empty(),
                 "--diagram " << command.diagram << " needs --curves FILE (repeatable), e.g. "
                              << "--curves X.folds.json --curves X.hopf.json");
@@ -380,8 +382,9 @@ int run_render(const RenderCommand& command) {
   if (!command.diagram.empty()) {
     return run_diagram(command, width, height);
   }
-  TESSERA_CHECK(!command.mesh.empty(), "render needs a mesh file (or --diagram P1,P2 with "
-                                       "--curves files)");
+  TESSERA_CHECK(!command.mesh.empty(),
+                "render needs a mesh file (or --diagram P1,P2 with "
+                "--curves files)");
   PictureOptions options;
   options.width = width;
   options.height = height;

@@ -140,8 +140,8 @@ TriangleMesh stability_grid(std::vector<VertexScalars>& data) {
       triangles.push_back({v, v + n + 2, v + n + 1});
     }
   }
-  data = {{"unstable_count", count}, {"leading_real_part", real_part},
-          {"stability_certain", certain}};
+  data = {
+      {"unstable_count", count}, {"leading_real_part", real_part}, {"stability_certain", certain}};
   return TriangleMesh(points, triangles);
 }
 
@@ -170,15 +170,15 @@ TEST(RenderCli, ColoursAMeshByStabilityFromEveryFormat) {
     EXPECT_TRUE(contains(svg, "<desc>legend: stable; index 1; index &gt;= 2; unknown</desc>"))
         << extension;
     // Another array of the file, by name: a colour bar, not a legend.
-    const auto by_name = run_cli("render " + path + " --colour leading_real_part -o " + dir +
-                                 "/real.png");
+    const auto by_name =
+        run_cli("render " + path + " --colour leading_real_part -o " + dir + "/real.png");
     ASSERT_EQ(by_name.exit_code, 0) << extension << "\n" << by_name.output;
     EXPECT_TRUE(is_png(dir + "/real.png"));
   }
   // A mesh without the data: the message names the file and the command that writes it.
   write_mesh(dir + "/plain.ply", mesh);
-  const auto missing = run_cli("render " + dir + "/plain.ply --colour stability -o " + dir +
-                               "/plain.png");
+  const auto missing =
+      run_cli("render " + dir + "/plain.ply --colour stability -o " + dir + "/plain.png");
   EXPECT_EQ(missing.exit_code, kUsageError);
   EXPECT_TRUE(contains(missing.output, "plain.ply has no vertex data 'unstable_count'") &&
               contains(missing.output, "--stability"))
@@ -208,12 +208,13 @@ TEST(RenderCli, DrawsCurvesByKindAndTheBifurcationDiagram) {
       0.01, 0.03, 0.05,          //
       1.0, 1.2, 1.5;             // omega
   hopf.marked = {true, false, false};
-  write_polylines(dir + "/grid.hopf.csv", {hopf},
-                  {.names = {"Da", "B", "x1", "omega"}, .marker_name = "bogdanov_takens",
-                   .kind = "hopf"});
+  write_polylines(
+      dir + "/grid.hopf.csv", {hopf},
+      {.names = {"Da", "B", "x1", "omega"}, .marker_name = "bogdanov_takens", .kind = "hopf"});
   EXPECT_TRUE(contains(text_of(dir + "/grid.hopf.csv"), "# kind: hopf\n"));
   // Old fold files: no kind, no marker.
-  std::ofstream(dir + "/old.json") << R"({"polylines": [{"points": [[0.4, 0.1, 0], [0.4, 0.9, 0]]}]})";
+  std::ofstream(dir + "/old.json")
+      << R"({"polylines": [{"points": [[0.4, 0.1, 0], [0.4, 0.9, 0]]}]})";
 
   const auto surface = run_cli("render " + dir + "/grid.vtu --colour stability --curves " + dir +
                                "/grid.folds.json --curves " + dir + "/grid.hopf.csv --curves " +
@@ -229,7 +230,8 @@ TEST(RenderCli, DrawsCurvesByKindAndTheBifurcationDiagram) {
   ASSERT_EQ(diagram.exit_code, 0) << diagram.output;
   const std::string svg = text_of(dir + "/diagram.svg");
   EXPECT_TRUE(contains(svg, "<title>two-parameter diagram</title>"));
-  EXPECT_TRUE(contains(svg, "<desc>legend: Hopf; fold; cusp; Bogdanov-Takens</desc>")) << svg.substr(0, 500);
+  EXPECT_TRUE(contains(svg, "<desc>legend: Hopf; fold; cusp; Bogdanov-Takens</desc>"))
+      << svg.substr(0, 500);
   const auto png = run_cli("render --diagram B,omega --curves " + dir + "/grid.hopf.csv -o " + dir +
                            "/omega.png");
   ASSERT_EQ(png.exit_code, 0) << png.output;
@@ -241,7 +243,8 @@ TEST(RenderCli, DrawsCurvesByKindAndTheBifurcationDiagram) {
     std::string arguments;
     std::string message;
   };
-  const std::string curves = " --curves " + dir + "/grid.folds.json --curves " + dir + "/grid.hopf.csv";
+  const std::string curves =
+      " --curves " + dir + "/grid.folds.json --curves " + dir + "/grid.hopf.csv";
   for (const Case& bad : {
            Case{"render --diagram Da,omega" + curves + " -o " + dir + "/d.png",
                 "grid.folds.json: no column 'omega' among the curves' columns (Da, B, x1)"},

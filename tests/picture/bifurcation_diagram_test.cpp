@@ -170,8 +170,9 @@ TEST(BifurcationDiagram, PolylinesGiveTheirNamedColumnsAndMarkedPoints) {
     add_to_diagram(scene, {line}, file, "Da", "beta");
     FAIL() << "no column beta";
   } catch (const InvalidArgument& error) {
-    EXPECT_NE(std::string(error.what()).find("no column 'beta' among the curves' columns (x1, Da, B)"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(error.what()).find("no column 'beta' among the curves' columns (x1, Da, B)"),
+        std::string::npos)
         << error.what();
   }
 }

@@ -131,16 +131,17 @@ TEST(StabilityPicture, ATriangleWhoseCornersDifferIsSplitBetweenThem) {
   scene.triangle_categories = {2};
   scene.vertex_categories.clear();
   const PictureImage whole = render_picture(scene, top_view(300));
-  EXPECT_TRUE(has_colour(whole.at(static_cast<int>(12 + 276 * 0.1), static_cast<int>(288 - 276 * 0.1)),
-                         categories[2].rgb));
+  EXPECT_TRUE(
+      has_colour(whole.at(static_cast<int>(12 + 276 * 0.1), static_cast<int>(288 - 276 * 0.1)),
+                 categories[2].rgb));
 }
 
 TEST(StabilityPicture, TheLegendTakesTheColourBarsPlaceAndIsNamedInTheSvg) {
   // All stable: orange, red and grey can come only from the legend, which lists every category.
   PictureScene scene = strip();
   colour_by_stability(scene, std::vector<double>(10, 0.0));
-  scene.curves.push_back(styled_curve(Eigen::Matrix3Xd::Zero(3, 2), false,
-                                      dark_curve_style(CurveKind::Hopf)));
+  scene.curves.push_back(
+      styled_curve(Eigen::Matrix3Xd::Zero(3, 2), false, dark_curve_style(CurveKind::Hopf)));
   scene.curves.back().points.col(1) = Eigen::Vector3d(1, 1, 0);
   PictureOptions options = top_view(500);
   const auto categories = stability_categories();
@@ -226,17 +227,17 @@ TEST(StabilityPicture, MarkersHaveTheColourOfTheirKindAtTheirPlace) {
   auto at = [&](double x, double y) {
     return image.at(static_cast<int>(12 + 276 * x), static_cast<int>(288 - 276 * y));
   };
-  EXPECT_TRUE(has_colour(at(0.2, 0.8), {1.0, 0.85, 0.1}));  // cusp: yellow triangle
-  EXPECT_TRUE(has_colour(at(0.5, 0.8), {0.2, 0.8, 0.3}));   // Bogdanov–Takens: green square
+  EXPECT_TRUE(has_colour(at(0.2, 0.8), {1.0, 0.85, 0.1}));   // cusp: yellow triangle
+  EXPECT_TRUE(has_colour(at(0.5, 0.8), {0.2, 0.8, 0.3}));    // Bogdanov–Takens: green square
   EXPECT_TRUE(has_colour(at(0.8, 0.8), {0.85, 0.35, 0.9}));  // zero-Hopf: violet diamond
   // A square's corner is inside, a triangle's upper corners are not: 3 pixels right and up of
   // the centre (the square's half side is 5, the triangle's half width there 2).
-  EXPECT_TRUE(has_colour(image.at(static_cast<int>(12 + 276 * 0.5) + 3,
-                                  static_cast<int>(288 - 276 * 0.8) - 3),
-                         {0.2, 0.8, 0.3}));
-  EXPECT_FALSE(has_colour(image.at(static_cast<int>(12 + 276 * 0.2) + 3,
-                                   static_cast<int>(288 - 276 * 0.8) - 3),
-                          {1.0, 0.85, 0.1}));
+  EXPECT_TRUE(has_colour(
+      image.at(static_cast<int>(12 + 276 * 0.5) + 3, static_cast<int>(288 - 276 * 0.8) - 3),
+      {0.2, 0.8, 0.3}));
+  EXPECT_FALSE(has_colour(
+      image.at(static_cast<int>(12 + 276 * 0.2) + 3, static_cast<int>(288 - 276 * 0.8) - 3),
+      {1.0, 0.85, 0.1}));
 }
 
 TEST(StabilityPicture, BadCategoriesAreRefused) {

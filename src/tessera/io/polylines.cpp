@@ -342,9 +342,7 @@ bool is_word(const std::string& text) {
 }
 
 // The JSON type of `value` in words, for messages.
-std::string type_of(const nlohmann::json& value) {
-  return std::string(value.type_name());
-}
+std::string type_of(const nlohmann::json& value) { return std::string(value.type_name()); }
 
 PolylineFile read_json(const std::string& path, const std::string& text) {
   nlohmann::json document;
@@ -358,18 +356,19 @@ PolylineFile read_json(const std::string& path, const std::string& text) {
   }
   PolylineFile file;
   if (!document.is_object() || !document.contains("polylines")) {
-    refuse(path, "expected an object with \"polylines\" (the JSON of `tessera mesh "
-                 "--folds-output`), found " +
-                     (document.is_object() ? std::string("an object without it")
-                                           : "a JSON " + type_of(document)));
+    refuse(path,
+           "expected an object with \"polylines\" (the JSON of `tessera mesh "
+           "--folds-output`), found " +
+               (document.is_object() ? std::string("an object without it")
+                                     : "a JSON " + type_of(document)));
   }
   auto text_field = [&](const char* key, std::string& out) {
     if (!document.contains(key)) {
       return;
     }
     if (!document[key].is_string()) {
-      refuse(path, std::string("\"") + key + "\" must be a string, found a " +
-                       type_of(document[key]));
+      refuse(path,
+             std::string("\"") + key + "\" must be a string, found a " + type_of(document[key]));
     }
     out = document[key].get<std::string>();
   };
@@ -408,8 +407,8 @@ PolylineFile read_json(const std::string& path, const std::string& text) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const auto& point = points[i];
       const std::string at = where + ", point " + std::to_string(i);
-      if (!point.is_array() || !std::all_of(point.begin(), point.end(),
-                                            [](const auto& x) { return x.is_number(); })) {
+      if (!point.is_array() ||
+          !std::all_of(point.begin(), point.end(), [](const auto& x) { return x.is_number(); })) {
         refuse(path, at + " must be an array of numbers");
       }
       if (k < 0) {
@@ -476,9 +475,10 @@ PolylineFile read_csv(const std::string& path, const std::string& text) {
       continue;
     }
     if (line_text[0] == '#') {
-      const std::string comment = line_text.substr(line_text.find_first_not_of("# ") == std::string::npos
-                                                       ? line_text.size()
-                                                       : line_text.find_first_not_of("# "));
+      const std::string comment =
+          line_text.substr(line_text.find_first_not_of("# ") == std::string::npos
+                               ? line_text.size()
+                               : line_text.find_first_not_of("# "));
       if (comment.rfind("kind:", 0) == 0) {
         std::stringstream words(comment.substr(5));
         words >> file.options.kind;
@@ -542,9 +542,10 @@ PolylineFile read_csv(const std::string& path, const std::string& text) {
 PolylineFile read_polylines(const std::string& path) {
   const std::string extension = lowercase_extension(path);
   if (extension != ".json" && extension != ".csv") {
-    refuse(path, "polylines are read from .json or .csv (as `tessera mesh --folds-output` "
-                 "writes them), not '" +
-                     extension + "'");
+    refuse(path,
+           "polylines are read from .json or .csv (as `tessera mesh --folds-output` "
+           "writes them), not '" +
+               extension + "'");
   }
   const std::string text = io_detail::read_file(extension == ".json" ? "JSON" : "CSV", path);
   return extension == ".json" ? read_json(path, text) : read_csv(path, text);

@@ -132,9 +132,9 @@ class VtuReader {
         break;
       }
     }
-    return io_detail::assemble(dimension, xyz, arrays, std::move(triangles),
-                               [&](const std::string& message) { fail(piece, message); },
-                               vertex_scalars);
+    return io_detail::assemble(
+        dimension, xyz, arrays, std::move(triangles),
+        [&](const std::string& message) { fail(piece, message); }, vertex_scalars);
   }
 
  private:

@@ -53,8 +53,9 @@ void check_diagram(const BifurcationDiagramScene& scene, const BifurcationDiagra
     TESSERA_CHECK(scene.points[i].point.allFinite(),
                   "bifurcation diagram: special point " << i << " is not finite");
   }
-  TESSERA_CHECK(has_point, "a bifurcation diagram needs a curve or a special point, the scene "
-                           "has none (were the curve files empty?)");
+  TESSERA_CHECK(has_point,
+                "a bifurcation diagram needs a curve or a special point, the scene "
+                "has none (were the curve files empty?)");
 }
 
 // The legend: the curve kinds in drawing order, then the point kinds.
@@ -120,8 +121,7 @@ Measured measure(const BifurcationDiagramScene& scene, const BifurcationDiagramO
   measured.legend = legend_entries(scene);
   picture_detail::Surface surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1));
   picture_detail::Context cr(cairo_create(surface.get()));
-  cairo_select_font_face(cr.get(), "sans-serif", CAIRO_FONT_SLANT_NORMAL,
-                         CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_select_font_face(cr.get(), "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr.get(), kFontSize);
   measured.legend_width = picture_detail::legend_width(cr.get(), measured.legend);
   return measured;
@@ -232,10 +232,8 @@ void draw(cairo_t* cr, const BifurcationDiagramScene& scene,
   cairo_set_line_width(cr, 1.0);
   cairo_rectangle(cr, layout.left, layout.top, width, height);
   cairo_stroke(cr);
-  const double p1_step =
-      layout.p1_ticks.size() > 1 ? layout.p1_ticks[1] - layout.p1_ticks[0] : 1.0;
-  const double p2_step =
-      layout.p2_ticks.size() > 1 ? layout.p2_ticks[1] - layout.p2_ticks[0] : 1.0;
+  const double p1_step = layout.p1_ticks.size() > 1 ? layout.p1_ticks[1] - layout.p1_ticks[0] : 1.0;
+  const double p2_step = layout.p2_ticks.size() > 1 ? layout.p2_ticks[1] - layout.p2_ticks[0] : 1.0;
   cairo_text_extents_t extents;
   for (const double tick : layout.p1_ticks) {
     const double x = layout.pixel({tick, layout.p2_range[0]})(0);
@@ -336,7 +334,10 @@ std::vector<double> nice_ticks(double low, double high, int target) {
   const double raw = (high - low) / (target - 1);
   const double power = std::pow(10.0, std::floor(std::log10(raw)));
   const double fraction = raw / power;
-  const double step = (fraction < 1.5 ? 1.0 : fraction < 3.0 ? 2.0 : fraction < 7.0 ? 5.0 : 10.0) *
+  const double step = (fraction < 1.5   ? 1.0
+                       : fraction < 3.0 ? 2.0
+                       : fraction < 7.0 ? 5.0
+                                        : 10.0) *
                       power;
   std::vector<double> ticks;
   const auto first = static_cast<long long>(std::ceil(low / step - 1e-9));

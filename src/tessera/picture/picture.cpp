@@ -50,7 +50,8 @@ void check_scene(const PictureScene& scene, const PictureOptions& options) {
                     scene.marker_kinds.size() == static_cast<std::size_t>(scene.markers.cols()),
                 "picture: " << scene.marker_kinds.size() << " marker kinds for "
                             << scene.markers.cols() << " markers");
-  const bool has_categories = !scene.vertex_categories.empty() || !scene.triangle_categories.empty();
+  const bool has_categories =
+      !scene.vertex_categories.empty() || !scene.triangle_categories.empty();
   TESSERA_CHECK(scene.vertex_categories.empty() || scene.triangle_categories.empty(),
                 "picture: categories per vertex and per triangle at once; give one");
   TESSERA_CHECK(!has_categories || scene.triangle_values.size() == 0,
@@ -300,8 +301,8 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
   const bool has_values = scene.triangle_values.size() > 0;
   const bool has_bar = has_values && options.colour_bar;
   const bool is_categorical = has_categories(scene);
-  const std::vector<LegendEntry> legend = options.legend ? legend_entries(scene)
-                                                         : std::vector<LegendEntry>();
+  const std::vector<LegendEntry> legend =
+      options.legend ? legend_entries(scene) : std::vector<LegendEntry>();
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 12.0);
   // The right panel: the colour bar, or the legend of a categorical scene in its place.
@@ -472,10 +473,11 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
   }
   for (Eigen::Index i = 0; i < scene.markers.cols(); ++i) {
     const Eigen::Vector2d p = camera.pixel(scene.markers.col(i));
-    picture_detail::draw_marker(
-        cr, scene.marker_kinds.empty() ? PointKind::Generic
-                                       : scene.marker_kinds[static_cast<std::size_t>(i)],
-        p(0), p(1));
+    picture_detail::draw_marker(cr,
+                                scene.marker_kinds.empty()
+                                    ? PointKind::Generic
+                                    : scene.marker_kinds[static_cast<std::size_t>(i)],
+                                p(0), p(1));
   }
 
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);

@@ -51,7 +51,7 @@ struct PictureScene {
   std::vector<int> vertex_categories;
   std::vector<int> triangle_categories;  ///< one per triangle, or empty
   std::vector<PictureCurve> curves;
-  Eigen::Matrix3Xd markers;         ///< 3×k marked points (e.g. cusps); may be 3×0
+  Eigen::Matrix3Xd markers;             ///< 3×k marked points (e.g. cusps); may be 3×0
   std::vector<PointKind> marker_kinds;  ///< k shapes, or empty: every marker Generic (a dot)
   std::array<std::string, 3> axis_names = {"x", "y", "z"};
 };

@@ -16,7 +16,7 @@ namespace tessera::picture_detail {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kLegendRow = 18.0;    // pixels from one entry to the next
+constexpr double kLegendRow = 18.0;     // pixels from one entry to the next
 constexpr double kLegendSample = 28.0;  // width of a line sample or swatch column
 
 // cairo writes PNG and SVG through this callback into memory; the file is then replaced
@@ -30,11 +30,20 @@ std::string xml_escaped(const std::string& text) {
   std::string escaped;
   for (const char c : text) {
     switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      default: escaped += c;
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      default:
+        escaped += c;
     }
   }
   return escaped;
@@ -259,8 +268,8 @@ void append_curve_entries(const std::vector<CurveStyle>& curves, std::vector<Leg
 }
 
 void append_point_entries(const std::vector<PointKind>& points, std::vector<LegendEntry>& out) {
-  for (const PointKind kind : {PointKind::Cusp, PointKind::BogdanovTakens, PointKind::ZeroHopf,
-                               PointKind::Generic}) {
+  for (const PointKind kind :
+       {PointKind::Cusp, PointKind::BogdanovTakens, PointKind::ZeroHopf, PointKind::Generic}) {
     if (std::find(points.begin(), points.end(), kind) != points.end()) {
       LegendEntry entry;
       entry.sample = LegendEntry::Sample::Marker;

@@ -41,8 +41,8 @@ struct LegendEntry {
   Sample sample = Sample::Swatch;
   std::string label;
   std::array<double, 3> rgb = {0.5, 0.5, 0.5};
-  CurveDash dash = CurveDash::Solid;  ///< Line
-  double width = 2.0;                 ///< Line
+  CurveDash dash = CurveDash::Solid;     ///< Line
+  double width = 2.0;                    ///< Line
   PointKind point = PointKind::Generic;  ///< Marker
 };
 
