@@ -19,6 +19,7 @@
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/output_checks.h"
 #include "tessera/io/view_mesh.h"
+#include "tessera/picture/bifurcation_diagram.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/view.h"
 
@@ -123,104 +124,34 @@ Eigen::VectorXd column_means(const TriangleMesh& mesh_in_view, int column) {
   return values;
 }
 
-// Polylines as `tessera mesh --folds` writes them in JSON or CSV.
-std::vector<Polyline> read_polylines(const std::string& path) {
-  const std::string extension = lowercase_extension(path);
-  std::ifstream in(path);
-  TESSERA_CHECK(in, "--curves " << path << ": cannot open the file");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::vector<Polyline> lines;
-  if (extension == ".json") {
-    nlohmann::json document;
-    try {
-      document = nlohmann::json::parse(text.str());
-      for (const auto& item : document.at("polylines")) {
-        const auto& points = item.at("points");
-        Polyline line;
-        const int k = points.empty() ? 3 : static_cast<int>(points[0].size());
-        line.points.setZero(std::max(k, 3), static_cast<Eigen::Index>(points.size()));
-        for (std::size_t i = 0; i < points.size(); ++i) {
-          for (int c = 0; c < k; ++c) {
-            line.points(c, static_cast<Eigen::Index>(i)) = points[i].at(static_cast<std::size_t>(c)).get<double>();
-          }
-        }
-        line.marked.assign(points.size(), false);
-        for (const auto& index : item.value("marked", nlohmann::json::array())) {
-          const auto i = index.get<std::size_t>();
-          TESSERA_CHECK(i < points.size(), "marked point " << i << " of " << points.size());
-          line.marked[i] = true;
-        }
-        line.is_closed = item.value("closed", false);
-        TESSERA_CHECK(line.points.allFinite(), "--curves "
-                                                   << path << ": polyline " << lines.size()
-                                                   << " has a coordinate that is not finite");
-        lines.push_back(std::move(line));
-      }
-    } catch (const nlohmann::json::exception& error) {
-      throw InvalidArgument("--curves " + path + ": not a polylines file of `tessera mesh --folds` (" +
-                            error.what() + ")");
+// The mean over each triangle's corners of a per-vertex quantity (NaN where a corner has NaN:
+// drawn grey).
+Eigen::VectorXd corner_means(const TriangleMesh& mesh, const std::vector<double>& values) {
+  Eigen::VectorXd means(mesh.triangle_count());
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    double sum = 0.0;
+    for (const int v : mesh.triangle(t)) {
+      sum += values[static_cast<std::size_t>(v)];
     }
-  } else if (extension == ".csv") {
-    std::string line_text;
-    bool has_header = false;
-    int columns = 0;
-    int current = -1;
-    int line_number = 0;
-    while (std::getline(text, line_text)) {
-      ++line_number;
-      if (!line_text.empty() && line_text.back() == '\r') {
-        line_text.pop_back();  // a file written on Windows
-      }
-      if (line_text.empty() || line_text[0] == '#') {
-        continue;
-      }
-      std::vector<std::string> fields;
-      std::stringstream row(line_text);
-      for (std::string field; std::getline(row, field, ',');) {
-        fields.push_back(field);
-      }
-      if (!has_header) {
-        TESSERA_CHECK(fields.size() >= 5 && fields[0] == "curve" && fields[1] == "point",
-                      "--curves " << path << ", line " << line_number
-                                  << ": expected the header curve,point,<columns>,cusp");
-        columns = static_cast<int>(fields.size()) - 3;
-        has_header = true;
-        continue;
-      }
-      TESSERA_CHECK(static_cast<int>(fields.size()) == columns + 3,
-                    "--curves " << path << ", line " << line_number << ": " << fields.size()
-                                << " fields, the header has " << columns + 3);
-      try {
-        const int curve = std::stoi(fields[0]);
-        if (curve != current) {
-          lines.emplace_back();
-          lines.back().points.resize(std::max(columns, 3), 0);
-          current = curve;
-        }
-        Polyline& line = lines.back();
-        const auto m = line.points.cols();
-        line.points.conservativeResize(Eigen::NoChange, m + 1);
-        line.points.col(m).setZero();
-        for (int c = 0; c < columns; ++c) {
-          line.points(c, m) = std::stod(fields[static_cast<std::size_t>(2 + c)]);
-          if (!std::isfinite(line.points(c, m))) {
-            throw std::invalid_argument("not finite");
-          }
-        }
-        line.marked.push_back(fields.back() == "1");
-      } catch (const std::exception&) {
-        throw InvalidArgument("--curves " + path + ", line " + std::to_string(line_number) +
-                              ": not a finite number");
-      }
-    }
-  } else {
-    TESSERA_CHECK(false, "--curves " << path
-                                     << ": use the .json or .csv polylines of `tessera mesh "
-                                        "--folds` (this reads no '"
-                                     << extension << "')");
+    means(t) = sum / 3.0;
   }
-  return lines;
+  return means;
+}
+
+const VertexScalars* find_scalars(const std::vector<VertexScalars>& data, const std::string& name) {
+  const auto found = std::find_if(data.begin(), data.end(),
+                                  [&](const VertexScalars& s) { return s.name == name; });
+  return found == data.end() ? nullptr : &*found;
+}
+
+// "Da,B" → {"Da", "B"}.
+std::pair<std::string, std::string> parse_parameter_pair(const std::string& text) {
+  const auto comma = text.find(',');
+  const bool is_pair = comma != std::string::npos && comma > 0 && comma + 1 < text.size() &&
+                       text.find(',', comma + 1) == std::string::npos;
+  TESSERA_CHECK(is_pair,
+                "--diagram " << text << ": expected two column names P1,P2, e.g. --diagram Da,B");
+  return {text.substr(0, comma), text.substr(comma + 1)};
 }
 
 std::pair<int, int> parse_size(const std::string& size) {
@@ -241,12 +172,24 @@ std::pair<int, int> parse_size(const std::string& size) {
 }  // namespace
 
 std::vector<std::string> picture_quantities() {
-  return {"height", "none", "min-angle", "area", "curvature", "distance"};
+  return {"height", "none", "min-angle", "area", "curvature", "distance", "stability"};
 }
 
 void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
                         const TriangleMesh& mesh_in_view, const std::vector<std::string>& names,
                         const std::vector<Polyline>& curves, const std::string& colour,
+                        PictureOptions options, const ProblemSetup* setup, bool draw_boundary) {
+  PolylineFile folds;
+  folds.polylines = curves;
+  folds.options.kind = "fold";
+  write_mesh_picture(path, mesh, mesh_in_view, names, {folds}, {}, colour, options, setup,
+                     draw_boundary);
+}
+
+void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
+                        const TriangleMesh& mesh_in_view, const std::vector<std::string>& names,
+                        const std::vector<PolylineFile>& curve_files,
+                        const std::vector<VertexScalars>& vertex_data, const std::string& colour,
                         PictureOptions options, const ProblemSetup* setup, bool draw_boundary) {
   const int k = mesh_in_view.ambient_dimension();
   TESSERA_CHECK(k >= 2, "a picture needs at least two coordinates, the mesh has " << k);
@@ -267,6 +210,12 @@ void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
     options.elevation_degrees = 90.0;
   }
   const auto column = std::find(names.begin(), names.end(), colour);
+  const VertexScalars* scalars = find_scalars(vertex_data, colour);
+  for (const auto& data : vertex_data) {
+    TESSERA_CHECK(data.values.size() == static_cast<std::size_t>(mesh.vertex_count()),
+                  "vertex data '" << data.name << "' has " << data.values.size()
+                                  << " values, the mesh " << mesh.vertex_count() << " vertices");
+  }
   const bool is_flat = scene.positions.cols() > 0 &&
                        scene.positions.row(2).maxCoeff() == scene.positions.row(2).minCoeff();
   if (colour == "height" && is_flat) {
@@ -297,6 +246,15 @@ void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
                                                            << setup->problem->ambient_dimension());
     scene.triangle_values = centroid_distances(mesh, *setup->problem);
     scene.value_label = "distance to M";
+  } else if (colour == "stability") {
+    const VertexScalars* counts = find_scalars(vertex_data, "unstable_count");
+    TESSERA_CHECK(counts != nullptr,
+                  "--colour stability needs the vertex data 'unstable_count' (the number of "
+                  "unstable eigenvalues at each vertex): run tessera mesh … --stability");
+    colour_by_stability(scene, counts->values);
+  } else if (scalars != nullptr) {
+    scene.triangle_values = corner_means(mesh, scalars->values);
+    scene.value_label = colour;
   } else if (colour != "none") {
     std::string known;
     for (const auto& name : picture_quantities()) {
@@ -305,26 +263,35 @@ void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
     for (const auto& name : names) {
       known += ", " + name;
     }
+    for (const auto& data : vertex_data) {
+      known += ", " + data.name;
+    }
     TESSERA_CHECK(false, "--colour " << colour << ": unknown quantity (known: " << known << ")");
   }
   if (draw_boundary) {
     scene.curves = boundary_curves(TriangleMesh(scene.positions, scene.triangles));
   }
+  // Over the blue, orange and red of stability the curves are near-black: the dash tells the
+  // kind (fold solid, Hopf dashed, neutral saddle dotted).
+  const bool is_categorical = !scene.vertex_categories.empty();
   std::vector<Eigen::Vector3d> markers;
-  for (const Polyline& line : curves) {
-    PictureCurve curve;
-    const int rows = std::min(static_cast<int>(line.points.rows()), 3);
-    curve.points.setZero(3, line.points.cols());
-    curve.points.topRows(rows) = line.points.topRows(rows);
-    curve.is_closed = line.is_closed;
-    curve.rgb = {0.85, 0.1, 0.1};
-    curve.width = 2.5;
-    for (Eigen::Index i = 0; i < line.points.cols(); ++i) {
-      if (!line.marked.empty() && line.marked[static_cast<std::size_t>(i)]) {
-        markers.push_back(curve.points.col(i));
+  for (const PolylineFile& file : curve_files) {
+    const CurveKind kind = curve_kind_from_name(file.options.kind);
+    const CurveStyle style = is_categorical ? dark_curve_style(kind, file.options.kind)
+                                            : curve_style(kind, file.options.kind);
+    const PointKind point_kind = point_kind_from_marker_name(file.options.marker_name);
+    for (const Polyline& line : file.polylines) {
+      const int rows = std::min(static_cast<int>(line.points.rows()), 3);
+      Eigen::Matrix3Xd points = Eigen::Matrix3Xd::Zero(3, line.points.cols());
+      points.topRows(rows) = line.points.topRows(rows);
+      for (Eigen::Index i = 0; i < line.points.cols(); ++i) {
+        if (!line.marked.empty() && line.marked[static_cast<std::size_t>(i)]) {
+          markers.push_back(points.col(i));
+          scene.marker_kinds.push_back(point_kind);
+        }
       }
+      scene.curves.push_back(styled_curve(std::move(points), line.is_closed, style));
     }
-    scene.curves.push_back(std::move(curve));
   }
   scene.markers.resize(3, static_cast<Eigen::Index>(markers.size()));
   for (std::size_t i = 0; i < markers.size(); ++i) {
@@ -335,8 +302,8 @@ void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
 
 CLI::App* add_render_command(CLI::App& app, RenderCommand& command) {
   auto* render = app.add_subcommand("render", "draw a mesh as a picture (.png or .svg)");
-  render->add_option("mesh", command.mesh, "mesh file (.ply, .obj, .vtk, .vtu or .npy states)")
-      ->required();
+  render->add_option("mesh", command.mesh,
+                     "mesh file (.ply, .obj, .vtk, .vtu or .npy states); none with --diagram");
   render->add_option("-o,--output", command.output, "picture file: .png or .svg")->required();
   render->add_option("--problem,-p", command.problem,
                      "catalogue name or problem file: coordinate names, --view, --colour distance");
@@ -346,10 +313,17 @@ CLI::App* add_render_command(CLI::App& app, RenderCommand& command) {
   render->add_option("--colour,--color", command.colour,
                      "colour the triangles by: height (the third coordinate, default), a "
                      "coordinate or view column name, min-angle, area, curvature (Gauss, angle "
-                     "deficit), distance (of the centroid to M; needs --problem) or none");
+                     "deficit), distance (of the centroid to M; needs --problem), stability (by "
+                     "the file's unstable_count, from `mesh --stability`), a vertex data array "
+                     "of the file by name, or none");
   render->add_option("--curves", command.curves,
-                     "polylines drawn over the surface: the .json or .csv fold curves of `mesh "
-                     "--folds` (in the same view); marked points (cusps) as dots");
+                     "polylines drawn over the surface (or in the --diagram), repeatable: .json "
+                     "or .csv curve files of `mesh --folds` and the like, drawn by their kind "
+                     "(fold solid, hopf dashed, neutral_saddle dotted); marked points by their "
+                     "marker (cusp triangle, bogdanov_takens square, zero_hopf diamond)");
+  render->add_option("--diagram", command.diagram,
+                     "P1,P2: draw the two-parameter bifurcation diagram of the --curves files "
+                     "over their columns P1 and P2 instead of a mesh");
   render->add_option("--azimuth", command.azimuth, "camera azimuth about the third axis, degrees (default -60)");
   render->add_option("--elevation", command.elevation, "camera elevation, degrees (default 30)")
       ->check(CLI::Range(-90.0, 90.0));
@@ -372,11 +346,45 @@ CLI::App* add_render_command(CLI::App& app, RenderCommand& command) {
   return render;
 }
 
+int run_diagram(const RenderCommand& command, int width, int height) {
+  const auto [p1, p2] = parse_parameter_pair(command.diagram);
+  TESSERA_CHECK(command.mesh.empty(),
+                "--diagram draws the --curves files alone; leave out the "
+                "mesh '"
+                    << command.mesh << "'");
+  TESSERA_CHECK(!command.curves.empty(),
+                "--diagram " << command.diagram << " needs --curves FILE (repeatable), e.g. "
+                             << "--curves X.folds.json --curves X.hopf.json");
+  BifurcationDiagramScene scene;
+  scene.parameter_names = {p1, p2};
+  for (const auto& path : command.curves) {
+    const PolylineFile file = read_polylines(path);
+    try {
+      add_to_diagram(scene, file.polylines, file.options, p1, p2);
+    } catch (const InvalidArgument& error) {
+      throw InvalidArgument("--diagram " + command.diagram + ": " + path + ": " + error.what());
+    }
+  }
+  BifurcationDiagramOptions options;
+  options.width = width;
+  options.height = height;
+  options.title = command.title;
+  write_bifurcation_diagram(command.output, scene, options);
+  std::cout << "wrote " << command.output << "\n";
+  return 0;
+}
+
 int run_render(const RenderCommand& command) {
   TESSERA_CHECK(is_picture_file(command.output),
                 "-o " << command.output << ": a picture is .png or .svg");
   check_output_folder(command.output);
   const auto [width, height] = parse_size(command.size);
+  if (!command.diagram.empty()) {
+    return run_diagram(command, width, height);
+  }
+  TESSERA_CHECK(!command.mesh.empty(),
+                "render needs a mesh file (or --diagram P1,P2 with "
+                "--curves files)");
   PictureOptions options;
   options.width = width;
   options.height = height;
@@ -399,9 +407,17 @@ int run_render(const RenderCommand& command) {
   if (!command.problem.empty()) {
     setup = resolve_problem(command.problem);
   }
-  const std::vector<Polyline> curves =
-      command.curves.empty() ? std::vector<Polyline>() : read_polylines(command.curves);
-  const TriangleMesh mesh = read_mesh(command.mesh);
+  std::vector<PolylineFile> curves;
+  for (const auto& path : command.curves) {
+    curves.push_back(read_polylines(path));
+  }
+  std::vector<VertexScalars> vertex_data;
+  const TriangleMesh mesh = read_mesh(command.mesh, vertex_data);
+  TESSERA_CHECK(command.colour != "stability" || find_scalars(vertex_data, "unstable_count"),
+                "--colour stability: " << command.mesh
+                                       << " has no vertex data 'unstable_count' (the number of "
+                                          "unstable eigenvalues at each vertex); run tessera "
+                                          "mesh … --stability to write it");
   TESSERA_CHECK(mesh.triangle_count() > 0, command.mesh << ": the mesh has no triangles to draw");
   const int n = mesh.ambient_dimension();
   TESSERA_CHECK(!setup || setup->problem->ambient_dimension() == n,
@@ -430,8 +446,8 @@ int run_render(const RenderCommand& command) {
     }
   }
   options.edges = command.edges == "on" || (command.edges == "auto" && mesh.triangle_count() <= 20000);
-  write_mesh_picture(command.output, mesh, in_view, names, curves, command.colour, options,
-                     setup ? &*setup : nullptr, !command.no_boundary);
+  write_mesh_picture(command.output, mesh, in_view, names, curves, vertex_data, command.colour,
+                     options, setup ? &*setup : nullptr, !command.no_boundary);
   std::cout << "wrote " << command.output << "\n";
   return 0;
 }

@@ -8,18 +8,21 @@
 
 #include "tessera/geometry/triangle_mesh.h"
 #include "tessera/io/polylines.h"
+#include "tessera/io/vertex_data.h"
 #include "tessera/picture/picture.h"
 #include "tessera/problems/problem_setup.h"
 
 namespace tessera::app {
 
 struct RenderCommand {
-  std::string mesh;     ///< mesh file, any format read_mesh reads
+  std::string mesh;     ///< mesh file, any format read_mesh reads; empty with `diagram`
   std::string output;   ///< .png or .svg
   std::string problem;  ///< catalogue name or problem file: names, views, `distance`
   std::string view;     ///< with a problem: the view whose first three functionals are drawn
   std::string colour = "height";
-  std::string curves;  ///< polylines to draw over it (.json or .csv, as `mesh --folds` writes)
+  /// Polylines to draw over it or in the diagram (.json or .csv, as `mesh --folds` writes).
+  std::vector<std::string> curves;
+  std::string diagram;  ///< "P1,P2": the bifurcation diagram of `curves` over these columns
   std::string size = "800x600";
   std::string edges = "auto";
   std::string aspect = "auto";
@@ -48,6 +51,23 @@ std::vector<std::string> picture_quantities();
 void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
                         const TriangleMesh& mesh_in_view, const std::vector<std::string>& names,
                         const std::vector<Polyline>& curves, const std::string& colour,
+                        PictureOptions options, const ProblemSetup* setup,
+                        bool draw_boundary = true);
+
+/// As above, with curves of several kinds and the mesh's vertex data:
+/// - `curve_files`: each drawn in the style of its options.kind (fold red and solid, Hopf blue
+///   and dashed, neutral saddle grey and dotted; near-black over a stability colouring), its
+///   marked points in the shape of its options.marker_name (cusp, bogdanov_takens, zero_hopf);
+///   the columns of the polylines are the view's (as `mesh_in_view`).
+/// - `vertex_data`: one value per vertex of `mesh` each; `colour` may name one (the triangle's
+///   corner mean, viridis) or be "stability", which needs "unstable_count" (see
+///   colour_by_stability: stable, index 1, index >= 2, unknown, with a legend).
+/// \throw InvalidArgument as above, for "stability" without "unstable_count", and for vertex
+///        data of the wrong length.
+void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
+                        const TriangleMesh& mesh_in_view, const std::vector<std::string>& names,
+                        const std::vector<PolylineFile>& curve_files,
+                        const std::vector<VertexScalars>& vertex_data, const std::string& colour,
                         PictureOptions options, const ProblemSetup* setup,
                         bool draw_boundary = true);
 

@@ -9,6 +9,8 @@
 
 #include "tessera/core/error.h"
 #include "tessera/core/implicit_problem.h"
+#include "tessera/io/detail/file_buffer.h"
+#include "tessera/io/detail/mesh_parsers.h"
 #include "tessera/io/file_names.h"
 #include "tessera/io/npy.h"
 
@@ -153,6 +155,21 @@ TriangleMesh read_mesh(const std::string& path) {
   TESSERA_CHECK(false, "cannot read '" << path << "': unknown extension '" << extension
                                        << "'; supported: .ply, .obj, .vtk, .vtu, .npy (states)");
   return {};
+}
+
+TriangleMesh read_mesh(const std::string& path, std::vector<VertexScalars>& vertex_scalars) {
+  const std::string extension = lowercase_extension(path);
+  vertex_scalars.clear();
+  if (extension == ".ply") {
+    return io_detail::parse_ply(io_detail::read_file("PLY", path), path, {}, &vertex_scalars);
+  }
+  if (extension == ".vtk") {
+    return io_detail::parse_vtk(io_detail::read_file("VTK", path), path, &vertex_scalars);
+  }
+  if (extension == ".vtu") {
+    return io_detail::parse_vtu(io_detail::read_file("VTU", path), path, &vertex_scalars);
+  }
+  return read_mesh(path);
 }
 
 std::vector<std::string> read_coordinate_names(const std::string& path, int dimension) {

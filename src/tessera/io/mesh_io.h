@@ -47,6 +47,14 @@ void write_mesh(const std::string& path, const TriangleMesh& mesh,
 ///        whatever the chosen reader throws.
 TriangleMesh read_mesh(const std::string& path);
 
+/// read_mesh, and the named per-vertex data the file carries beside the coordinates into
+/// `vertex_scalars` (replaced): .ply the scalar vertex properties that are not coordinates,
+/// .vtk and .vtu the one-component point-data arrays after the coordinates, in file order, each
+/// with one value per vertex (e.g. `unstable_count` of `tessera mesh --stability`). .obj and
+/// .npy carry none.
+/// \throw as read_mesh.
+TriangleMesh read_mesh(const std::string& path, std::vector<VertexScalars>& vertex_scalars);
+
 /// The names of the `dimension` coordinates of the mesh file `path` as tessera wrote them, so
 /// that a mesh written in a view (`tessera mesh --view lambda,epsilon,max:u`) is labelled and
 /// coloured by its columns when it is read back:

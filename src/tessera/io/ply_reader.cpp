@@ -356,9 +356,11 @@ class BinarySource {
   const std::string& path_;
 };
 
+// `scalars` (or null): per vertex property, where its values go (null: not kept).
 template <class Source>
 void read_records(Source& source, const PlyHeader& header, const ReadPlan& plan,
-                  Eigen::MatrixXd& points, std::vector<Triangle>& triangles) {
+                  Eigen::MatrixXd& points, std::vector<Triangle>& triangles,
+                  const std::vector<std::vector<double>*>* scalars) {
   const std::int64_t vertex_count = points.cols();
   std::vector<std::int64_t> polygon;
   for (std::size_t e = 0; e < header.elements.size(); ++e) {
@@ -384,6 +386,8 @@ void read_records(Source& source, const PlyHeader& header, const ReadPlan& plan,
           }
           if (is_vertex && plan.coordinate_of_property[p] >= 0) {
             points(plan.coordinate_of_property[p], static_cast<Eigen::Index>(r)) = value;
+          } else if (is_vertex && scalars != nullptr && (*scalars)[p] != nullptr) {
+            (*scalars)[p]->push_back(value);
           }
           continue;
         }
@@ -437,7 +441,8 @@ TriangleMesh read_ply(const std::string& path, const std::vector<std::string>& c
 }
 
 TriangleMesh io_detail::parse_ply(const std::string& content, const std::string& path,
-                                  const std::vector<std::string>& coordinate_names) {
+                                  const std::vector<std::string>& coordinate_names,
+                                  std::vector<VertexScalars>* vertex_scalars) {
   const PlyHeader header = io_detail::parse_ply_header(content, path);
   const ReadPlan plan = make_plan(header, coordinate_names, path);
   const std::string_view data = std::string_view(content).substr(header.data_offset);
@@ -452,14 +457,33 @@ TriangleMesh io_detail::parse_ply(const std::string& content, const std::string&
     triangles.reserve(static_cast<std::size_t>(
         header.elements[static_cast<std::size_t>(plan.face_element)].count));
   }
+  // The scalar vertex properties that are not coordinates, when asked for; they grow with the
+  // values read, not with the count claimed.
+  std::vector<std::vector<double>*> scalar_of_property;
+  if (vertex_scalars != nullptr) {
+    vertex_scalars->clear();
+    for (std::size_t p = 0; p < vertex.properties.size(); ++p) {
+      if (!vertex.properties[p].is_list && plan.coordinate_of_property[p] < 0) {
+        vertex_scalars->push_back({vertex.properties[p].name, {}});
+      }
+    }
+    std::size_t next = 0;
+    scalar_of_property.assign(vertex.properties.size(), nullptr);
+    for (std::size_t p = 0; p < vertex.properties.size(); ++p) {
+      if (!vertex.properties[p].is_list && plan.coordinate_of_property[p] < 0) {
+        scalar_of_property[p] = &(*vertex_scalars)[next++].values;
+      }
+    }
+  }
+  const auto* scalars = vertex_scalars != nullptr ? &scalar_of_property : nullptr;
   if (header.encoding == PlyEncoding::Ascii) {
     AsciiSource source(data, header.data_line, path);
-    read_records(source, header, plan, points, triangles);
+    read_records(source, header, plan, points, triangles, scalars);
   } else {
     const bool file_is_little = header.encoding == PlyEncoding::BinaryLittleEndian;
     const bool host_is_little = std::endian::native == std::endian::little;
     BinarySource source(data, file_is_little != host_is_little, path);
-    read_records(source, header, plan, points, triangles);
+    read_records(source, header, plan, points, triangles, scalars);
   }
   return TriangleMesh(points, std::move(triangles));
 }

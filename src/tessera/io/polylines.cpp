@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/io/polylines.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "tessera/core/error.h"
 #include "tessera/io/file_names.h"
@@ -76,6 +80,9 @@ void write_vtk(const std::string& path, const std::vector<Polyline>& polylines,
                const PolylineFileOptions& options) {
   io_detail::OutputFile file("VTK", path);
   std::string title = "tessera polylines";
+  if (!options.kind.empty()) {
+    title += "; kind: " + options.kind;
+  }
   for (const auto& comment : options.comments) {
     title += "; " + comment;
   }
@@ -143,6 +150,9 @@ void write_vtu(const std::string& path, const std::vector<Polyline>& polylines,
   io_detail::OutputFile file("VTU", path);
   const auto lines = line_indices(polylines);
   file.text("<?xml version=\"1.0\"?>\n");
+  if (!options.kind.empty()) {
+    file.text("<!-- kind: " + options.kind + " -->\n");
+  }
   for (const auto& comment : options.comments) {
     std::string text = comment;
     for (std::size_t at = text.find("--"); at != std::string::npos; at = text.find("--")) {
@@ -211,6 +221,9 @@ void write_ply(const std::string& path, const std::vector<Polyline>& polylines,
     edge_count += std::max<long>(0, static_cast<long>(indices.size()) - 1);
   }
   file.text("ply\nformat ascii 1.0\n");
+  if (!options.kind.empty()) {
+    file.text("comment kind: " + options.kind + "\n");
+  }
   for (const auto& comment : options.comments) {
     file.text("comment " + comment + "\n");
   }
@@ -252,6 +265,9 @@ void write_json(const std::string& path, const std::vector<Polyline>& polylines,
   nlohmann::json document;
   document["columns"] = options.names;
   document["marker"] = options.marker_name;
+  if (!options.kind.empty()) {
+    document["kind"] = options.kind;
+  }
   document["comments"] = options.comments;
   document["polylines"] = nlohmann::json::array();
   for (const Polyline& line : polylines) {
@@ -275,6 +291,9 @@ void write_csv(const std::string& path, const std::vector<Polyline>& polylines,
   io_detail::OutputFile file("CSV", path);
   for (const auto& comment : options.comments) {
     file.text("# " + comment + "\n");
+  }
+  if (!options.kind.empty()) {
+    file.text("# kind: " + options.kind + "\n");
   }
   file.text("curve,point");
   for (const auto& name : options.names) {
@@ -310,7 +329,227 @@ bool is_name(const std::string& name) {
   return true;
 }
 
+// Letters, digits and '_': a kind goes into comments of every format (an XML comment may not
+// hold "--").
+bool is_word(const std::string& text) {
+  return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+[[noreturn]] void refuse(const std::string& path, const std::string& message) {
+  throw InvalidArgument("polylines file '" + path + "': " + message);
+}
+
+// The JSON type of `value` in words, for messages.
+std::string type_of(const nlohmann::json& value) { return std::string(value.type_name()); }
+
+PolylineFile read_json(const std::string& path, const std::string& text) {
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& error) {
+    // error.what() is nlohmann's wording ("[json.exception.parse_error.101] ..."); the byte is
+    // what a user needs to find the fault.
+    refuse(path, "not valid JSON (the syntax breaks at byte " + std::to_string(error.byte) +
+                     "); expected the JSON polylines of `tessera mesh --folds-output`");
+  }
+  PolylineFile file;
+  if (!document.is_object() || !document.contains("polylines")) {
+    refuse(path,
+           "expected an object with \"polylines\" (the JSON of `tessera mesh "
+           "--folds-output`), found " +
+               (document.is_object() ? std::string("an object without it")
+                                     : "a JSON " + type_of(document)));
+  }
+  auto text_field = [&](const char* key, std::string& out) {
+    if (!document.contains(key)) {
+      return;
+    }
+    if (!document[key].is_string()) {
+      refuse(path,
+             std::string("\"") + key + "\" must be a string, found a " + type_of(document[key]));
+    }
+    out = document[key].get<std::string>();
+  };
+  text_field("marker", file.options.marker_name);
+  text_field("kind", file.options.kind);
+  if (document.contains("columns")) {
+    const auto& columns = document["columns"];
+    if (!columns.is_array() ||
+        !std::all_of(columns.begin(), columns.end(), [](const auto& c) { return c.is_string(); })) {
+      refuse(path, "\"columns\" must be an array of names");
+    }
+    for (const auto& column : columns) {
+      file.options.names.push_back(column.get<std::string>());
+    }
+  }
+  if (document.contains("comments") && document["comments"].is_array()) {
+    for (const auto& comment : document["comments"]) {
+      if (comment.is_string()) {
+        file.options.comments.push_back(comment.get<std::string>());
+      }
+    }
+  }
+  const auto& polylines = document["polylines"];
+  if (!polylines.is_array()) {
+    refuse(path, "\"polylines\" must be an array, found a " + type_of(polylines));
+  }
+  int k = file.options.names.empty() ? -1 : static_cast<int>(file.options.names.size());
+  for (std::size_t l = 0; l < polylines.size(); ++l) {
+    const auto& item = polylines[l];
+    const std::string where = "polyline " + std::to_string(l);
+    if (!item.is_object() || !item.contains("points") || !item["points"].is_array()) {
+      refuse(path, where + " must be an object with \"points\", an array of points");
+    }
+    const auto& points = item["points"];
+    Polyline line;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const auto& point = points[i];
+      const std::string at = where + ", point " + std::to_string(i);
+      if (!point.is_array() ||
+          !std::all_of(point.begin(), point.end(), [](const auto& x) { return x.is_number(); })) {
+        refuse(path, at + " must be an array of numbers");
+      }
+      if (k < 0) {
+        k = static_cast<int>(point.size());
+      }
+      if (static_cast<int>(point.size()) != k || k < 2) {
+        refuse(path, at + " has " + std::to_string(point.size()) + " coordinates, expected " +
+                         (k < 2 ? std::string("at least 2") : std::to_string(k)) +
+                         (file.options.names.empty() ? "" : " (the \"columns\")"));
+      }
+      if (line.points.cols() == 0) {
+        line.points.resize(k, static_cast<Eigen::Index>(points.size()));
+      }
+      for (int c = 0; c < k; ++c) {
+        const double value = point[static_cast<std::size_t>(c)].get<double>();
+        if (!std::isfinite(value)) {
+          refuse(path, at + " has a coordinate that is not finite");
+        }
+        line.points(c, static_cast<Eigen::Index>(i)) = value;
+      }
+    }
+    line.marked.assign(points.size(), false);
+    if (item.contains("marked")) {
+      const auto& marked = item["marked"];
+      if (!marked.is_array()) {
+        refuse(path, where + ": \"marked\" must be an array of point indices");
+      }
+      for (const auto& index : marked) {
+        if (!index.is_number_unsigned() || index.get<std::size_t>() >= points.size()) {
+          refuse(path, where + ": \"marked\" holds " + index.dump() + ", not an index of its " +
+                           std::to_string(points.size()) + " points");
+        }
+        line.marked[index.get<std::size_t>()] = true;
+      }
+    }
+    if (item.contains("closed")) {
+      if (!item["closed"].is_boolean()) {
+        refuse(path, where + ": \"closed\" must be true or false");
+      }
+      line.is_closed = item["closed"].get<bool>();
+    }
+    file.polylines.push_back(std::move(line));
+  }
+  return file;
+}
+
+PolylineFile read_csv(const std::string& path, const std::string& text) {
+  PolylineFile file;
+  std::stringstream stream(text);
+  std::string line_text;
+  bool has_header = false;
+  int columns = 0;
+  std::string current;
+  int line_number = 0;
+  auto fail = [&](const std::string& message) {
+    refuse(path, "line " + std::to_string(line_number) + ": " + message);
+  };
+  while (std::getline(stream, line_text)) {
+    ++line_number;
+    if (!line_text.empty() && line_text.back() == '\r') {
+      line_text.pop_back();  // a file written on Windows
+    }
+    if (line_text.empty()) {
+      continue;
+    }
+    if (line_text[0] == '#') {
+      const std::string comment =
+          line_text.substr(line_text.find_first_not_of("# ") == std::string::npos
+                               ? line_text.size()
+                               : line_text.find_first_not_of("# "));
+      if (comment.rfind("kind:", 0) == 0) {
+        std::stringstream words(comment.substr(5));
+        words >> file.options.kind;
+      } else if (!has_header) {
+        file.options.comments.push_back(comment);
+      }
+      continue;
+    }
+    std::vector<std::string> fields;
+    std::stringstream row(line_text);
+    for (std::string field; std::getline(row, field, ',');) {
+      fields.push_back(field);
+    }
+    if (!has_header) {
+      if (fields.size() < 5 || fields[0] != "curve" || fields[1] != "point") {
+        fail("expected the header curve,point,<columns>,<marks> (at least two columns)");
+      }
+      columns = static_cast<int>(fields.size()) - 3;
+      file.options.names.assign(fields.begin() + 2, fields.end() - 1);
+      file.options.marker_name = fields.back();
+      has_header = true;
+      continue;
+    }
+    if (static_cast<int>(fields.size()) != columns + 3) {
+      fail(std::to_string(fields.size()) + " fields, the header has " +
+           std::to_string(columns + 3));
+    }
+    if (file.polylines.empty() || fields[0] != current) {
+      file.polylines.emplace_back();
+      file.polylines.back().points.resize(columns, 0);
+      current = fields[0];
+    }
+    Polyline& line = file.polylines.back();
+    const auto m = line.points.cols();
+    line.points.conservativeResize(Eigen::NoChange, m + 1);
+    for (int c = 0; c < columns; ++c) {
+      const std::string& field = fields[static_cast<std::size_t>(2 + c)];
+      double value = 0;
+      std::size_t used = 0;
+      try {
+        value = std::stod(field, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != field.size() || !std::isfinite(value)) {
+        fail("not a finite number in column " + file.options.names[static_cast<std::size_t>(c)] +
+             ": '" + field + "'");
+      }
+      line.points(c, m) = value;
+    }
+    line.marked.push_back(fields.back() == "1");
+  }
+  if (!has_header) {
+    refuse(path, "no header line curve,point,<columns>,<marks>");
+  }
+  return file;
+}
+
 }  // namespace
+
+PolylineFile read_polylines(const std::string& path) {
+  const std::string extension = lowercase_extension(path);
+  if (extension != ".json" && extension != ".csv") {
+    refuse(path,
+           "polylines are read from .json or .csv (as `tessera mesh --folds-output` "
+           "writes them), not '" +
+               extension + "'");
+  }
+  const std::string text = io_detail::read_file(extension == ".json" ? "JSON" : "CSV", path);
+  return extension == ".json" ? read_json(path, text) : read_csv(path, text);
+}
 
 bool is_polyline_file(const std::string& path) {
   static const std::set<std::string> known = {".vtk", ".vtu", ".ply", ".json", ".csv"};
@@ -325,6 +564,9 @@ void write_polylines(const std::string& path, const std::vector<Polyline>& polyl
   std::set<std::string> seen{options.marker_name};
   TESSERA_CHECK(is_name(options.marker_name),
                 "polylines '" << path << "': bad marker name '" << options.marker_name << "'");
+  TESSERA_CHECK(options.kind.empty() || is_word(options.kind),
+                "polylines '" << path << "': bad kind '" << options.kind
+                              << "' (a word such as fold, hopf, neutral_saddle, level)");
   for (const auto& name : options.names) {
     TESSERA_CHECK(is_name(name), "polylines '" << path << "': bad coordinate name '" << name
                                                << "' (empty, or with a space, comma or quote)");

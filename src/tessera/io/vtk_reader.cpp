@@ -218,7 +218,8 @@ std::string_view header_line(const std::string& content, std::size_t& position) 
 
 }  // namespace
 
-TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string& path) {
+TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string& path,
+                                  std::vector<VertexScalars>* vertex_scalars) {
   std::size_t position = 0;
   const std::string_view version = header_line(content, position);
   if (!starts_with_ignoring_case(version, "# vtk DataFile Version")) {
@@ -352,7 +353,8 @@ TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string&
   }
   return io_detail::assemble(
       dimension, *xyz, arrays, std::move(triangles),
-      [&](const std::string& message) { io_detail::throw_file_error(kVtk, path, message); });
+      [&](const std::string& message) { io_detail::throw_file_error(kVtk, path, message); },
+      vertex_scalars);
 }
 
 TriangleMesh read_vtk(const std::string& path) {

@@ -39,7 +39,7 @@ class VtuReader {
  public:
   VtuReader(const std::string& content, const std::string& path) : document_(kVtu, content, path) {}
 
-  TriangleMesh read() {
+  TriangleMesh read(std::vector<VertexScalars>* vertex_scalars) {
     const XmlElement& root = document_.root();
     if (root.name != "VTKFile") {
       fail(root, "the root element is '<" + root.name + ">', expected '<VTKFile>'");
@@ -132,8 +132,9 @@ class VtuReader {
         break;
       }
     }
-    return io_detail::assemble(dimension, xyz, arrays, std::move(triangles),
-                               [&](const std::string& message) { fail(piece, message); });
+    return io_detail::assemble(
+        dimension, xyz, arrays, std::move(triangles),
+        [&](const std::string& message) { fail(piece, message); }, vertex_scalars);
   }
 
  private:
@@ -263,8 +264,9 @@ class VtuReader {
 
 }  // namespace
 
-TriangleMesh io_detail::parse_vtu(const std::string& content, const std::string& path) {
-  return VtuReader(content, path).read();
+TriangleMesh io_detail::parse_vtu(const std::string& content, const std::string& path,
+                                  std::vector<VertexScalars>* vertex_scalars) {
+  return VtuReader(content, path).read(vertex_scalars);
 }
 
 TriangleMesh read_vtu(const std::string& path) {

@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/picture/picture.h"
 
-#include <cairo-svg.h>
-#include <cairo.h>
-
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -16,12 +13,14 @@
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/planar.h"
-#include "tessera/io/detail/file_buffer.h"
 #include "tessera/io/file_names.h"
+#include "tessera/picture/detail/cairo_drawing.h"
 
 namespace tessera {
 
 namespace {
+
+using picture_detail::LegendEntry;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kColourBarWidth = 110;  // pixels kept on the right for the bar and its labels
@@ -47,6 +46,31 @@ void check_scene(const PictureScene& scene, const PictureOptions& options) {
                   "picture: curve " << c << " has a point that is not finite");
   }
   TESSERA_CHECK(scene.markers.allFinite(), "picture: a marker is not finite");
+  TESSERA_CHECK(scene.marker_kinds.empty() ||
+                    scene.marker_kinds.size() == static_cast<std::size_t>(scene.markers.cols()),
+                "picture: " << scene.marker_kinds.size() << " marker kinds for "
+                            << scene.markers.cols() << " markers");
+  const bool has_categories =
+      !scene.vertex_categories.empty() || !scene.triangle_categories.empty();
+  TESSERA_CHECK(scene.vertex_categories.empty() || scene.triangle_categories.empty(),
+                "picture: categories per vertex and per triangle at once; give one");
+  TESSERA_CHECK(!has_categories || scene.triangle_values.size() == 0,
+                "picture: values and categories at once; colour by one");
+  TESSERA_CHECK(scene.vertex_categories.empty() ||
+                    scene.vertex_categories.size() == static_cast<std::size_t>(vertex_count),
+                "picture: " << scene.vertex_categories.size() << " vertex categories for "
+                            << vertex_count << " vertices");
+  TESSERA_CHECK(scene.triangle_categories.empty() ||
+                    scene.triangle_categories.size() == scene.triangles.size(),
+                "picture: " << scene.triangle_categories.size() << " triangle categories for "
+                            << scene.triangles.size() << " triangles");
+  for (const auto* categories : {&scene.vertex_categories, &scene.triangle_categories}) {
+    for (const int category : *categories) {
+      TESSERA_CHECK(category >= 0 && category < static_cast<int>(scene.categories.size()),
+                    "picture: category " << category << " of " << scene.categories.size()
+                                         << " (PictureScene::categories)");
+    }
+  }
   TESSERA_CHECK(scene.triangle_values.size() == 0 ||
                     scene.triangle_values.size() == static_cast<Eigen::Index>(scene.triangles.size()),
                 "picture: " << scene.triangle_values.size() << " values for "
@@ -226,14 +250,39 @@ void stroke_curve(cairo_t* cr, const PictureCurve& curve, bool is_seen) {
   cairo_set_source_rgb(cr, curve.rgb[0], curve.rgb[1], curve.rgb[2]);
   if (is_seen) {
     cairo_set_line_width(cr, curve.width);
-    cairo_set_dash(cr, nullptr, 0, 0.0);
+    picture_detail::set_dash(cr, curve.dash, curve.width);
   } else {
     const double dash[] = {4.0, 3.0};
     cairo_set_line_width(cr, 0.6 * curve.width);
     cairo_set_dash(cr, dash, 2, 0.0);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
   }
   cairo_stroke(cr);
-  cairo_set_dash(cr, nullptr, 0, 0.0);
+  picture_detail::set_dash(cr, CurveDash::Solid, curve.width);
+}
+
+bool has_categories(const PictureScene& scene) {
+  return !scene.vertex_categories.empty() || !scene.triangle_categories.empty();
+}
+
+// The legend's entries: the categories (of a categorical scene), the labelled curves, the kinds
+// of markers.
+std::vector<LegendEntry> legend_entries(const PictureScene& scene) {
+  std::vector<LegendEntry> entries;
+  if (has_categories(scene)) {
+    for (const auto& category : scene.categories) {
+      entries.push_back({LegendEntry::Sample::Swatch, category.label, category.rgb});
+    }
+  }
+  std::vector<CurveStyle> styles;
+  for (const auto& curve : scene.curves) {
+    styles.push_back({curve.rgb, curve.width, curve.dash, curve.label});
+  }
+  picture_detail::append_curve_entries(styles, entries);
+  if (!scene.marker_kinds.empty()) {
+    picture_detail::append_point_entries(scene.marker_kinds, entries);
+  }
+  return entries;
 }
 
 // A colour bar label. The inner ticks are low + i·(high − low)/4; where the range straddles 0
@@ -251,7 +300,19 @@ std::string label_of(double value, double range, bool is_inner) {
 void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options) {
   const bool has_values = scene.triangle_values.size() > 0;
   const bool has_bar = has_values && options.colour_bar;
-  const double frame_width = options.width - (has_bar ? kColourBarWidth : 0);
+  const bool is_categorical = has_categories(scene);
+  const std::vector<LegendEntry> legend =
+      options.legend ? legend_entries(scene) : std::vector<LegendEntry>();
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, 12.0);
+  // The right panel: the colour bar, or the legend of a categorical scene in its place.
+  const bool has_side_legend = is_categorical && !legend.empty();
+  const double panel_width =
+      has_bar ? kColourBarWidth
+      : has_side_legend
+          ? std::min(0.4 * options.width, picture_detail::legend_width(cr, legend) + 12.0)
+          : 0.0;
+  const double frame_width = options.width - panel_width;
   const double top = options.title.empty() ? 0.0 : kTitleHeight;
   const Camera camera(scene, options, 0.0, top, frame_width, options.height - top);
 
@@ -274,7 +335,21 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
       low = 0.0, high = 1.0;
     }
   }
+  // The category of corner k of triangle t, or -1 without categories.
+  auto category_of = [&](std::size_t t, int k) -> int {
+    if (!scene.triangle_categories.empty()) {
+      return scene.triangle_categories[t];
+    }
+    if (!scene.vertex_categories.empty()) {
+      return scene.vertex_categories[static_cast<std::size_t>(
+          scene.triangles[t][static_cast<std::size_t>(k)])];
+    }
+    return -1;
+  };
   auto colour_of = [&](std::size_t t) -> std::array<double, 3> {
+    if (is_categorical) {
+      return scene.categories[static_cast<std::size_t>(category_of(t, 0))].rgb;
+    }
     if (!has_values) {
       return options.surface_rgb;
     }
@@ -312,9 +387,51 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
     // Lambert shading, two-sided, light at the eye; the ambient part keeps grazing faces visible.
     const double light = options.flat_shading ? 1.0 : 0.35 + 0.65 * camera.facing(scene.positions.col(a), scene.positions.col(b),
                                                      scene.positions.col(c));
-    const auto rgb = colour_of(static_cast<std::size_t>(t));
-    cairo_set_source_rgb(cr, light * rgb[0], light * rgb[1], light * rgb[2]);
-    cairo_fill_preserve(cr);
+    auto rgb = colour_of(static_cast<std::size_t>(t));
+    const int c0 = category_of(static_cast<std::size_t>(t), 0);
+    const int c1 = category_of(static_cast<std::size_t>(t), 1);
+    const int c2 = category_of(static_cast<std::size_t>(t), 2);
+    if (c0 != c1 || c1 != c2) {
+      // Corners of different categories: the part of each corner (the corner, the midpoints of
+      // its two edges, the centroid) in its colour, each stroked thinly in its own colour to
+      // close the seams between parts; the edge below is stroked in the parts' mean shade.
+      cairo_new_path(cr);
+      const Eigen::Vector2d corners[3] = {pa, pb, pc};
+      const Eigen::Vector2d centroid = (pa + pb + pc) / 3.0;
+      std::array<double, 3> mean = {0.0, 0.0, 0.0};
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector2d& corner = corners[k];
+        const Eigen::Vector2d next = 0.5 * (corner + corners[(k + 1) % 3]);
+        const Eigen::Vector2d previous = 0.5 * (corner + corners[(k + 2) % 3]);
+        cairo_move_to(cr, corner(0), corner(1));
+        cairo_line_to(cr, next(0), next(1));
+        cairo_line_to(cr, centroid(0), centroid(1));
+        cairo_line_to(cr, previous(0), previous(1));
+        cairo_close_path(cr);
+        const auto& part =
+            scene.categories[static_cast<std::size_t>(category_of(static_cast<std::size_t>(t), k))]
+                .rgb;
+        cairo_set_source_rgb(cr, light * part[0], light * part[1], light * part[2]);
+        cairo_fill_preserve(cr);
+        cairo_set_line_width(cr, 0.8);
+        cairo_stroke(cr);
+        for (int c = 0; c < 3; ++c) {
+          mean[static_cast<std::size_t>(c)] += part[static_cast<std::size_t>(c)] / 3.0;
+        }
+      }
+      rgb = mean;
+      cairo_move_to(cr, pa(0), pa(1));
+      cairo_line_to(cr, pb(0), pb(1));
+      cairo_line_to(cr, pc(0), pc(1));
+      cairo_close_path(cr);
+      if (!options.edges) {
+        cairo_new_path(cr);
+        continue;
+      }
+    } else {
+      cairo_set_source_rgb(cr, light * rgb[0], light * rgb[1], light * rgb[2]);
+      cairo_fill_preserve(cr);
+    }
     // Antialiased fills of neighbours leave a faint seam along shared edges; a thin stroke in
     // the fill colour closes it (or, with edges on, the edge itself in a darker shade). Not
     // CAIRO_ANTIALIAS_NONE: jagged silhouettes in PNG, and SVG viewers antialias anyway.
@@ -356,16 +473,13 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
   }
   for (Eigen::Index i = 0; i < scene.markers.cols(); ++i) {
     const Eigen::Vector2d p = camera.pixel(scene.markers.col(i));
-    cairo_arc(cr, p(0), p(1), 5.0, 0.0, 2 * kPi);
-    cairo_set_source_rgb(cr, 1.0, 0.85, 0.1);
-    cairo_fill_preserve(cr);
-    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    cairo_set_line_width(cr, 1.2);
-    cairo_stroke(cr);
+    picture_detail::draw_marker(cr,
+                                scene.marker_kinds.empty()
+                                    ? PointKind::Generic
+                                    : scene.marker_kinds[static_cast<std::size_t>(i)],
+                                p(0), p(1));
   }
 
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, 12.0);
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
   if (!options.title.empty()) {
     cairo_move_to(cr, 8.0, 17.0);
@@ -375,7 +489,7 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
     // A triad at the lower left: each axis's screen direction, 28 pixels long, named.
     // Beneath the colour bar where there is one (the surface fills the frame), else at the
     // lower left.
-    const Eigen::Vector2d origin(has_bar ? options.width - kColourBarWidth / 2.0 : 45.0,
+    const Eigen::Vector2d origin(panel_width > 0 ? options.width - panel_width / 2.0 : 45.0,
                                  options.height - 45.0);
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector2d direction = camera.axis_direction(k);
@@ -418,38 +532,16 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
     cairo_move_to(cr, x0 - 8.0, y0 - 12.0);
     cairo_show_text(cr, scene.value_label.c_str());
   }
-}
-
-// cairo writes PNG and SVG through this callback into memory; the file is then replaced
-// atomically like every other output.
-cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
-  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
-  return CAIRO_STATUS_SUCCESS;
-}
-
-struct SurfaceDeleter {
-  void operator()(cairo_surface_t* surface) const { cairo_surface_destroy(surface); }
-};
-struct ContextDeleter {
-  void operator()(cairo_t* cr) const { cairo_destroy(cr); }
-};
-using Surface = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
-using Context = std::unique_ptr<cairo_t, ContextDeleter>;
-
-void check_status(cairo_status_t status, const std::string& what) {
-  TESSERA_CHECK(status == CAIRO_STATUS_SUCCESS,
-                what << ": cairo says " << cairo_status_to_string(status));
-}
-
-Surface draw_image(const PictureScene& scene, const PictureOptions& options) {
-  check_scene(scene, options);
-  Surface surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, options.width, options.height));
-  check_status(cairo_surface_status(surface.get()), "picture");
-  Context cr(cairo_create(surface.get()));
-  draw(cr.get(), scene, options);
-  check_status(cairo_status(cr.get()), "picture");
-  cairo_surface_flush(surface.get());
-  return surface;
+  if (has_side_legend) {
+    if (!scene.value_label.empty()) {
+      cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+      cairo_move_to(cr, frame_width + 6.0, top + 18.0);
+      cairo_show_text(cr, scene.value_label.c_str());
+    }
+    picture_detail::draw_legend(cr, legend, frame_width, top + 26.0, false);
+  } else if (!legend.empty()) {
+    picture_detail::draw_legend(cr, legend, 6.0, top + 6.0, true);
+  }
 }
 
 }  // namespace
@@ -472,19 +564,9 @@ std::array<double, 3> viridis(double t) {
 }
 
 PictureImage render_picture(const PictureScene& scene, const PictureOptions& options) {
-  const Surface surface = draw_image(scene, options);
-  PictureImage image;
-  image.width = options.width;
-  image.height = options.height;
-  image.pixels.resize(static_cast<std::size_t>(options.width) * static_cast<std::size_t>(options.height));
-  const unsigned char* data = cairo_image_surface_get_data(surface.get());
-  const int stride = cairo_image_surface_get_stride(surface.get());
-  for (int y = 0; y < options.height; ++y) {
-    const auto* row = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-    std::copy(row, row + options.width,
-              image.pixels.begin() + static_cast<std::ptrdiff_t>(y) * options.width);
-  }
-  return image;
+  check_scene(scene, options);
+  return picture_detail::render_image(options.width, options.height,
+                                      [&](cairo_t* cr) { draw(cr, scene, options); });
 }
 
 bool is_picture_file(const std::string& path) {
@@ -498,24 +580,34 @@ void write_picture(const std::string& path, const PictureScene& scene,
   TESSERA_CHECK(extension == ".png" || extension == ".svg",
                 "cannot write the picture '" << path << "': unknown extension '" << extension
                                              << "' (use .png or .svg)");
-  std::string bytes;
-  if (extension == ".png") {
-    const Surface surface = draw_image(scene, options);
-    check_status(cairo_surface_write_to_png_stream(surface.get(), append_to_string, &bytes),
-                 "picture '" + path + "'");
-  } else {
-    check_scene(scene, options);
-    {
-      Surface surface(cairo_svg_surface_create_for_stream(append_to_string, &bytes, options.width,
-                                                          options.height));
-      check_status(cairo_surface_status(surface.get()), "picture '" + path + "'");
-      Context cr(cairo_create(surface.get()));
-      draw(cr.get(), scene, options);
-      check_status(cairo_status(cr.get()), "picture '" + path + "'");
-      cairo_surface_finish(surface.get());  // the SVG's last bytes go to `bytes` here
-    }
+  check_scene(scene, options);
+  picture_detail::write_drawing(
+      path, options.width, options.height, [&](cairo_t* cr) { draw(cr, scene, options); },
+      options.title, options.legend ? legend_entries(scene) : std::vector<LegendEntry>());
+}
+
+PictureCurve styled_curve(Eigen::Matrix3Xd points, bool is_closed, const CurveStyle& style) {
+  PictureCurve curve;
+  curve.points = std::move(points);
+  curve.is_closed = is_closed;
+  curve.rgb = style.rgb;
+  curve.width = style.width;
+  curve.dash = style.dash;
+  curve.label = style.label;
+  return curve;
+}
+
+void colour_by_stability(PictureScene& scene, const std::vector<double>& unstable_counts) {
+  TESSERA_CHECK(unstable_counts.size() == static_cast<std::size_t>(scene.positions.cols()),
+                "colour_by_stability: " << unstable_counts.size() << " unstable counts for "
+                                        << scene.positions.cols() << " vertices");
+  scene.categories = stability_categories();
+  scene.vertex_categories.resize(unstable_counts.size());
+  for (std::size_t v = 0; v < unstable_counts.size(); ++v) {
+    scene.vertex_categories[v] = stability_category(unstable_counts[v]);
   }
-  io_detail::write_whole_file(extension == ".png" ? "PNG" : "SVG", path, bytes);
+  scene.triangle_categories.clear();
+  scene.triangle_values.resize(0);
 }
 
 std::vector<PictureCurve> boundary_curves(const TriangleMesh& mesh_in_scene) {

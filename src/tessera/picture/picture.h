@@ -11,28 +11,56 @@
 #include <vector>
 
 #include "tessera/geometry/triangle_mesh.h"
+#include "tessera/picture/picture_styles.h"
 
 namespace tessera {
 
-/// A polyline drawn over the surface (a boundary, a fold curve).
+/// A polyline drawn over the surface (a boundary, a fold curve, a Hopf curve).
 struct PictureCurve {
   Eigen::Matrix3Xd points;                    ///< 3×m, in the scene's coordinates
   bool is_closed = false;                     ///< the last point joins the first
   std::array<double, 3> rgb = {0.8, 0.1, 0.1};  ///< colour, components in [0, 1]
   double width = 2.0;                         ///< line width in pixels
+  /// Where seen; a part hidden behind the surface is drawn thinner and finely dashed whatever
+  /// its dash (Hopf curves: dashed, neutral saddle curves: dotted; see curve_style).
+  CurveDash dash = CurveDash::Solid;
+  std::string label;  ///< its legend entry (curves of one label share one); empty: none
 };
 
+/// A curve styled as its kind: points, rgb, width, dash and label of `style`.
+PictureCurve styled_curve(Eigen::Matrix3Xd points, bool is_closed, const CurveStyle& style);
+
 /// What is drawn: triangles in R³ (the three coordinates of a view), optionally one value per
-/// triangle (colour), curves and marked points.
+/// triangle (viridis and a colour bar) or a category per vertex or triangle (its colour and a
+/// legend), curves and marked points.
 struct PictureScene {
   Eigen::Matrix3Xd positions;  ///< 3×V vertex positions
   std::vector<Triangle> triangles;
   Eigen::VectorXd triangle_values;  ///< one per triangle, or empty: one colour for all
   std::string value_label;          ///< the colour bar's title, e.g. "min angle (degrees)"
+  /// Categorical colouring (instead of values): the categories' colours and legend labels, and
+  /// either one category (index into `categories`) per vertex or one per triangle.
+  std::vector<PictureCategory> categories;
+  /// One per vertex, or empty. A triangle whose corners agree is drawn in their colour; one
+  /// whose corners differ is split through its edge midpoints and centroid into the three parts
+  /// nearest to its corners (each corner's share of the barycentric dual cell), each in its
+  /// corner's colour. So every vertex shows its category (a band one vertex wide does not
+  /// vanish, as it would under a majority vote) and a boundary between categories runs midway
+  /// between vertices that differ: within half an edge of the curve where the category changes
+  /// (a fold or Hopf curve), which is as close as vertex data can place it.
+  std::vector<int> vertex_categories;
+  std::vector<int> triangle_categories;  ///< one per triangle, or empty
   std::vector<PictureCurve> curves;
-  Eigen::Matrix3Xd markers;         ///< 3×k points drawn as dots (e.g. cusps); may be 3×0
+  Eigen::Matrix3Xd markers;             ///< 3×k marked points (e.g. cusps); may be 3×0
+  std::vector<PointKind> marker_kinds;  ///< k shapes, or empty: every marker Generic (a dot)
   std::array<std::string, 3> axis_names = {"x", "y", "z"};
 };
+
+/// Colours `scene` by stability: categories = stability_categories(), vertex_categories from
+/// stability_category of each vertex's count of unstable eigenvalues (−1 or NaN: unknown).
+/// Clears triangle_values and triangle_categories.
+/// \throw InvalidArgument if unstable_counts.size() != scene.positions.cols() (naming both).
+void colour_by_stability(PictureScene& scene, const std::vector<double>& unstable_counts);
 
 /// How the axes of the scene are scaled before the camera looks at it.
 enum class PictureAspect {
@@ -55,6 +83,10 @@ struct PictureOptions {
   bool perspective = false;   ///< else orthographic
   bool edges = true;          ///< draw the triangles' edges
   bool colour_bar = true;     ///< when the scene has values
+  /// The legend: at the right (in the colour bar's place) for a categorical scene, listing the
+  /// categories, the labelled curves and the kinds of markers; else, when there are labelled
+  /// curves or markers of a kind, in a box at the upper left.
+  bool legend = true;
   bool axes = true;           ///< a small triad naming the axes
   /// No shading: every triangle in its colour as it is (maps of data seen from above, where
   /// light would only darken steep triangles).
@@ -77,13 +109,15 @@ struct PictureImage {
 };
 
 /// The scene drawn into an image (what write_picture writes as PNG).
-/// \throw InvalidArgument for a scene with no triangles, indices out of range, values of the
-///        wrong count, non-finite positions (of vertices, curves or markers), or options out of
-///        range (the message names them).
+/// \throw InvalidArgument for a scene with no triangles, indices out of range, values or
+///        categories of the wrong count or out of range (or values and categories together),
+///        marker kinds of the wrong count, non-finite positions (of vertices, curves or
+///        markers), or options out of range (the message names them).
 PictureImage render_picture(const PictureScene& scene, const PictureOptions& options);
 
 /// Writes the picture to `path`: .png (raster) or .svg (vector; the same drawing), by extension
-/// (case-insensitive); the file is replaced atomically.
+/// (case-insensitive); the file is replaced atomically. An SVG holds the title as `<title>` and
+/// the legend's labels in `<desc>` (cairo draws text as outlines).
 /// \throw InvalidArgument as render_picture, for another extension (naming both) and if the
 ///        file cannot be written.
 void write_picture(const std::string& path, const PictureScene& scene,

@@ -79,6 +79,7 @@ FoldOutput compute_folds(const ProblemSetup& setup, const TriangleMesh& mesh,
     options.names = report.columns;
     options.comments = comments;
     options.comments.push_back("fold curves over the plane (" + report.plane + ")");
+    options.kind = "fold";
     write_polylines(path, output.curves_in_view, options);
   }
   return output;

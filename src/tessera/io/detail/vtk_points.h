@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tessera/geometry/triangle_mesh.h"
+#include "tessera/io/vertex_data.h"
 
 namespace tessera::io_detail {
 
@@ -45,11 +46,13 @@ inline void append_fan(const std::vector<std::int64_t>& polygon, std::vector<Tri
 
 /// The mesh from the 3-column points, the point-data arrays and n (0: not known from the file).
 /// The first n arrays are the coordinates, as write_vtk / write_vtu put them; their first three
-/// must agree with the points bit for bit, which both writers guarantee.
+/// must agree with the points bit for bit, which both writers guarantee. The one-component
+/// arrays after the coordinates (all of them when the coordinates come from the points) go to
+/// `vertex_scalars` when it is not null.
 template <class Fail>
 TriangleMesh assemble(int dimension, const std::vector<double>& xyz,
                       const std::vector<PointArray>& arrays, std::vector<Triangle> triangles,
-                      const Fail& fail) {
+                      const Fail& fail, std::vector<VertexScalars>* vertex_scalars = nullptr) {
   const std::size_t vertex_count = xyz.size() / 3;
   bool from_arrays = true;
   if (dimension == 0) {
@@ -94,6 +97,14 @@ TriangleMesh assemble(int dimension, const std::vector<double>& xyz,
              ": the file was changed after tessera wrote it");
       }
       points(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(v)) = value;
+    }
+  }
+  if (vertex_scalars != nullptr) {
+    vertex_scalars->clear();
+    for (std::size_t a = from_arrays ? n : 0; a < arrays.size(); ++a) {
+      if (arrays[a].components == 1 && arrays[a].values.size() == vertex_count) {
+        vertex_scalars->push_back({arrays[a].name, arrays[a].values});
+      }
     }
   }
   return TriangleMesh(points, std::move(triangles));
