@@ -26,11 +26,15 @@
 #include "tessera/io/split_mesh_output.h"
 #include "tessera/io/view_mesh.h"
 #include "tessera/methods/improvement/improve_mesh.h"
+#include "tessera/methods/stability/state_jacobian.h"
+#include "tessera/picture/bifurcation_diagram.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/start_and_box.h"
 #include "tessera/problems/view.h"
 #include "tessera/report/fold_output.h"
+#include "tessera/report/level_output.h"
 #include "tessera/report/mesh_report.h"
+#include "tessera/report/stability_output.h"
 #include "tessera/report/summary_json.h"
 
 namespace tessera::app {
@@ -127,6 +131,33 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_option("--folds-output", mesh.folds_output,
                        "file of the fold curves in the mesh's view: .vtk, .vtu, .ply, .json or "
                        ".csv (default: beside the mesh, e.g. out.folds.ply)");
+  mesh_app->add_flag("--stability", mesh.stability,
+                     "compute at every vertex the eigenvalues of the dynamics B·u' = ±F(u, p) that "
+                     "the problem declares: the number with positive real part (unstable_count), "
+                     "the largest real part, as point data in the mesh file, counts in the report "
+                     "(docs/algorithms/stability.md)");
+  mesh_app->add_option("--eigenvalues", mesh.eigenvalues,
+                       "sparse problems: how many eigenvalues nearest 0 --stability computes per "
+                       "vertex (default 6; dense problems: all)")
+      ->check(CLI::PositiveNumber);
+  mesh_app->add_flag("--hopf", mesh.hopf,
+                     "compute the Hopf curves (a complex pair of eigenvalues crosses the "
+                     "imaginary axis; implies --stability), refined to solver tolerance, with their "
+                     "frequency omega and Bogdanov–Takens points");
+  mesh_app->add_option("--hopf-output", mesh.hopf_output,
+                       "file of the Hopf curves: .vtk, .vtu, .ply, .json or .csv (default: beside "
+                       "the mesh, e.g. out.hopf.ply)");
+  mesh_app->add_option("--level", mesh.level,
+                       "compute the curve on M where a functional of the view takes a value, "
+                       "FUNCTIONAL=VALUE, e.g. x1=0.5, mean:u=1.5, 'r=sqrt(x^2+y^2)=1' "
+                       "(docs/algorithms/level-curves.md)");
+  mesh_app->add_option("--level-output", mesh.level_output,
+                       "file of the level curves: .vtk, .vtu, .ply, .json or .csv (default: beside "
+                       "the mesh, e.g. out.level.ply)");
+  mesh_app->add_option("--diagram", mesh.diagram,
+                       "draw the two-parameter bifurcation diagram to this .png or .svg: the fold "
+                       "curves over the dynamics' parameters (or --folds), the Hopf curves and "
+                       "their special points (implies --hopf)");
   mesh_app->add_option("--picture", mesh.picture,
                        "draw the mesh in its view to this .png or .svg, coloured by height, with "
                        "its boundary and fold curves (`tessera render` for more control)");
@@ -286,7 +317,11 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   // The atlas and the front run on split states (each rank its rows of every vertex); bezier,
   // and the improvement and fold curves (not yet converted), on whole ones on every rank.
   const bool splits = method.name == "atlas" || method.name == "front";
-  backend.adopt(setup, /*split_states=*/splits && !command.improve && command.folds.empty());
+  // --diagram draws the fold and Hopf curves; --hopf needs the eigenvalues of --stability.
+  const bool wants_hopf = command.hopf || !command.diagram.empty();
+  const bool wants_stability = command.stability || wants_hopf;
+  backend.adopt(setup, /*split_states=*/splits && !command.improve && command.folds.empty() &&
+                           !wants_stability && command.level.empty());
   // Every rank computes; the root prints and writes.
   const bool is_root = backend.is_root();
   const bool quiet = command.quiet || !is_root;
@@ -327,6 +362,51 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     check_output_folder(fold_file);
     TESSERA_CHECK(is_polyline_file(fold_file),
                   "--folds-output " << fold_file
+                                    << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
+  }
+  std::string hopf_file;
+  if (wants_stability) {
+    const std::string option = command.stability ? "--stability" : command.hopf ? "--hopf" : "--diagram";
+    TESSERA_CHECK(command.backend != "petsc",
+                  option << " is not yet available with --backend petsc: run it with the serial "
+                            "backend (eigenvalues on the ranks with SLEPc are planned)");
+    const Dynamics dynamics = required_dynamics(*setup.problem, option);
+    if (!command.diagram.empty() && !fold_plane) {
+      // The diagram's fold curves: over the dynamics' parameters, written beside the mesh too.
+      const auto names = setup.problem->coordinate_names();
+      fold_plane = parse_folds_option(names.at(static_cast<std::size_t>(dynamics.parameters[0])) +
+                                          "," +
+                                          names.at(static_cast<std::size_t>(dynamics.parameters[1])),
+                                      *setup.problem);
+      fold_file = default_fold_file(command.output);
+      check_output_folder(fold_file);
+    }
+  }
+  TESSERA_CHECK(wants_hopf || command.hopf_output.empty(),
+                "--hopf-output " << command.hopf_output << " needs --hopf");
+  if (wants_hopf) {
+    hopf_file = command.hopf_output.empty() ? default_hopf_file(command.output) : command.hopf_output;
+    check_output_folder(hopf_file);
+    TESSERA_CHECK(is_polyline_file(hopf_file),
+                  "--hopf-output " << hopf_file
+                                   << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
+  }
+  if (!command.diagram.empty()) {
+    check_output_folder(command.diagram);
+    TESSERA_CHECK(is_picture_file(command.diagram),
+                  "--diagram " << command.diagram << ": a picture is .png or .svg");
+  }
+  TESSERA_CHECK(!command.level.empty() || command.level_output.empty(),
+                "--level-output " << command.level_output
+                                  << " needs --level (e.g. --level x1=0.5)");
+  std::optional<LevelSet> level_set;
+  std::string level_file;
+  if (!command.level.empty()) {
+    level_set = parse_level_option(command.level, *setup.problem);
+    level_file = command.level_output.empty() ? default_level_file(command.output) : command.level_output;
+    check_output_folder(level_file);
+    TESSERA_CHECK(is_polyline_file(level_file),
+                  "--level-output " << level_file
                                     << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
   }
   MeshFileOptions file_options;
@@ -452,6 +532,71 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
                    "those triangles are left out (summary: folds.singular_triangles)\n";
     }
   }
+  // Curves for the picture and the diagram, each with its kind (columns: the view's).
+  std::vector<PolylineFile> picture_curves;
+  if (fold_plane) {
+    picture_curves.push_back({fold_curves, {}});
+    picture_curves.back().options.names = coordinate_names_in_view(view);
+    picture_curves.back().options.kind = "fold";
+  }
+  std::optional<StabilityOutput> stability;
+  if (has_mesh && wants_stability) {
+    StabilityOptions stability_options;
+    stability_options.eigenvalue_count = command.eigenvalues;
+    stability = compute_stability_output(setup, result.mesh, stability_options);
+    report.stability = stability->report;
+    // The mesh file again, now with the stability as point data.
+    if (is_root) {
+      MeshFileOptions with_data = file_options;
+      with_data.vertex_scalars = stability->vertex_data;
+      if (view.is_all_coordinates()) {
+        write_mesh(command.output, result.mesh, with_data);
+      } else {
+        write_mesh_in_view(command.output, result.mesh, view, with_data);
+      }
+    }
+    if (stability->report.failed_count > 0 && is_root) {
+      std::cerr << "tessera: the eigenvalues failed at " << stability->report.failed_count
+                << " vertex(es), whose unstable_count is -1 (summary: stability.failures); "
+                   "first: vertex "
+                << stability->report.failures.front().vertex << ": "
+                << stability->report.failures.front().message << "\n";
+    }
+  }
+  std::optional<HopfOutput> hopf;
+  if (has_mesh && wants_hopf) {
+    hopf = compute_hopf_output(setup, result.mesh, stability->result, view,
+                               is_root ? hopf_file : std::string(), file_options.comments);
+    report.hopf = hopf->report;
+    written.push_back(hopf_file);
+    picture_curves.push_back({hopf->curves_in_view, hopf->file.options});
+    picture_curves.back().options.names = coordinate_names_in_view(view);
+    if (!hopf->report.neutral_saddle_file.empty()) {
+      written.push_back(hopf->report.neutral_saddle_file);
+      picture_curves.push_back({hopf->neutral_saddle_curves_in_view, hopf->neutral_saddle_file.options});
+      picture_curves.back().options.names = coordinate_names_in_view(view);
+    }
+    if (hopf->report.unrefined_count > 0 && is_root) {
+      std::cerr << "tessera: " << hopf->report.unrefined_count
+                << " Hopf point(s) did not converge and are kept at the mesh's linear estimate "
+                   "(summary: hopf.unrefined_points)\n";
+    }
+  }
+  if (has_mesh && level_set) {
+    const LevelOutput level = compute_level_curves(setup, result.mesh, *level_set, view,
+                                                   is_root ? level_file : std::string(),
+                                                   file_options.comments);
+    report.level = level.report;
+    written.push_back(level_file);
+    picture_curves.push_back({level.curves_in_view, {}});
+    picture_curves.back().options.names = coordinate_names_in_view(view);
+    picture_curves.back().options.kind = "level";
+    if (level.report.unrefined_count > 0 && is_root) {
+      std::cerr << "tessera: " << level.report.unrefined_count
+                << " level curve point(s) did not converge and are kept at the mesh's linear "
+                   "estimate (summary: level.unrefined_points)\n";
+    }
+  }
   if (has_mesh && !command.states.empty() && (is_root || is_split)) {
     if (is_split) {
       write_mesh_output(result.mesh, {"", view, {}, command.states});  // streamed to rank 0
@@ -483,14 +628,17 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
       }
       if (order.size() == 3) {
         picture_view = parse_view(order[0] + "," + order[1] + "," + order[2], *setup.problem);
-        for (Polyline& curve : fold_curves) {  // the same reordering of the curves' columns
-          Eigen::MatrixXd points(3, curve.points.cols());
-          for (int row = 0; row < 3; ++row) {
-            const auto& names = setup.problem->coordinate_names();
-            const auto at = std::find(names.begin(), names.end(), order[static_cast<std::size_t>(row)]);
-            points.row(row) = curve.points.row(static_cast<Eigen::Index>(at - names.begin()));
+        for (PolylineFile& file : picture_curves) {  // the same reordering of the curves' columns
+          for (Polyline& curve : file.polylines) {
+            Eigen::MatrixXd points(3, curve.points.cols());
+            for (int row = 0; row < 3; ++row) {
+              const auto& names = setup.problem->coordinate_names();
+              const auto at = std::find(names.begin(), names.end(), order[static_cast<std::size_t>(row)]);
+              points.row(row) = curve.points.row(static_cast<Eigen::Index>(at - names.begin()));
+            }
+            curve.points = std::move(points);
           }
-          curve.points = std::move(points);
+          file.options.names = {order[0], order[1], order[2]};
         }
       }
     }
@@ -498,10 +646,38 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     const TriangleMesh shown = mesh_in_view(result.mesh, picture_view);
     if (is_root) {
       write_mesh_picture(command.picture, result.mesh, shown,
-                         coordinate_names_in_view(picture_view), fold_curves, "height", picture,
-                         &setup);
+                         coordinate_names_in_view(picture_view), picture_curves,
+                         stability ? stability->vertex_data : std::vector<VertexScalars>(),
+                         stability ? "stability" : "height", picture, &setup);
     }
     written.push_back(command.picture);
+  }
+  if (has_mesh && hopf && !command.diagram.empty() && is_root) {
+    // The two-parameter bifurcation diagram: fold and Hopf curves over the dynamics' parameters.
+    const std::string& p1 = hopf->report.plane_names[0];
+    const std::string& p2 = hopf->report.plane_names[1];
+    BifurcationDiagramScene scene;
+    scene.parameter_names = {p1, p2};
+    if (report.folds) {
+      const auto& columns = report.folds->columns;
+      const bool has_plane = std::find(columns.begin(), columns.end(), p1) != columns.end() &&
+                             std::find(columns.begin(), columns.end(), p2) != columns.end();
+      if (has_plane) {
+        PolylineFileOptions fold_options;
+        fold_options.names = columns;
+        fold_options.kind = "fold";
+        add_to_diagram(scene, fold_curves, fold_options, p1, p2);
+      } else {
+        std::cerr << "tessera: the fold curves are not in the diagram: the view (" << view.specification()
+                  << ") does not hold " << p1 << " and " << p2 << "\n";
+      }
+    }
+    add_to_diagram(scene, hopf->file.polylines, hopf->file.options, p1, p2);
+    add_to_diagram(scene, hopf->neutral_saddle_file.polylines, hopf->neutral_saddle_file.options, p1, p2);
+    BifurcationDiagramOptions diagram_options;
+    diagram_options.title = command.problem + ": folds and Hopf curves over (" + p1 + ", " + p2 + ")";
+    write_bifurcation_diagram(command.diagram, scene, diagram_options);
+    written.push_back(command.diagram);
   }
   if (!command.summary.empty() && is_root) {
     write_summary_json(command.summary, report);

@@ -24,6 +24,13 @@ struct MeshCommand {
   std::string folds;            ///< --folds: the parameter plane of the fold curves, e.g. lambda,mu
   std::string folds_output;     ///< --folds-output: their file (default beside the mesh)
   std::string picture;          ///< --picture: a .png or .svg of the mesh in its view
+  bool stability = false;       ///< --stability: eigenvalues at every vertex (point data)
+  int eigenvalues = 6;          ///< --eigenvalues: k nearest 0 for sparse problems
+  bool hopf = false;            ///< --hopf: Hopf curves and Bogdanov–Takens points
+  std::string hopf_output;      ///< --hopf-output: their file (default beside the mesh)
+  std::string level;            ///< --level: 'FUNCTIONAL=VALUE', a level curve on M
+  std::string level_output;     ///< --level-output: its file (default beside the mesh)
+  std::string diagram;          ///< --diagram: the two-parameter bifurcation diagram (.png/.svg)
   int report_samples = -1;  ///< --report-samples: -1 the default (make_report), 0 all
   bool ascii = false;
   bool quiet = false;

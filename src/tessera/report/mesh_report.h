@@ -105,6 +105,64 @@ struct LevelReport {
   double seconds = 0.0;
 };
 
+/// The stability of the steady states at the mesh's vertices (`tessera mesh --stability`,
+/// methods/stability/vertex_stability.h).
+struct StabilityReport {
+  std::vector<std::string> parameters;  ///< the dynamics' two parameters, by name
+  std::string method;                   ///< StabilityResult::method
+  int eigenvalue_count = 0;             ///< k of the sparse methods; 0: all (dense)
+  int vertex_count = 0;
+  int stable_count = 0;
+  std::vector<int> index_counts;  ///< index_counts[i]: vertices with i unstable eigenvalues
+  int failed_count = 0;
+  int uncertain_count = 0;
+  /// What the counts are sure of, in words (docs/algorithms/stability.md).
+  std::string certainty;
+  struct Failure {
+    int vertex = -1;
+    std::string message;
+  };
+  std::vector<Failure> failures;  ///< the first few
+  long factorisations = 0;
+  long solves = 0;
+  long jacobian_evaluations = 0;
+  double seconds = 0.0;
+};
+
+/// The Hopf curves on M and their Bogdanov–Takens points (`tessera mesh --hopf`,
+/// methods/stability/hopf_curves.h), points in the mesh file's view.
+struct HopfReport {
+  std::string file;                       ///< the polylines file (empty: not written)
+  std::vector<std::string> columns;       ///< view, then the parameters not in it, then omega
+  std::vector<std::string> plane_names;   ///< the dynamics' two parameters
+  struct Curve {
+    bool is_closed = false;
+    std::vector<std::vector<double>> points;  ///< in `columns`, in order along the curve
+  };
+  std::vector<Curve> curves;
+  /// The neutral saddle curves (real pairs ±κ; the column omega holds κ there), written to
+  /// neutral_saddle_file: the rest of the bialternate product's zero set, which meets the Hopf
+  /// curves at Bogdanov–Takens points.
+  std::vector<Curve> neutral_saddle_curves;
+  std::string neutral_saddle_file;
+  struct SpecialPoint {
+    std::string kind;           ///< "bogdanov_takens"
+    std::vector<double> point;  ///< in `columns`
+    double plane[2] = {0.0, 0.0};
+  };
+  std::vector<SpecialPoint> special_points;
+  int point_count = 0;
+  int crossing_count = 0;
+  int unrefined_count = 0;
+  int hopf_point_count = 0;
+  int neutral_saddle_point_count = 0;
+  int newton_iterations = 0;
+  double max_residual = 0.0;
+  double max_condition_residual = 0.0;
+  WorkCounts work;
+  double seconds = 0.0;
+};
+
 /// What one report is made of; `run` is absent for `tessera check` of an existing mesh.
 struct MeshReport {
   std::string problem;
@@ -114,6 +172,8 @@ struct MeshReport {
   std::optional<StatesReport> states;    ///< present when the states were written
   std::optional<FoldReport> folds;       ///< present when fold curves were asked for
   std::optional<LevelReport> level;      ///< present when level curves were asked for
+  std::optional<StabilityReport> stability;  ///< present when stability was asked for
+  std::optional<HopfReport> hopf;            ///< present when Hopf curves were asked for
   std::optional<CoveringSummary> run;
   MeshValidation validation;
   MeshQuality quality;

@@ -75,6 +75,78 @@ nlohmann::json level_json(const LevelReport& level) {
           {"curves", std::move(curves)}};
 }
 
+nlohmann::json work_json(const WorkCounts& work) {
+  return {{"function_evaluations", work.function_evaluations},
+          {"jacobian_evaluations", work.jacobian_evaluations},
+          {"factorisations", work.factorisations}};
+}
+
+nlohmann::json stability_json(const StabilityReport& stability) {
+  nlohmann::json failures = nlohmann::json::array();
+  for (const auto& failure : stability.failures) {
+    failures.push_back({{"vertex", failure.vertex}, {"message", failure.message}});
+  }
+  return {{"parameters", stability.parameters},
+          {"method", stability.method},
+          {"eigenvalues_per_vertex",
+           stability.eigenvalue_count == 0 ? nlohmann::json("all")
+                                           : nlohmann::json(stability.eigenvalue_count)},
+          {"vertices", stability.vertex_count},
+          {"stable_vertices", stability.stable_count},
+          {"vertices_by_index", stability.index_counts},
+          {"failed_vertices", stability.failed_count},
+          {"uncertain_vertices", stability.uncertain_count},
+          {"certainty", stability.certainty},
+          {"failures", std::move(failures)},
+          {"factorisations", stability.factorisations},
+          {"solves", stability.solves},
+          {"jacobian_evaluations", stability.jacobian_evaluations},
+          {"seconds", stability.seconds}};
+}
+
+nlohmann::json hopf_json(const HopfReport& hopf) {
+  auto named = [&](const std::vector<double>& point) {
+    nlohmann::json values = nlohmann::json::object();
+    for (std::size_t i = 0; i < point.size() && i < hopf.columns.size(); ++i) {
+      values[hopf.columns[i]] = point[i];
+    }
+    return values;
+  };
+  nlohmann::json special = nlohmann::json::array();
+  for (const auto& p : hopf.special_points) {
+    special.push_back(
+        {{"kind", p.kind},
+         {"point", named(p.point)},
+         {"plane", {{hopf.plane_names.at(0), p.plane[0]}, {hopf.plane_names.at(1), p.plane[1]}}}});
+  }
+  nlohmann::json curves = nlohmann::json::array();
+  for (const auto& curve : hopf.curves) {
+    curves.push_back({{"closed", curve.is_closed}, {"points", curve.points}});
+  }
+  nlohmann::json neutral_saddles = nlohmann::json::array();
+  for (const auto& curve : hopf.neutral_saddle_curves) {
+    neutral_saddles.push_back({{"closed", curve.is_closed}, {"points", curve.points}});
+  }
+  return {{"file", hopf.file},
+          {"columns", hopf.columns},
+          {"plane", hopf.plane_names},
+          {"curve_count", hopf.curves.size()},
+          {"point_count", hopf.point_count},
+          {"edge_crossings", hopf.crossing_count},
+          {"unrefined_points", hopf.unrefined_count},
+          {"hopf_points", hopf.hopf_point_count},
+          {"neutral_saddle_points", hopf.neutral_saddle_point_count},
+          {"neutral_saddle_file", hopf.neutral_saddle_file},
+          {"special_points", std::move(special)},
+          {"max_residual", hopf.max_residual},
+          {"max_condition_residual", hopf.max_condition_residual},
+          {"newton_iterations", hopf.newton_iterations},
+          {"work", work_json(hopf.work)},
+          {"seconds", hopf.seconds},
+          {"curves", std::move(curves)},
+          {"neutral_saddle_curves", std::move(neutral_saddles)}};
+}
+
 nlohmann::json folds_json(const FoldReport& folds) {
   auto named = [&](const std::vector<double>& point) {
     nlohmann::json values = nlohmann::json::object();
@@ -242,6 +314,12 @@ std::string to_json(const MeshReport& report) {
   if (report.level) {
     j["level"] = level_json(*report.level);
   }
+  if (report.stability) {
+    j["stability"] = stability_json(*report.stability);
+  }
+  if (report.hopf) {
+    j["hopf"] = hopf_json(*report.hopf);
+  }
   j["counts"] = {
       {"vertices", v.referenced_vertex_count},   {"edges", v.edge_count},
       {"triangles", v.triangle_count},           {"boundary_edges", v.boundary_edge_count},
@@ -405,6 +483,48 @@ std::string to_text(const MeshReport& report) {
           << " vertices: curves may end there)";
     }
     out << (level.file.empty() ? "" : " → " + level.file) << "\n";
+  }
+  if (report.stability) {
+    const StabilityReport& stability = *report.stability;
+    out << "stability      " << stability.stable_count << " of " << stability.vertex_count
+        << " vertices stable";
+    for (std::size_t i = 1; i < stability.index_counts.size(); ++i) {
+      if (stability.index_counts[i] > 0) {
+        out << ", " << stability.index_counts[i] << " with " << i << " unstable eigenvalue"
+            << (i == 1 ? "" : "s");
+      }
+    }
+    if (stability.failed_count > 0) {
+      out << ", " << stability.failed_count << " FAILED (summary: stability.failures)";
+    }
+    out << "; " << stability.certainty << "\n";
+  }
+  if (report.hopf) {
+    const HopfReport& hopf = *report.hopf;
+    out << "hopf           " << hopf.curves.size() << " curve(s), " << hopf.hopf_point_count
+        << " points on them to solver tolerance";
+    if (!hopf.neutral_saddle_curves.empty()) {
+      out << "; " << hopf.neutral_saddle_curves.size() << " neutral saddle curve(s), "
+          << hopf.neutral_saddle_point_count << " points";
+    }
+    if (hopf.unrefined_count > 0) {
+      out << " (" << hopf.unrefined_count
+          << " crossing(s) where Newton converged to neither: left out, the curves cut there)";
+    }
+    int bogdanov_takens = 0;
+    for (const auto& p : hopf.special_points) {
+      bogdanov_takens += p.kind == "bogdanov_takens";
+    }
+    out << ", " << bogdanov_takens << " Bogdanov–Takens point(s)";
+    for (const auto& p : hopf.special_points) {
+      out << "; BT at " << hopf.plane_names.at(0) << " = " << p.plane[0] << ", "
+          << hopf.plane_names.at(1) << " = " << p.plane[1];
+    }
+    out << (hopf.file.empty() ? "" : " → " + hopf.file)
+        << (hopf.neutral_saddle_curves.empty() || hopf.neutral_saddle_file.empty()
+                ? ""
+                : ", " + hopf.neutral_saddle_file)
+        << "\n";
   }
   out << "mesh           " << v.referenced_vertex_count << " vertices, " << v.edge_count
       << " edges, " << v.triangle_count << " triangles, " << v.boundary_loop_count

@@ -19,6 +19,8 @@ namespace {
 using Complex = std::complex<double>;
 using SparseComplex = Eigen::SparseMatrix<Complex>;
 
+enum class PencilKind { Hopf, NeutralSaddle };
+
 Eigen::SparseMatrix<double> sparse_of(const StateJacobian& jacobian) {
   if (jacobian.is_sparse()) {
     return jacobian.sparse();
@@ -122,15 +124,33 @@ class AugmentedNewton {
             counted_->factorisations() + pencil_.factorisations};
   }
 
-  HopfPoint hopf(const Eigen::VectorXd& x_start, double omega, double max_displacement) {
+  // Newton on F = 0 and the pencil condition of `kind` with its parameter p (ω for a Hopf point:
+  // A − iωB singular, the real and imaginary parts of one complex g; κ for a neutral saddle:
+  // A − κB and A + κB singular, two real g's).
+  HopfPoint pencil_point(PencilKind kind, const Eigen::VectorXd& x_start, double parameter,
+                         double max_displacement) {
     HopfPoint point;
     Eigen::VectorXd y = to_metric(x_start);
     const Eigen::VectorXd start = y;
-    Eigen::VectorXcd v;
-    Eigen::VectorXcd w;
-    if (!start_vectors(from_metric(y), Complex(0.0, omega), v, w)) {
-      point.x = x_start;
-      return point;
+    const bool is_hopf = kind == PencilKind::Hopf;
+    // The shifts σ_j(p) of the pencils and dσ_j/dp.
+    auto shifts = [&](double p) {
+      return is_hopf ? std::vector<Complex>{Complex(0.0, p)} : std::vector<Complex>{p, -p};
+    };
+    const std::vector<Complex> shift_derivatives =
+        is_hopf ? std::vector<Complex>{Complex(0.0, 1.0)} : std::vector<Complex>{1.0, -1.0};
+    const std::size_t pencils = shift_derivatives.size();
+    std::vector<Eigen::VectorXcd> v(pencils);
+    std::vector<Eigen::VectorXcd> w(pencils);
+    for (std::size_t j = 0; j < pencils; ++j) {
+      if (!start_vectors(from_metric(y), shifts(parameter)[j], v[j], w[j])) {
+        point.x = x_start;
+        return point;
+      }
+      if (!is_hopf) {  // real shifts: real null vectors
+        v[j] = v[j].real().cast<Complex>().normalized();
+        w[j] = w[j].real().cast<Complex>().normalized();
+      }
     }
     for (int iteration = 1; iteration <= options_.max_iterations; ++iteration) {
       point.iterations = iteration;
@@ -140,22 +160,36 @@ class AugmentedNewton {
       if (!manifold_step(y, F, T, dy_p)) {
         break;
       }
-      const Complex sigma(0.0, omega);
-      Complex g;
-      if (!bordered_solve(from_metric(y), sigma, v, w, g)) {
+      // Rows of the 2×3 system in (a₁, a₂, dp): Hopf: Re and Im of g; neutral saddle: g₁, g₂.
+      Eigen::Matrix<double, 2, 3> J;
+      Eigen::Vector2d rhs;
+      bool ok = true;
+      for (std::size_t j = 0; j < pencils && ok; ++j) {
+        Complex g;
+        if (!bordered_solve(from_metric(y), shifts(parameter)[j], v[j], w[j], g)) {
+          ok = false;
+          break;
+        }
+        // dg[δy] = −wᴴ·s·D²F[ṽ, δx], δx = δy/W; dg/dσ = wᴴBv.
+        const Eigen::VectorXcd gradient = g_gradient(from_metric(y), v[j], w[j]);
+        const Complex g_p = shift_derivatives[j] * w[j].dot(mass_ * v[j]);
+        const Complex q_p = gradient.dot(dy_p);
+        const Complex q_1 = gradient.dot(Eigen::VectorXd(T.col(0)));
+        const Complex q_2 = gradient.dot(Eigen::VectorXd(T.col(1)));
+        if (is_hopf) {
+          J << q_1.real(), q_2.real(), g_p.real(), q_1.imag(), q_2.imag(), g_p.imag();
+          rhs << -(g + q_p).real(), -(g + q_p).imag();
+        } else {
+          const auto row = static_cast<Eigen::Index>(j);
+          J.row(row) << q_1.real(), q_2.real(), g_p.real();
+          rhs(row) = -(g + q_p).real();
+        }
+      }
+      if (!ok) {
         break;
       }
-      // dg[δy] = −wᴴ·D(A v)[δx]·…, δx = δy/W; dg/dω = i·wᴴBv.
-      const Eigen::VectorXcd gradient = g_gradient(from_metric(y), v, w);
-      const Complex g_omega = Complex(0.0, 1.0) * w.dot(mass_ * v);
-      const Complex q_p = gradient.dot(dy_p);  // dot conjugates the first: gradient holds conj
-      const Complex q_1 = gradient.dot(Eigen::VectorXd(T.col(0)));
-      const Complex q_2 = gradient.dot(Eigen::VectorXd(T.col(1)));
-      Eigen::Matrix<double, 2, 3> J;
-      J << q_1.real(), q_2.real(), g_omega.real(), q_1.imag(), q_2.imag(), g_omega.imag();
-      const Eigen::Vector2d rhs(-(g + q_p).real(), -(g + q_p).imag());
       const Eigen::Matrix2d JJt = J * J.transpose();
-      if (!(std::abs(JJt.determinant()) > 0.0)) {
+      if (!J.allFinite() || !(std::abs(JJt.determinant()) > 0.0)) {
         break;
       }
       const Eigen::Vector3d z = J.transpose() * JJt.ldlt().solve(rhs);
@@ -168,15 +202,20 @@ class AugmentedNewton {
       }
       const Eigen::VectorXd dy = dy_p + T * z.head<2>();
       y += dy;
-      omega += z(2);
-      if (!y.allFinite() || !std::isfinite(omega) || (y - start).norm() > max_displacement) {
+      parameter += z(2);
+      if (!y.allFinite() || !std::isfinite(parameter) || (y - start).norm() > max_displacement) {
         break;
       }
       if (dy.norm() <= options_.tolerance * (1.0 + y.norm()) &&
-          std::abs(z(2)) <= options_.tolerance * (1.0 + std::abs(omega)) &&
+          std::abs(z(2)) <= options_.tolerance * (1.0 + std::abs(parameter)) &&
           F.norm() <= options_.residual_tolerance) {
-        finish(y, Complex(0.0, omega), v, w, point);
-        point.omega = std::abs(omega);
+        finish(y, shifts(parameter)[0], v[0], w[0], point);
+        if (!is_hopf) {
+          // The residual of the condition: the Rayleigh quotients should be ±κ.
+          point.condition_residual = rayleigh_residual(point.x, shifts(parameter), v, w);
+        }
+        (is_hopf ? point.omega : point.kappa) = std::abs(parameter);
+        point.is_neutral_saddle = !is_hopf;
         return point;
       }
     }
@@ -371,6 +410,22 @@ class AugmentedNewton {
     return (w.real().dot(mass_ * v.real())) / (w.real().norm() * v.real().norm());
   }
 
+  // max_j |μ_j − σ_j|/max(1, |σ_j|) for the Rayleigh quotients μ_j of the pencils' null vectors.
+  double rayleigh_residual(const Eigen::VectorXd& x, const std::vector<Complex>& sigmas,
+                           std::vector<Eigen::VectorXcd> v, std::vector<Eigen::VectorXcd> w) {
+    double worst = 0.0;
+    for (std::size_t j = 0; j < sigmas.size(); ++j) {
+      Complex g;
+      if (!bordered_solve(x, sigmas[j], v[j], w[j], g)) {
+        return std::numeric_limits<double>::quiet_NaN();
+      }
+      const Eigen::SparseMatrix<double> A = sparse_of(jacobian_);
+      const Complex mu = w[j].dot(A * v[j]) / w[j].dot(mass_ * v[j]);
+      worst = std::max(worst, std::abs(mu - sigmas[j]) / std::max(1.0, std::abs(sigmas[j])));
+    }
+    return worst;
+  }
+
   // The converged point: its residual and the Rayleigh quotient μ = wᴴAv / wᴴBv of the final
   // null vectors, whose real part is the Hopf condition's residual.
   void finish(const Eigen::VectorXd& y, Complex sigma, Eigen::VectorXcd v, Eigen::VectorXcd w,
@@ -410,7 +465,16 @@ class AugmentedNewton {
 HopfPoint refine_hopf_point(const ImplicitProblem& problem, const Eigen::VectorXd& x, double omega,
                             double max_displacement, const HopfOptions& options, WorkCounts& work) {
   AugmentedNewton newton(problem, options);
-  HopfPoint point = newton.hopf(x, omega, max_displacement);
+  HopfPoint point = newton.pencil_point(PencilKind::Hopf, x, omega, max_displacement);
+  work += newton.work();
+  return point;
+}
+
+HopfPoint refine_neutral_saddle_point(const ImplicitProblem& problem, const Eigen::VectorXd& x,
+                                      double kappa, double max_displacement,
+                                      const HopfOptions& options, WorkCounts& work) {
+  AugmentedNewton newton(problem, options);
+  HopfPoint point = newton.pencil_point(PencilKind::NeutralSaddle, x, kappa, max_displacement);
   work += newton.work();
   return point;
 }

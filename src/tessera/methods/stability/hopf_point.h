@@ -36,6 +36,11 @@ struct HopfPoint {
   double condition_residual = std::numeric_limits<double>::quiet_NaN();
   /// Unit tangent of the Hopf curve at x (n-vector, sign arbitrary); empty when not refined.
   Eigen::VectorXd curve_tangent;
+  /// A Bogdanov–Takens point (ω = 0, on a fold curve), where a Hopf curve ends.
+  bool is_bogdanov_takens = false;
+  /// A neutral saddle (refine_neutral_saddle_point): ±κ are eigenvalues, omega is 0.
+  bool is_neutral_saddle = false;
+  double kappa = 0.0;
 };
 
 /// Newton's method from (x, ω) onto the Hopf set {F = 0, A − iωB singular}, A = s·D_uF, with
@@ -47,6 +52,14 @@ struct HopfPoint {
 /// \param work  evaluations of F and DF are added to it.
 HopfPoint refine_hopf_point(const ImplicitProblem& problem, const Eigen::VectorXd& x, double omega,
                             double max_displacement, const HopfOptions& options, WorkCounts& work);
+
+/// Newton's method from (x, κ) onto the neutral saddles {F = 0, A − κB and A + κB singular}: a
+/// real pair ±κ, which the bialternate product's zero set shares with the Hopf points (the two
+/// meet at Bogdanov–Takens points). Two real bordered systems, otherwise as refine_hopf_point;
+/// condition_residual is max |μ ∓ κ|/max(1, κ) for the pair's Rayleigh quotients.
+HopfPoint refine_neutral_saddle_point(const ImplicitProblem& problem, const Eigen::VectorXd& x,
+                                      double kappa, double max_displacement,
+                                      const HopfOptions& options, WorkCounts& work);
 
 /// Newton's method from x onto a Bogdanov–Takens point: F = 0, A singular (the real bordered
 /// system's g₁ = 0) and the null vectors B-orthogonal, wᵀBv = 0 (a Jordan block at 0): n
