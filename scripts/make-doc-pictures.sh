@@ -38,6 +38,15 @@ small=(--size 480x360)
 "$tessera" mesh bvp:points=1000 --folds lambda,epsilon -q -o "$work/bvp.ply" --folds-output "$work/bvp.json"
 "$tessera" render "$work/bvp.ply" --curves "$work/bvp.json" "${size[@]}" --edges off \
   --title "bvp:points=1000 in (lambda, epsilon, max u): folds and cusp" -o "$out/bvp_folds.png"
+# Stability: the CSTR coloured by the number of unstable eigenvalues with its fold, Hopf and
+# neutral saddle curves, and its two-parameter bifurcation diagram over (Da, B).
+"$tessera" mesh cstr --hopf --tolerance 5e-3 -q -o "$work/cstr_stability.ply" \
+  --folds-output "$work/cstr.folds.json" --hopf-output "$work/cstr.hopf.json" \
+  --diagram "$out/cstr_diagram.png"
+"$tessera" render "$work/cstr_stability.ply" --colour stability --curves "$work/cstr.folds.json" \
+  --curves "$work/cstr.hopf.json" --curves "$work/cstr.neutral_saddles.json" "${size[@]}" \
+  --title "cstr in (x1, x2, Da): stable, index 1, index 2; fold, Hopf (dashed)" \
+  -o "$out/cstr_stability.png"
 # Data-dependent triangulations beside Delaunay (Franke's F2 on 33 points).
 for criterion in delaunay abn; do
   "$tessera" ddt examples/data/franke33.csv --function F2 --criterion "$criterion" \

@@ -345,7 +345,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   const View& view = chosen.view;
   // A distributed problem makes a split mesh, whose whole points are not gathered at large n.
   check_split_mesh_output(*setup.problem->space(), view);
-  TESSERA_CHECK(!command.folds.empty() || command.folds_output.empty(),
+  TESSERA_CHECK(!command.folds.empty() || !command.diagram.empty() || command.folds_output.empty(),
                 "--folds-output " << command.folds_output
                                   << " needs --folds (the parameter plane, e.g. --folds lambda,mu)");
   if (!command.picture.empty()) {
@@ -378,8 +378,12 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
                                           "," +
                                           names.at(static_cast<std::size_t>(dynamics.parameters[1])),
                                       *setup.problem);
-      fold_file = default_fold_file(command.output);
+      fold_file = command.folds_output.empty() ? default_fold_file(command.output)
+                                               : command.folds_output;
       check_output_folder(fold_file);
+      TESSERA_CHECK(is_polyline_file(fold_file),
+                    "--folds-output " << fold_file
+                                      << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
     }
   }
   TESSERA_CHECK(wants_hopf || command.hopf_output.empty(),
