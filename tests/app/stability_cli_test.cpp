@@ -205,6 +205,22 @@ TEST(StabilityCli, Bratu2dIndexChangesByOneAcrossEachFold) {
   expect_index_parity_follows_the_folds("bratu2d:N=12", "bratu2d");
 }
 
+TEST(StabilityCli, LevelCurveOfTheSphereIsAClosedGreatCircle) {
+  const std::string dir = testing::temporary_directory("stability_cli_level");
+  const auto result = run_cli("mesh sphere --tolerance 0.005 --level x=0.6 -o " + dir +
+                              "/s.ply --summary " + dir + "/s.json");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/s.level.ply"));
+  const auto level = read_json(dir + "/s.json").at("level");
+  EXPECT_EQ(level.at("unrefined_points"), 0);
+  ASSERT_EQ(level.at("curves").size(), 1u);
+  EXPECT_TRUE(level.at("curves")[0].at("closed").get<bool>());
+  for (const auto& point : level.at("curves")[0].at("points")) {  // the circle x = 0.6, r = 0.8
+    EXPECT_NEAR(point[0].get<double>(), 0.6, 1e-9);
+    EXPECT_NEAR(std::hypot(point[1].get<double>(), point[2].get<double>()), 0.8, 1e-9);
+  }
+}
+
 TEST(StabilityCli, BadStabilityOptionsAreRefusedBeforeTheComputation) {
   const std::string dir = testing::temporary_directory("stability_cli_errors");
   struct Case {
