@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "tessera/io/text_file.h"
 #include "tessera/io/polylines.h"
 
 #include <algorithm>
@@ -128,20 +129,6 @@ void write_vtk(const std::string& path, const std::vector<Polyline>& polylines,
     file.character('\n');
   });
   file.close();
-}
-
-std::string xml_escaped(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      default: escaped += c;
-    }
-  }
-  return escaped;
 }
 
 void write_vtu(const std::string& path, const std::vector<Polyline>& polylines,

@@ -16,4 +16,8 @@ namespace tessera {
 void write_text_file(const std::string& path, std::string_view content,
                      std::string_view what = "text");
 
+/// `text` with & < > " ' replaced by XML's entities: for attribute values and comments of VTU
+/// files and the titles of SVG pictures.
+std::string xml_escaped(std::string_view text);
+
 }  // namespace tessera

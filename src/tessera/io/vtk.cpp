@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "tessera/io/text_file.h"
 #include "tessera/io/vtk.h"
 
 #include <algorithm>
@@ -43,32 +44,6 @@ void write_values(io_detail::OutputFile& file, const std::vector<double>& values
     file.real(values[v]);
     file.character((v + 1) % kValuesPerLine == 0 ? '\n' : ' ');
   }
-}
-
-std::string xml_escaped(std::string_view text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        escaped += "&amp;";
-        break;
-      case '<':
-        escaped += "&lt;";
-        break;
-      case '>':
-        escaped += "&gt;";
-        break;
-      case '"':
-        escaped += "&quot;";
-        break;
-      case '\'':
-        escaped += "&apos;";
-        break;
-      default:
-        escaped += c;
-    }
-  }
-  return escaped;
 }
 
 void write_legacy_scalars_header(io_detail::OutputFile& file, const std::string& name) {

@@ -11,14 +11,7 @@
 namespace tessera {
 
 std::string default_fold_file(const std::string& mesh_path) {
-  std::filesystem::path path(mesh_path);
-  std::string extension = path.extension().string();
-  const std::string lower = lowercase_extension(mesh_path);
-  if (lower != ".ply" && lower != ".vtk" && lower != ".vtu") {
-    extension = ".csv";
-  }
-  path.replace_extension(".folds" + extension);
-  return path.string();
+  return curve_file_beside(mesh_path, "folds");
 }
 
 ParameterPlane parse_folds_option(const std::string& specification,

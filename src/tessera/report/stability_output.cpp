@@ -74,14 +74,7 @@ StabilityOutput compute_stability_output(const ProblemSetup& setup, const Triang
 }
 
 std::string default_hopf_file(const std::string& mesh_path) {
-  std::filesystem::path path(mesh_path);
-  std::string extension = path.extension().string();
-  const std::string lower = lowercase_extension(mesh_path);
-  if (lower != ".ply" && lower != ".vtk" && lower != ".vtu") {
-    extension = ".csv";
-  }
-  path.replace_extension(".hopf" + extension);
-  return path.string();
+  return curve_file_beside(mesh_path, "hopf");
 }
 
 std::string neutral_saddle_file_beside(const std::string& hopf_path) {

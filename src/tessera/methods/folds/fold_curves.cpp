@@ -10,7 +10,7 @@
 
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
-#include "tessera/core/scaled_problem.h"
+#include "tessera/core/metric_problem.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/methods/common/zero_set_curves.h"
 
@@ -68,32 +68,23 @@ struct FoldState {
 class FoldSolver {
  public:
   FoldSolver(const ImplicitProblem& problem, const ParameterPlane& plane, const FoldOptions& options)
-      : plane_(plane), options_(options), weights_(metric_weights(problem)) {
-    if (weights_.size() > 0) {
-      scaled_ = std::make_unique<ScaledProblem>(problem, weights_);
-    }
-    counted_ = std::make_unique<CountedProblem>(scaled_ ? *scaled_ : problem);
-  }
+      : plane_(plane), options_(options), metric_(problem) {}
 
-  const CountedProblem& problem() const { return *counted_; }
-  WorkCounts work() const {
-    return {counted_->function_evaluations(), counted_->jacobian_evaluations(),
-            counted_->factorisations()};
-  }
-
+  const CountedProblem& problem() const { return metric_.counted(); }
+  WorkCounts work() const { return metric_.work(); }
   Eigen::VectorXd to_metric(const Eigen::Ref<const Eigen::VectorXd>& x) const {
-    return weights_.size() > 0 ? Eigen::VectorXd(weights_.cwiseProduct(x)) : Eigen::VectorXd(x);
+    return metric_.to_metric(x);
   }
   Eigen::VectorXd from_metric(const Eigen::Ref<const Eigen::VectorXd>& y) const {
-    return weights_.size() > 0 ? Eigen::VectorXd(y.cwiseQuotient(weights_)) : Eigen::VectorXd(y);
+    return metric_.from_metric(y);
   }
 
   // G = Dπ with respect to y = W x: the columns of Dπ(x) divided by the weights.
   void plane_gradient(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::MatrixXd& G) const {
     G.resize(2, y.size());
     plane_.gradient(from_metric(y), G);
-    if (weights_.size() > 0) {
-      G = G * weights_.cwiseInverse().asDiagonal();
+    if (metric_.weights().size() > 0) {
+      G = G * metric_.weights().cwiseInverse().asDiagonal();
     }
   }
 
@@ -102,7 +93,7 @@ class FoldSolver {
   // (Frobenius), its scale.
   std::optional<std::pair<double, double>> vertex_determinant(
       const Eigen::VectorXd& y, const std::vector<Eigen::Matrix<double, -1, 2>>& edges) {
-    if (!linearization_.factor(*counted_, y)) {
+    if (!linearization_.factor(metric_.counted(), y)) {
       return std::nullopt;
     }
     Eigen::MatrixXd T = linearization_.tangent_basis();
@@ -168,8 +159,8 @@ class FoldSolver {
       }
       if (dy.norm() <= options_.tolerance * (1.0 + y.norm()) &&
           state.F.norm() <= options_.residual_tolerance) {
-        Eigen::VectorXd F(counted_->equation_count());
-        counted_->evaluate(y, F);
+        Eigen::VectorXd F(metric_.counted().equation_count());
+        metric_.counted().evaluate(y, F);
         result.residual = F.norm();
         result.determinant = state.g;
         result.converged = F.allFinite() && result.residual <= options_.residual_tolerance;
@@ -186,15 +177,15 @@ class FoldSolver {
   bool evaluate_state(const Eigen::VectorXd& y, const Eigen::MatrixXd* reference,
                       const std::vector<Eigen::Matrix<double, -1, 2>>& orientation,
                       FoldState& state) {
-    if (!linearization_.factor(*counted_, y, reference)) {
+    if (!linearization_.factor(metric_.counted(), y, reference)) {
       return false;
     }
     state.T = linearization_.tangent_basis();
     if (reference == nullptr) {
       orient(state.T, orientation);
     }
-    state.F.resize(counted_->equation_count());
-    counted_->evaluate(y, state.F);
+    state.F.resize(metric_.counted().equation_count());
+    metric_.counted().evaluate(y, state.F);
     if (!state.F.allFinite()) {
       return false;
     }
@@ -203,8 +194,8 @@ class FoldSolver {
     state.g = determinant(state.B);
     step_ = options_.difference_step * (1.0 + y.lpNorm<Eigen::Infinity>());
     for (int j = 0; j < 2; ++j) {
-      plus_[j].evaluate(*counted_, y + step_ * state.T.col(j));
-      minus_[j].evaluate(*counted_, y - step_ * state.T.col(j));
+      plus_[j].evaluate(metric_.counted(), y + step_ * state.T.col(j));
+      minus_[j].evaluate(metric_.counted(), y - step_ * state.T.col(j));
     }
     point_ = y;
     state.q = Eigen::Vector2d(derivative_of_g(state, state.T.col(0)),
@@ -237,9 +228,7 @@ class FoldSolver {
 
   const ParameterPlane& plane_;
   FoldOptions options_;
-  Eigen::VectorXd weights_;
-  std::unique_ptr<ScaledProblem> scaled_;
-  std::unique_ptr<CountedProblem> counted_;
+  MetricProblem metric_;
   Linearization linearization_;
   JacobianAt plus_[2];
   JacobianAt minus_[2];

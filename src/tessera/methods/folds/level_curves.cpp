@@ -12,7 +12,7 @@
 
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
-#include "tessera/core/scaled_problem.h"
+#include "tessera/core/metric_problem.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/methods/common/zero_set_curves.h"
 #include "tessera/methods/folds/functional_gradient.h"
@@ -113,27 +113,19 @@ class LevelSolver {
         f_(functional.functionals().front()),
         value_(value),
         options_(options),
-        weights_(metric_weights(problem)) {
-    const int n = problem.ambient_dimension();
-    if (weights_.size() > 0) {
-      scaled_ = std::make_unique<ScaledProblem>(problem, weights_);
-      unit_weights_ = weights_;
-    } else {
-      unit_weights_ = Eigen::VectorXd::Ones(n);
-    }
-    counted_ = std::make_unique<CountedProblem>(scaled_ ? *scaled_ : problem);
+        metric_(problem),
+        unit_weights_(metric_.weights().size() > 0
+                          ? metric_.weights()
+                          : Eigen::VectorXd(Eigen::VectorXd::Ones(problem.ambient_dimension()))) {
     values_.resize(1);
   }
 
-  WorkCounts work() const {
-    return {counted_->function_evaluations(), counted_->jacobian_evaluations(),
-            counted_->factorisations()};
-  }
+  WorkCounts work() const { return metric_.work(); }
   Eigen::VectorXd to_metric(const Eigen::Ref<const Eigen::VectorXd>& x) const {
-    return weights_.size() > 0 ? Eigen::VectorXd(weights_.cwiseProduct(x)) : Eigen::VectorXd(x);
+    return metric_.to_metric(x);
   }
   Eigen::VectorXd from_metric(const Eigen::Ref<const Eigen::VectorXd>& y) const {
-    return weights_.size() > 0 ? Eigen::VectorXd(y.cwiseQuotient(weights_)) : Eigen::VectorXd(y);
+    return metric_.from_metric(y);
   }
 
   // f(x) − c (NaN where f is not finite).
@@ -185,18 +177,18 @@ class LevelSolver {
     Refined result;
     const Eigen::VectorXd start = y;
     const int n = static_cast<int>(y.size());
-    Eigen::VectorXd F(counted_->equation_count());
+    Eigen::VectorXd F(metric_.counted().equation_count());
     Eigen::VectorXd gradient(n);
     Eigen::VectorXd dy_p(n);
     Eigen::MatrixXd reference;
     for (int iteration = 1; iteration <= options_.max_iterations; ++iteration) {
       result.iterations = iteration;
-      if (!linearization_.factor(*counted_, y, reference.size() > 0 ? &reference : nullptr)) {
+      if (!linearization_.factor(metric_.counted(), y, reference.size() > 0 ? &reference : nullptr)) {
         return result;
       }
       const Eigen::MatrixXd& T = linearization_.tangent_basis();
       reference = T;
-      counted_->evaluate(y, F);
+      metric_.counted().evaluate(y, F);
       const Eigen::VectorXd x = from_metric(y);
       // h = f − c with the held coordinate for an extremum (x_i − c, or |x_i| − c): the equation
       // Newton solves; its gradient with respect to y = W x is ∇f(x)/W.
@@ -209,8 +201,8 @@ class LevelSolver {
         return result;
       }
       functional_gradient(f_, unit_weights_, x, gradient, active);
-      if (weights_.size() > 0) {
-        gradient = gradient.cwiseQuotient(weights_);
+      if (metric_.weights().size() > 0) {
+        gradient = gradient.cwiseQuotient(metric_.weights());
       }
       // dy = dy_p + T a: dy_p = −DF⁺F (⟂ T) corrects F; a, of minimum norm, corrects f to first
       // order: ∇f·dy_p + q·a = −h with q = Tᵀ∇f, the gradient of f on M in tangent coordinates.
@@ -229,7 +221,7 @@ class LevelSolver {
       }
       if (dy.norm() <= options_.tolerance * (1.0 + y.norm()) &&
           F.norm() <= options_.residual_tolerance) {
-        counted_->evaluate(y, F);
+        metric_.counted().evaluate(y, F);
         result.residual = F.norm();
         result.level_residual = std::abs(level(from_metric(y)));
         result.converged =
@@ -245,10 +237,8 @@ class LevelSolver {
   const ViewFunctional& f_;
   double value_;
   LevelOptions options_;
-  Eigen::VectorXd weights_;       // metric weights; empty: Euclidean
-  Eigen::VectorXd unit_weights_;  // the same, all 1 when the problem has none (for `norm`)
-  std::unique_ptr<ScaledProblem> scaled_;
-  std::unique_ptr<CountedProblem> counted_;
+  MetricProblem metric_;
+  Eigen::VectorXd unit_weights_;  // the metric's weights, all 1 when the problem has none (`norm`)
   Linearization linearization_;
   ViewWorkspace workspace_;
   Eigen::VectorXd values_;

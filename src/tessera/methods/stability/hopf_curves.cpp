@@ -6,6 +6,7 @@
 #include <complex>
 
 #include "tessera/core/error.h"
+#include "tessera/core/metric_problem.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/methods/common/zero_set_curves.h"
 #include "tessera/methods/stability/state_jacobian.h"
@@ -103,10 +104,8 @@ HopfCurves find_hopf_curves(const ImplicitProblem& problem, const TriangleMesh& 
   const MeshTopology topology(mesh);
   const ZeroSetCurves zero_set = find_zero_set_curves(mesh, topology, values);
   result.crossing_count = zero_set.crossing_count;
-  const Eigen::VectorXd weights = metric_weights(problem);
-  auto metric_length = [&](const Eigen::VectorXd& d) {
-    return weights.size() > 0 ? weights.cwiseProduct(d).norm() : d.norm();
-  };
+  const MetricProblem metric(problem);
+  auto metric_length = [&](const Eigen::VectorXd& d) { return metric.length(d); };
   auto edge_length = [&](int c) {
     const auto& crossing = zero_set.crossings[static_cast<std::size_t>(c)];
     return metric_length(mesh.point(crossing.vertices[1]) - mesh.point(crossing.vertices[0]));

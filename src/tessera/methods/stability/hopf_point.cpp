@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "tessera/core/linearization.h"
-#include "tessera/core/scaled_problem.h"
+#include "tessera/core/metric_problem.h"
 #include "tessera/methods/stability/state_jacobian.h"
 
 namespace tessera {
@@ -106,22 +106,18 @@ class FullJacobian {
 class AugmentedNewton {
  public:
   AugmentedNewton(const ImplicitProblem& problem, const HopfOptions& options)
-      : problem_(problem),
-        options_(options),
-        weights_(metric_weights(problem)),
+      : options_(options),
+        metric_(problem),
         original_(problem),
-        jacobian_(original_, "Hopf curves") {
-    if (weights_.size() > 0) {
-      scaled_ = std::make_unique<ScaledProblem>(problem, weights_);
-    }
-    counted_ = std::make_unique<CountedProblem>(scaled_ ? *scaled_ : problem);
-    mass_ = jacobian_.mass();
-  }
+        jacobian_(original_, "Hopf curves"),
+        mass_(jacobian_.mass()) {}
 
   WorkCounts work() const {
-    return {counted_->function_evaluations() + original_.function_evaluations(),
-            counted_->jacobian_evaluations() + original_.jacobian_evaluations(),
-            counted_->factorisations() + pencil_.factorisations};
+    WorkCounts work = metric_.work();
+    work.function_evaluations += original_.function_evaluations();
+    work.jacobian_evaluations += original_.jacobian_evaluations();
+    work.factorisations += pencil_.factorisations;
+    return work;
   }
 
   // Newton on F = 0 and the pencil condition of `kind` with its parameter p (ω for a Hopf point:
@@ -292,19 +288,15 @@ class AugmentedNewton {
   }
 
  private:
-  Eigen::VectorXd to_metric(const Eigen::VectorXd& x) const {
-    return weights_.size() > 0 ? Eigen::VectorXd(weights_.cwiseProduct(x)) : x;
-  }
-  Eigen::VectorXd from_metric(const Eigen::VectorXd& y) const {
-    return weights_.size() > 0 ? Eigen::VectorXd(y.cwiseQuotient(weights_)) : y;
-  }
+  Eigen::VectorXd to_metric(const Eigen::VectorXd& x) const { return metric_.to_metric(x); }
+  Eigen::VectorXd from_metric(const Eigen::VectorXd& y) const { return metric_.from_metric(y); }
 
   // F(y), M's tangent basis T at y and the normal correction dy_p = −DF⁺F.
   bool manifold_step(const Eigen::VectorXd& y, Eigen::VectorXd& F, Eigen::MatrixXd& T,
                      Eigen::VectorXd& dy_p) {
-    F.resize(counted_->equation_count());
-    counted_->evaluate(y, F);
-    if (!F.allFinite() || !linearization_.factor(*counted_, y)) {
+    F.resize(metric_.counted().equation_count());
+    metric_.counted().evaluate(y, F);
+    if (!F.allFinite() || !linearization_.factor(metric_.counted(), y)) {
       return false;
     }
     T = linearization_.tangent_basis();
@@ -399,8 +391,8 @@ class AugmentedNewton {
       row += -s * factor * (re.cast<Complex>() + Complex(0.0, 1.0) * im.cast<Complex>());
     }
     // In y: dg[δy] = Σ row_j δy_j / W_j; returned conjugated for Eigen's dot.
-    if (weights_.size() > 0) {
-      row = row.cwiseQuotient(weights_.cast<Complex>());
+    if (metric_.weights().size() > 0) {
+      row = row.cwiseQuotient(metric_.weights().cast<Complex>());
     }
     return row.conjugate();
   }
@@ -431,8 +423,8 @@ class AugmentedNewton {
   void finish(const Eigen::VectorXd& y, Complex sigma, Eigen::VectorXcd v, Eigen::VectorXcd w,
               HopfPoint& point) {
     point.x = from_metric(y);
-    Eigen::VectorXd F(counted_->equation_count());
-    counted_->evaluate(y, F);
+    Eigen::VectorXd F(metric_.counted().equation_count());
+    metric_.counted().evaluate(y, F);
     point.residual = F.norm();
     Complex g;
     if (bordered_solve(point.x, sigma, v, w, g)) {
@@ -446,13 +438,10 @@ class AugmentedNewton {
     point.is_refined = F.allFinite() && point.residual <= options_.residual_tolerance;
   }
 
-  const ImplicitProblem& problem_;
   HopfOptions options_;
-  Eigen::VectorXd weights_;
-  CountedProblem original_;
+  MetricProblem metric_;
+  CountedProblem original_;  // in the problem's own coordinates: the dynamics' Jacobians
   StateJacobian jacobian_;
-  std::unique_ptr<ScaledProblem> scaled_;
-  std::unique_ptr<CountedProblem> counted_;
   Eigen::SparseMatrix<double> mass_;
   Linearization linearization_;
   BorderedPencil pencil_;

@@ -170,7 +170,13 @@ class SparseStability {
   VertexStability symmetric(const StateJacobian& jacobian) {
     const Eigen::SparseMatrix<double>& A = jacobian.sparse();
     const int m = jacobian.state_count();
-    ldlt_.compute(A);
+    // The ordering and the symbolic factorisation once per pattern (the Jacobians of one
+    // problem share it), the numerical one per vertex.
+    if (!has_same_pattern(A, ldlt_pattern_)) {
+      ldlt_.analyzePattern(A);
+      ldlt_pattern_ = A;
+    }
+    ldlt_.factorize(A);
     ++factorisations;
     if (ldlt_.info() != Eigen::Success) {
       return general(jacobian);
@@ -290,8 +296,18 @@ class SparseStability {
     }
   }
 
+  static bool has_same_pattern(const Eigen::SparseMatrix<double>& A,
+                               const Eigen::SparseMatrix<double>& pattern) {
+    return A.rows() == pattern.rows() && A.cols() == pattern.cols() &&
+           A.nonZeros() == pattern.nonZeros() &&
+           std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1,
+                      pattern.outerIndexPtr()) &&
+           std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), pattern.innerIndexPtr());
+  }
+
   StabilityOptions options_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+  Eigen::SparseMatrix<double> ldlt_pattern_;  // the pattern ldlt_ was analysed for
   std::unique_ptr<SparseLu> lu_;
   Eigen::VectorXd start_;
   bool has_start_ = false;

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "tessera/io/text_file.h"
 #include "tessera/picture/detail/cairo_drawing.h"
 
 #include <cairo-svg.h>
@@ -24,29 +25,6 @@ constexpr double kLegendSample = 28.0;  // width of a line sample or swatch colu
 cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
   static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
   return CAIRO_STATUS_SUCCESS;
-}
-
-std::string xml_escaped(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        escaped += "&amp;";
-        break;
-      case '<':
-        escaped += "&lt;";
-        break;
-      case '>':
-        escaped += "&gt;";
-        break;
-      case '"':
-        escaped += "&quot;";
-        break;
-      default:
-        escaped += c;
-    }
-  }
-  return escaped;
 }
 
 std::array<double, 3> marker_fill(PointKind kind) {
