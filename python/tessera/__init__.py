@@ -208,7 +208,13 @@ class Dynamics:
         return cls((names[core.parameters[0]], names[core.parameters[1]]), int(core.sign), mass)
 
     def __repr__(self) -> str:
-        mass = "" if self.mass is None else f", mass={self.mass!r}"
+        if self.mass is None:
+            mass = ""
+        elif _is_scipy_sparse(self.mass) or self.mass.size > 8:  # large B: its shape only
+            mass = f", mass=<{'sparse' if _is_scipy_sparse(self.mass) else 'array'} of shape " \
+                   f"{self.mass.shape}>"
+        else:
+            mass = f", mass={self.mass!r}"
         return f"tessera.Dynamics(parameters={self.parameters!r}, sign={self.sign}{mass})"
 
 

@@ -187,7 +187,8 @@ def test_cstr_diagram_is_drawn(tmp_path, suffix, magic):
 @pytest.mark.parametrize("dynamics, error, match", [
     ({"parameters": ("lambda", "nu")}, ValueError,
      r"dynamics.parameters: 'nu' is not a coordinate \(coordinates: x, lambda, mu\)"),
-    ({"parameters": ("mu", "mu")}, ValueError, r"dynamics.parameters: coordinate 'mu' is given twice"),
+    ({"parameters": ("mu", "mu")}, ValueError,
+     r"dynamics.parameters: coordinate 'mu' is given twice"),
     ({"parameters": (1, 3)}, ValueError, r"dynamics.parameters: index 3 is not a coordinate index"),
     ({"parameters": "lambda"}, ValueError, r"dynamics.parameters must be two coordinates"),
     ({"parameters": ("lambda", 1.5)}, ValueError, r"1.5 is neither a coordinate name nor an index"),
