@@ -13,6 +13,7 @@
 #include "tessera/geometry/bezier_patch.h"
 #include "tessera/geometry/triangle_mesh.h"
 #include "tessera/io/vertex_data.h"
+#include "tessera/methods/stability/vertex_stability.h"
 #include "tessera/problems/problem_setup.h"
 #include "tessera/problems/view.h"
 
@@ -71,7 +72,10 @@ struct MeshHandle {
   bool interrupted = false;  ///< Ctrl-C arrived during the run
   int interrupt_count = 0;   ///< how many times (the second and later are handed to Python)
   std::string comment;       ///< first comment line of the files written
-  std::vector<VertexScalars> vertex_scalars;  ///< ddt: the data values
+  std::string note;          ///< what the user should know although the run succeeded
+  std::vector<VertexScalars> vertex_scalars;  ///< ddt: the data values; mesh: the stability
+  /// mesh(stability=True): one per vertex; empty otherwise.
+  std::vector<VertexStability> stability;
 };
 
 }  // namespace tessera::python

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <complex>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -36,14 +37,19 @@
 #include "tessera/io/view_mesh.h"
 #include "tessera/methods/covering_methods.h"
 #include "tessera/methods/improvement/improve_mesh.h"
+#include "tessera/methods/stability/state_jacobian.h"
+#include "tessera/picture/bifurcation_diagram.h"
+#include "tessera/picture/picture.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/problem_file.h"
 #include "tessera/problems/start_and_box.h"
 #include "tessera/problems/view.h"
 #include "tessera/report/fold_output.h"
 #include "tessera/report/improvement_report.h"
+#include "tessera/report/level_output.h"
 #include "tessera/report/mesh_report.h"
 #include "tessera/report/method_comparison.h"
+#include "tessera/report/stability_output.h"
 #include "tessera/report/summary_json.h"
 
 namespace tessera::python {
@@ -116,8 +122,47 @@ struct MeshRequest {
   int report_samples = -1;
   std::string view;
   std::string folds;  ///< the parameter plane of the fold curves (`--folds`), empty: none
+  bool stability = false;  ///< `--stability`
+  int eigenvalues = 6;     ///< `--eigenvalues`: sparse problems, eigenvalues nearest 0 per vertex
+  bool hopf = false;       ///< `--hopf` (implies stability)
+  std::string level;       ///< `--level FUNCTIONAL=VALUE`, empty: none
+  std::string diagram;     ///< `--diagram` picture path (implies hopf), empty: none
   bool wants_patches = false;
 };
+
+// As `tessera mesh --diagram`: the fold curves (where the view holds the dynamics' parameters),
+// the Hopf and neutral saddle curves and their special points over the parameter plane.
+// Returns a note for the user when the fold curves could not be drawn, empty otherwise.
+std::string write_diagram(const std::string& path, const std::string& problem_name,
+                          const MeshReport& report, const std::vector<Polyline>& fold_curves,
+                          const HopfOutput& hopf, const View& view) {
+  const std::string& p1 = hopf.report.plane_names[0];
+  const std::string& p2 = hopf.report.plane_names[1];
+  BifurcationDiagramScene scene;
+  scene.parameter_names = {p1, p2};
+  std::string note;
+  if (report.folds) {
+    const auto& columns = report.folds->columns;
+    const bool has_plane = std::find(columns.begin(), columns.end(), p1) != columns.end() &&
+                           std::find(columns.begin(), columns.end(), p2) != columns.end();
+    if (has_plane) {
+      PolylineFileOptions fold_options;
+      fold_options.names = columns;
+      fold_options.kind = "fold";
+      add_to_diagram(scene, fold_curves, fold_options, p1, p2);
+    } else {
+      note = "the fold curves are not in the diagram: the view (" + view.specification() +
+             ") does not hold " + p1 + " and " + p2;
+    }
+  }
+  add_to_diagram(scene, hopf.file.polylines, hopf.file.options, p1, p2);
+  add_to_diagram(scene, hopf.neutral_saddle_file.polylines, hopf.neutral_saddle_file.options, p1,
+                 p2);
+  BifurcationDiagramOptions options;
+  options.title = problem_name + ": folds and Hopf curves over (" + p1 + ", " + p2 + ")";
+  write_bifurcation_diagram(path, scene, options);
+  return note;
+}
 
 std::string box_text(const MeshRequest& request) {
   if (!request.named_box.empty()) {
@@ -147,6 +192,32 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
   std::optional<ParameterPlane> fold_plane;
   if (!request.folds.empty()) {
     fold_plane = parse_folds_option(request.folds, *setup.problem);
+  }
+  // As `tessera mesh`: the diagram draws the Hopf curves, which need the eigenvalues.
+  const bool wants_hopf = request.hopf || !request.diagram.empty();
+  const bool wants_stability = request.stability || wants_hopf;
+  if (wants_stability) {
+    const char* option = request.stability ? "stability" : request.hopf ? "hopf" : "diagram";
+    const Dynamics dynamics = required_dynamics(*setup.problem, option);
+    TESSERA_CHECK(request.eigenvalues >= 1,
+                  "eigenvalues = " << request.eigenvalues << " must be at least 1");
+    if (!request.diagram.empty() && !fold_plane) {
+      // The diagram's fold curves: over the dynamics' parameters.
+      const auto names = setup.problem->coordinate_names();
+      fold_plane =
+          parse_folds_option(names.at(static_cast<std::size_t>(dynamics.parameters[0])) + "," +
+                                 names.at(static_cast<std::size_t>(dynamics.parameters[1])),
+                             *setup.problem);
+    }
+  }
+  if (!request.diagram.empty()) {
+    check_output_folder(request.diagram);
+    TESSERA_CHECK(is_picture_file(request.diagram),
+                  "diagram " << request.diagram << ": a picture is .png or .svg");
+  }
+  std::optional<LevelSet> level_set;
+  if (!request.level.empty()) {
+    level_set = parse_level_option(request.level, *setup.problem);
   }
 
   MethodSettings settings = request.settings;
@@ -201,9 +272,38 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
                              view.is_all_coordinates() ? std::vector<std::string>() : view.names(),
                              request.view.empty() ? (problem->view ? "problem file" : "default")
                                                   : "--view"};
-    if (fold_plane && result.mesh.triangle_count() > 0) {
-      // As `tessera mesh --folds`, in the view; the curves are in the summary, no file.
-      report.folds = compute_folds(setup, result.mesh, *fold_plane, view, "", {}).report;
+    // As `tessera mesh --folds/--stability/--hopf/--level`, on the finished mesh, in the view;
+    // the curves are in the summary, no file is written.
+    const bool has_mesh = result.mesh.triangle_count() > 0;
+    std::vector<Polyline> fold_curves;
+    if (fold_plane && has_mesh) {
+      FoldOutput folds = compute_folds(setup, result.mesh, *fold_plane, view, "", {});
+      report.folds = std::move(folds.report);
+      fold_curves = std::move(folds.curves_in_view);
+    }
+    std::optional<StabilityOutput> stability;
+    if (wants_stability && has_mesh) {
+      StabilityOptions stability_options;
+      stability_options.eigenvalue_count = request.eigenvalues;
+      stability = compute_stability_output(setup, result.mesh, stability_options);
+      report.stability = stability->report;
+    }
+    if (wants_hopf && has_mesh) {
+      const HopfOutput hopf =
+          compute_hopf_output(setup, result.mesh, stability->result, view, "", {});
+      report.hopf = hopf.report;
+      if (!request.diagram.empty()) {
+        handle->note =
+            write_diagram(request.diagram, problem->argument, report, fold_curves, hopf, view);
+      }
+    }
+    if (level_set && has_mesh) {
+      report.level = compute_level_curves(setup, result.mesh, *level_set, view, "", {}).report;
+    }
+    if (stability) {
+      // Written by Mesh.write as point data, as `tessera mesh --stability` writes them.
+      handle->vertex_scalars = std::move(stability->vertex_data);
+      handle->stability = std::move(stability->result.vertices);
     }
     handle->summary_json = to_json(report);
     handle->termination = to_string(result.summary.termination);
@@ -484,6 +584,28 @@ std::shared_ptr<MeshHandle> mesh_from_arrays(
   return handle;
 }
 
+// One value per vertex of mesh(stability=True), e.g. the unstable counts; empty without.
+template <typename Value, typename Get>
+py::array_t<Value> stability_array(const MeshHandle& mesh, Get get) {
+  py::array_t<Value> values(static_cast<py::ssize_t>(mesh.stability.size()));
+  Value* out = values.mutable_data();
+  for (const VertexStability& s : mesh.stability) {
+    *out++ = get(s);
+  }
+  return values;
+}
+
+// The computed eigenvalues of every vertex, by decreasing real part (complex arrays).
+py::list eigenvalue_arrays(const MeshHandle& mesh) {
+  py::list arrays;
+  for (const VertexStability& s : mesh.stability) {
+    py::array_t<std::complex<double>> values(static_cast<py::ssize_t>(s.eigenvalues.size()));
+    std::copy(s.eigenvalues.begin(), s.eigenvalues.end(), values.mutable_data());
+    arrays.append(values);
+  }
+  return arrays;
+}
+
 std::vector<CoordinateBlock> to_blocks(const py::list& blocks) {
   std::vector<CoordinateBlock> result;
   for (const auto& item : blocks) {
@@ -525,10 +647,11 @@ PYBIND11_MODULE(_tessera, module) {
           [](int n, py::object F, py::object J, bool sparse, const std::string& name,
              std::vector<std::string> coordinate_names, const py::list& blocks,
              const Eigen::VectorXd& start, const std::vector<double>& box, double step,
-             std::optional<int> euler_characteristic, std::optional<double> area) {
-            auto problem = std::make_shared<PythonProblem>(
-                n, std::move(F), std::move(J), sparse, name, std::move(coordinate_names),
-                to_blocks(blocks));
+             std::optional<int> euler_characteristic, std::optional<double> area,
+             std::optional<Dynamics> dynamics) {
+            auto problem = std::make_shared<PythonProblem>(n, std::move(F), std::move(J), sparse,
+                                                           name, std::move(coordinate_names),
+                                                           to_blocks(blocks), std::move(dynamics));
             metric_weights(*problem);  // checks the blocks
             TESSERA_CHECK(start.size() == n,
                           "Problem: start has " << start.size() << " values, n = " << n);
@@ -563,8 +686,11 @@ PYBIND11_MODULE(_tessera, module) {
       .def_property_readonly("expected_euler_characteristic",
                              [](const ProblemHandle& p) { return p.expected_euler_characteristic; })
       .def_property_readonly("exact_area", [](const ProblemHandle& p) { return p.exact_area; })
-      .def_property_readonly("has_sparse_jacobian",
-                             [](const ProblemHandle& p) { return p.problem->has_sparse_jacobian(); })
+      .def_property_readonly(
+          "has_sparse_jacobian",
+          [](const ProblemHandle& p) { return p.problem->has_sparse_jacobian(); })
+      .def_property_readonly("dynamics",
+                             [](const ProblemHandle& p) { return p.problem->dynamics(); })
       .def("F",
            [](const ProblemHandle& p, const Eigen::VectorXd& x) {
              const int n = p.problem->ambient_dimension();
@@ -581,6 +707,15 @@ PYBIND11_MODULE(_tessera, module) {
         return J;
       });
 
+  // core/dynamics.h as it is; tessera.Dynamics (python/tessera/__init__.py) names the
+  // parameters and checks each field before it reaches this.
+  py::class_<Dynamics>(module, "Dynamics")
+      .def(py::init<>())
+      .def_readwrite("parameters", &Dynamics::parameters)
+      .def_readwrite("sign", &Dynamics::sign)
+      .def_readwrite("mass_diagonal", &Dynamics::mass_diagonal)
+      .def_readwrite("mass_matrix", &Dynamics::mass_matrix);
+
   py::class_<MeshHandle, std::shared_ptr<MeshHandle>>(module, "Mesh")
       .def_static("from_arrays", &mesh_from_arrays)
       .def_property_readonly("vertices", &vertices_view)
@@ -588,6 +723,25 @@ PYBIND11_MODULE(_tessera, module) {
       .def_property_readonly("summary_json", [](const MeshHandle& m) { return m.summary_json; })
       .def_property_readonly("termination", [](const MeshHandle& m) { return m.termination; })
       .def_property_readonly("failure", [](const MeshHandle& m) { return m.failure; })
+      .def_property_readonly("note", [](const MeshHandle& m) { return m.note; })
+      .def_property_readonly("has_stability",
+                             [](const MeshHandle& m) { return !m.stability.empty(); })
+      .def_property_readonly("unstable_count",
+                             [](const MeshHandle& m) {
+                               return stability_array<int>(
+                                   m, [](const VertexStability& s) { return s.unstable_count; });
+                             })
+      .def_property_readonly("leading_real_part",
+                             [](const MeshHandle& m) {
+                               return stability_array<double>(
+                                   m, [](const VertexStability& s) { return s.leading_real_part; });
+                             })
+      .def_property_readonly("stability_certain",
+                             [](const MeshHandle& m) {
+                               return stability_array<bool>(
+                                   m, [](const VertexStability& s) { return s.is_certain; });
+                             })
+      .def_property_readonly("eigenvalues", &eigenvalue_arrays)
       .def_property_readonly("interrupted", [](const MeshHandle& m) { return m.interrupted; })
       .def_property_readonly("interrupt_count",
                              [](const MeshHandle& m) { return m.interrupt_count; })
@@ -620,6 +774,11 @@ PYBIND11_MODULE(_tessera, module) {
       .def_readwrite("report_samples", &MeshRequest::report_samples)
       .def_readwrite("view", &MeshRequest::view)
       .def_readwrite("folds", &MeshRequest::folds)
+      .def_readwrite("stability", &MeshRequest::stability)
+      .def_readwrite("eigenvalues", &MeshRequest::eigenvalues)
+      .def_readwrite("hopf", &MeshRequest::hopf)
+      .def_readwrite("level", &MeshRequest::level)
+      .def_readwrite("diagram", &MeshRequest::diagram)
       .def_readwrite("wants_patches", &MeshRequest::wants_patches)
       .def_property(
           "step", [](const MeshRequest& r) { return r.settings.step; },
@@ -666,6 +825,7 @@ PYBIND11_MODULE(_tessera, module) {
   module.def("compare", &compare_methods, py::arg("problem"), py::arg("request"),
              py::arg("handle_interrupt"));
   module.def("method_names", &covering_method_names);
+  module.def("default_coordinate_names", &default_coordinate_names);
   // Raises `error` with a KeyboardInterrupt pending (the second Ctrl-C of a run): Python raises
   // it at its next check, in the code that handles `error`. Raised from C so that no check
   // between setting the interrupt and raising `error` can overtake it.

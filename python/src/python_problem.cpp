@@ -36,17 +36,21 @@ bool is_scipy_sparse(const py::handle& value) {
 
 PythonProblem::PythonProblem(int n, py::object F, py::object J, bool has_sparse_jacobian,
                              std::string name, std::vector<std::string> coordinate_names,
-                             std::vector<CoordinateBlock> blocks)
+                             std::vector<CoordinateBlock> blocks, std::optional<Dynamics> dynamics)
     : n_(n),
       F_(std::move(F)),
       J_(std::move(J)),
       has_sparse_jacobian_(has_sparse_jacobian),
       name_(std::move(name)),
       coordinate_names_(std::move(coordinate_names)),
-      blocks_(std::move(blocks)) {
+      blocks_(std::move(blocks)),
+      dynamics_(std::move(dynamics)) {
   TESSERA_CHECK(n_ >= 3, "Problem: n = " << n_ << " must be at least 3 (F maps R^n to R^(n-2))");
   TESSERA_CHECK(coordinate_names_.empty() || static_cast<int>(coordinate_names_.size()) == n_,
                 "Problem: " << coordinate_names_.size() << " coordinate names for n = " << n_);
+  if (dynamics_) {
+    check_dynamics(*dynamics_, n_, name_);
+  }
 }
 
 PythonProblem::~PythonProblem() {

@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,11 @@ class PythonProblem final : public ImplicitProblem {
   ///           n = 3 an n-vector (the gradient) is accepted too.
   /// \param has_sparse_jacobian  true: the solvers ask for J as a sparse matrix (dense results
   ///           are converted), false: as a dense one (sparse results are densified).
+  /// \param dynamics  what F is the right-hand side of (tessera.Dynamics); none: nothing.
+  /// \throw InvalidArgument for n < 3, names of the wrong count or invalid dynamics.
   PythonProblem(int n, py::object F, py::object J, bool has_sparse_jacobian, std::string name,
-                std::vector<std::string> coordinate_names, std::vector<CoordinateBlock> blocks);
+                std::vector<std::string> coordinate_names, std::vector<CoordinateBlock> blocks,
+                std::optional<Dynamics> dynamics);
   ~PythonProblem() override;
 
   int ambient_dimension() const override { return n_; }
@@ -42,6 +46,7 @@ class PythonProblem final : public ImplicitProblem {
   std::string name() const override { return name_; }
   std::vector<std::string> coordinate_names() const override;
   std::vector<CoordinateBlock> coordinate_blocks() const override { return blocks_; }
+  std::optional<Dynamics> dynamics() const override { return dynamics_; }
 
  private:
   // Calls J(x) with the GIL held; the result is a dense array or a scipy.sparse matrix.
@@ -54,6 +59,7 @@ class PythonProblem final : public ImplicitProblem {
   std::string name_;
   std::vector<std::string> coordinate_names_;
   std::vector<CoordinateBlock> blocks_;
+  std::optional<Dynamics> dynamics_;
 };
 
 /// Forwards every call to a shared problem (ProblemSetup owns its problem; a Python Problem is

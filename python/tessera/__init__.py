@@ -19,7 +19,9 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 import os
+import warnings
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
 
 import numpy as np
@@ -28,6 +30,7 @@ from . import _tessera
 
 __all__ = [
     "ComputationFailed",
+    "Dynamics",
     "Interrupted",
     "Mesh",
     "Problem",
@@ -98,6 +101,123 @@ def _finite_difference_jacobian(F: Callable[[np.ndarray], Any], n: int) -> Calla
     return J
 
 
+class Dynamics:
+    """What a problem's equations are the right-hand side of: B·u' = sign·F(u, p).
+
+    M is then the surface of steady states, and ``mesh(..., stability=True)`` says which are
+    stable (every eigenvalue μ of sign·D_uF·v = μ·B·v with Re μ < 0)::
+
+        tessera.Dynamics(parameters=("lambda", "mu"), sign=-1)
+
+    parameters: the two coordinates p, by name or by index (0 … n-1); the state u is the other
+        n-2 coordinates in their order, and equation i of F is row i of B.
+    sign: 1 (B·u' = F as written) or -1 (B·u' = -F, e.g. F = ∇V of a potential V that the
+        dynamics descend, as for Whitney's pleat).
+    mass: B. None: the identity; n-2 numbers: its diagonal (each >= 0; 0 marks an algebraic
+        equation); an (n-2, n-2) array or a scipy.sparse matrix: all of it.
+
+    `Problem` takes one as ``dynamics=``, or a dict with the same keys; the shapes and names are
+    checked against the problem there. ``Problem.dynamics`` is the problem's, for any problem
+    (parameters as names).
+    """
+
+    def __init__(self, parameters: Sequence[Union[str, int]], sign: float = 1,
+                 mass: Optional[Any] = None):
+        if isinstance(parameters, str) or not hasattr(parameters, "__len__") or \
+                len(parameters) != 2:
+            raise ValueError(f"dynamics.parameters must be two coordinates (names or indices), "
+                             f"got {parameters!r}")
+        for parameter in parameters:
+            if not isinstance(parameter, (str, numbers.Integral)) or isinstance(parameter, bool):
+                raise ValueError(f"dynamics.parameters: {parameter!r} is neither a coordinate "
+                                 f"name nor an index")
+        if sign not in (1, -1):
+            raise ValueError(f"dynamics.sign must be 1 or -1, got {sign!r}")
+        self.parameters = tuple(parameters)
+        self.sign = int(sign)
+        self.mass = None if mass is None else (mass if _is_scipy_sparse(mass)
+                                               else np.asarray(mass, dtype=float))
+
+    @classmethod
+    def _from(cls, value: Union["Dynamics", Mapping[str, Any]]) -> "Dynamics":
+        if isinstance(value, Dynamics):
+            return value
+        if not isinstance(value, Mapping):
+            raise TypeError(f"dynamics must be a tessera.Dynamics or a dict with the keys "
+                            f"parameters, sign, mass; not {type(value).__name__}")
+        unknown = [key for key in value if key not in ("parameters", "sign", "mass")]
+        if unknown:
+            raise ValueError(f"dynamics: unknown key {unknown[0]!r} (keys: parameters, sign, "
+                             f"mass)")
+        if "parameters" not in value:
+            raise ValueError("dynamics: 'parameters' is required: the two coordinates that are "
+                             "the dynamics' parameters")
+        return cls(**value)
+
+    def _core(self, n: int, names: Sequence[str]) -> Any:
+        """The C++ dynamics of a problem in R^n with these coordinate names."""
+        indices = []
+        for parameter in self.parameters:
+            if isinstance(parameter, str):
+                if parameter not in names:
+                    raise ValueError(f"dynamics.parameters: {parameter!r} is not a coordinate "
+                                     f"(coordinates: {', '.join(names)})")
+                index = list(names).index(parameter)
+            else:
+                index = int(parameter)
+                if not 0 <= index < n:
+                    raise ValueError(f"dynamics.parameters: index {index} is not a coordinate "
+                                     f"index (0 … {n - 1})")
+            if index in indices:
+                raise ValueError(f"dynamics.parameters: coordinate {names[index]!r} is given "
+                                 f"twice; the two parameters must differ")
+            indices.append(index)
+        core = _tessera.Dynamics()
+        core.parameters = indices
+        core.sign = float(self.sign)
+        m = n - 2
+        if self.mass is None:
+            return core
+        shape = tuple(self.mass.shape)
+        if shape == (m,):
+            diagonal = self.mass
+            bad = [i for i in range(m) if not (math.isfinite(diagonal[i]) and diagonal[i] >= 0)]
+            if bad:
+                raise ValueError(f"dynamics.mass[{bad[0]}] = {diagonal[bad[0]]!r} must be a "
+                                 f"finite number >= 0 (0: an algebraic equation)")
+            core.mass_diagonal = diagonal
+        elif shape == (m, m):
+            import scipy.sparse
+
+            matrix = scipy.sparse.csc_matrix(self.mass, dtype=float)
+            if not np.isfinite(matrix.data).all():
+                raise ValueError("dynamics.mass has entries that are not finite")
+            core.mass_matrix = matrix
+        else:
+            raise ValueError(f"dynamics.mass has shape {shape}, expected ({m},) (the diagonal of "
+                             f"B, one entry per equation) or ({m}, {m}) for n = {n}")
+        return core
+
+    @classmethod
+    def _wrap(cls, core: Any, names: Sequence[str]) -> "Dynamics":
+        mass = None
+        if core.mass_diagonal.size:
+            mass = core.mass_diagonal
+        elif core.mass_matrix.shape[0]:
+            mass = core.mass_matrix
+        return cls((names[core.parameters[0]], names[core.parameters[1]]), int(core.sign), mass)
+
+    def __repr__(self) -> str:
+        if self.mass is None:
+            mass = ""
+        elif _is_scipy_sparse(self.mass) or self.mass.size > 8:  # large B: its shape only
+            mass = f", mass=<{'sparse' if _is_scipy_sparse(self.mass) else 'array'} of shape " \
+                   f"{self.mass.shape}>"
+        else:
+            mass = f", mass={self.mass!r}"
+        return f"tessera.Dynamics(parameters={self.parameters!r}, sign={self.sign}{mass})"
+
+
 class Problem:
     """An implicitly defined surface M = {x in R^n : F(x) = 0}, F: R^n -> R^(n-2).
 
@@ -115,7 +235,9 @@ class Problem:
     ``step`` is the suggested edge length (the CLI's problem-file ``step``), ``box`` a list of
     lower, upper for each coordinate, ``blocks`` named coordinate ranges as (name, first, size[,
     weight]) tuples (docs/problem-files.md), ``euler_characteristic`` and ``area`` what is known
-    of the component of M through ``start`` (used by `check`).
+    of the component of M through ``start`` (used by `check`). ``dynamics`` says what F is the
+    right-hand side of (a `Dynamics`, or a dict {"parameters": ("a", "b"), "sign": 1, "mass":
+    ...}), which ``mesh(..., stability=True)`` needs.
 
     Catalogue entries and problem files: `Problem.from_catalogue`, `Problem.from_file`,
     `Problem.from_text`, `Problem.from_equations`.
@@ -136,6 +258,7 @@ class Problem:
         step: float = 0.1,
         euler_characteristic: Optional[int] = None,
         area: Optional[float] = None,
+        dynamics: Optional[Union[Dynamics, Mapping[str, Any]]] = None,
     ):
         if start is None:
             raise ValueError("Problem: start is required (a point near M, n values)")
@@ -143,11 +266,16 @@ class Problem:
         if J is None:
             J = _finite_difference_jacobian(F, int(n))
             sparse = False
+        names = list(coordinate_names or [])
+        core_dynamics = None
+        if dynamics is not None:
+            core_dynamics = Dynamics._from(dynamics)._core(
+                int(n), names or _tessera.default_coordinate_names(int(n)))
         if sparse is None:
             sparse = _is_scipy_sparse(J(start_array.copy()))
         self._core = _tessera.Problem.from_python(
-            int(n), F, J, bool(sparse), name, list(coordinate_names or []), list(blocks or []),
-            start_array, _numbers(box), float(step), euler_characteristic, area)
+            int(n), F, J, bool(sparse), name, names, list(blocks or []), start_array,
+            _numbers(box), float(step), euler_characteristic, area, core_dynamics)
 
     @classmethod
     def _wrap(cls, core: Any) -> "Problem":
@@ -245,6 +373,14 @@ class Problem:
     def has_sparse_jacobian(self) -> bool:
         return self._core.has_sparse_jacobian
 
+    @property
+    def dynamics(self) -> Optional[Dynamics]:
+        """The dynamics F is the right-hand side of (parameters by name), None if it declares
+        none: a Python problem's ``dynamics=``, a problem file's ``dynamics`` line, a catalogue
+        problem's own."""
+        core = self._core.dynamics
+        return None if core is None else Dynamics._wrap(core, self.coordinate_names)
+
     def F(self, x: ArrayLike) -> np.ndarray:
         """F(x), (n-2,), evaluated by tessera (for any problem, catalogue ones too)."""
         return self._core.F(np.asarray(x, dtype=float))
@@ -333,6 +469,65 @@ class Mesh:
         if folds is None:
             return []
         return [np.asarray(curve["points"], dtype=float) for curve in folds["curves"]]
+
+    @property
+    def unstable_count(self) -> Optional[np.ndarray]:
+        """mesh(..., stability=True): (N,) int32, the unstable eigenvalues at each vertex (0:
+        stable, -1: the eigenvalues failed there, see ``summary["stability"]["failures"]``);
+        None without stability."""
+        return self._core.unstable_count if self._core.has_stability else None
+
+    @property
+    def leading_real_part(self) -> Optional[np.ndarray]:
+        """mesh(..., stability=True): (N,) float64, the largest real part among each vertex's
+        computed eigenvalues (NaN where they failed); None without stability."""
+        return self._core.leading_real_part if self._core.has_stability else None
+
+    @property
+    def stability_certain(self) -> Optional[np.ndarray]:
+        """mesh(..., stability=True): (N,) bool, whether ``unstable_count`` counts every
+        eigenvalue (dense problems, symmetric sparse ones) or only the computed ones; None
+        without stability."""
+        return self._core.stability_certain if self._core.has_stability else None
+
+    @property
+    def eigenvalues(self) -> Optional[List[np.ndarray]]:
+        """mesh(..., stability=True): per vertex, its computed eigenvalues (complex128, by
+        decreasing real part; all of them for dense problems, ``eigenvalues`` nearest 0 for
+        sparse ones); None without stability."""
+        return self._core.eigenvalues if self._core.has_stability else None
+
+    @property
+    def hopf_curves(self) -> List[np.ndarray]:
+        """mesh(..., hopf=True): one (m, k) array per Hopf curve, its points in order, in the
+        columns ``summary["hopf"]["columns"]``: the mesh's view, the dynamics' parameters not in
+        it, then omega (the imaginary part of the crossing pair ±iω). Empty without hopf."""
+        return self._curves("hopf", "curves")
+
+    @property
+    def neutral_saddle_curves(self) -> List[np.ndarray]:
+        """mesh(..., hopf=True): the neutral saddle curves (a real pair ±κ), as `hopf_curves`,
+        with κ in the last column."""
+        return self._curves("hopf", "neutral_saddle_curves")
+
+    @property
+    def special_points(self) -> List[Dict[str, Any]]:
+        """mesh(..., hopf=True): the Bogdanov-Takens points, as dicts {"kind":
+        "bogdanov_takens", "point": {column: value}, "plane": {p1: value, p2: value}}."""
+        hopf = self.summary.get("hopf")
+        return [] if hopf is None else hopf["special_points"]
+
+    @property
+    def level_curves(self) -> List[np.ndarray]:
+        """mesh(..., level="F=V"): one (m, k) array per level curve, in the mesh's view
+        (``summary["level"]["columns"]``). Empty without level."""
+        return self._curves("level", "curves")
+
+    def _curves(self, section: str, key: str) -> List[np.ndarray]:
+        found = self.summary.get(section)
+        if found is None:
+            return []
+        return [np.asarray(curve["points"], dtype=float) for curve in found[key]]
 
     @property
     def termination(self) -> str:
@@ -448,6 +643,11 @@ def mesh(
     improve: bool = False,
     view: Optional[str] = None,
     folds: Optional[str] = None,
+    stability: bool = False,
+    eigenvalues: int = 6,
+    hopf: bool = False,
+    level: Optional[str] = None,
+    diagram: Optional[Union[str, "os.PathLike[str]"]] = None,
     report_samples: Optional[int] = None,
     max_vertices: int = 2_000_000,
     max_start_distance: Optional[float] = None,
@@ -478,6 +678,18 @@ def mesh(
     view: the view written by `Mesh.write` and reported (``--view``).
     folds: the parameter plane of the fold curves, e.g. "lambda,epsilon" (``--folds``,
         docs/algorithms/folds.md): `Mesh.fold_curves` holds them, ``summary["folds"]`` the rest.
+    stability: the eigenvalues of the problem's dynamics (`Problem.dynamics`) at every vertex
+        (``--stability``): `Mesh.unstable_count`, `Mesh.leading_real_part`,
+        `Mesh.stability_certain`, `Mesh.eigenvalues`, ``summary["stability"]``; `Mesh.write`
+        writes the first three as point data.
+    eigenvalues: sparse problems: how many eigenvalues nearest 0 per vertex (``--eigenvalues``).
+    hopf: the Hopf curves, Bogdanov-Takens points and neutral saddle curves (``--hopf``; implies
+        stability): `Mesh.hopf_curves`, `Mesh.special_points`, `Mesh.neutral_saddle_curves`,
+        ``summary["hopf"]``.
+    level: the level curves of one functional, e.g. "x1=0.5" (``--level``): `Mesh.level_curves`,
+        ``summary["level"]``.
+    diagram: draw the two-parameter bifurcation diagram to this .png or .svg (``--diagram``;
+        implies hopf, and folds over the dynamics' parameters unless folds is given).
     report_samples: distances in the summary measured at this many points of each kind (0: all;
         default all for n < 500, else 300 within a tenth of the run's time or 10 s if longer).
     max_vertices, max_start_distance: stop after this many vertices; how far the start may be
@@ -510,6 +722,11 @@ def mesh(
     request.improve = bool(improve)
     request.view = view or ""
     request.folds = folds or ""
+    request.stability = bool(stability)
+    request.eigenvalues = _in_range("eigenvalues", eigenvalues, 1, 10_000, int)
+    request.hopf = bool(hopf)
+    request.level = level or ""
+    request.diagram = os.fspath(diagram) if diagram is not None else ""
     request.report_samples = (-1 if report_samples is None else
                               _in_range("report_samples", report_samples, 0, 100_000_000, int))
     request.max_vertices = _in_range("max_vertices", max_vertices, 7, 100_000_000, int)
@@ -530,6 +747,8 @@ def mesh(
             core.interrupt_count)
     if core.failure and not allow_partial:
         raise ComputationFailed(core.failure, result)
+    if core.note:
+        warnings.warn(core.note, stacklevel=2)
     return result
 
 

@@ -211,7 +211,7 @@ TEST(Stability, ProblemWithoutDynamicsIsRefusedWithHowToDeclareThem) {
   } catch (const InvalidArgument& error) {
     const std::string message = error.what();
     EXPECT_NE(message.find("'sphere' does not say"), std::string::npos) << message;
-    EXPECT_NE(message.find("dynamics: parameters"), std::string::npos) << message;
+    EXPECT_NE(message.find("dynamics parameters P1 P2"), std::string::npos) << message;
   }
 }
 

@@ -10,7 +10,9 @@
 #include <random>
 
 #include "support/test_support.h"
+#include "tessera/core/dynamics.h"
 #include "tessera/core/error.h"
+#include "tessera/problems/catalogue.h"
 
 namespace {
 
@@ -233,6 +235,66 @@ view Da, B, heat = (1 + beta)*x2, norm    # a parameter in an expression
   EXPECT_FALSE(parse_problem(sphere_text, "sphere.tsr").view.has_value());
 }
 
+// ---- dynamics ----------------------------------------------------------------------------
+
+TEST(ProblemFile, DynamicsLineDeclaresParametersSignAndMass) {
+  const std::string text = R"(variables x1 x2 Da B
+parameter beta = 0.5
+equation -x1 + Da*(1 - x1)*exp(x2)
+equation -(1 + beta)*x2 + B*Da*(1 - x1)*exp(x2)
+start 0.1 0.1 0.1 5
+dynamics mass 1 2*beta parameters Da B sign -1    # sections in any order
+)";
+  const ProblemSetup setup = parse_problem(text, "cstr.tsr");
+  const auto dynamics = setup.problem->dynamics();
+  ASSERT_TRUE(dynamics.has_value());
+  EXPECT_EQ(dynamics->parameters, (std::array<int, 2>{2, 3}));
+  EXPECT_EQ(dynamics->sign, -1.0);
+  EXPECT_EQ(dynamics->mass_diagonal, Eigen::Vector2d(1.0, 1.0));
+  EXPECT_EQ(tessera::state_indices(*dynamics, 4), (std::vector<int>{0, 1}));
+  // An override reaches the mass as it reaches the equations.
+  const auto other_beta = parse_problem(text, "cstr.tsr", {{"beta", 2.0}}).problem->dynamics();
+  EXPECT_EQ(other_beta->mass_diagonal, Eigen::Vector2d(1.0, 4.0));
+  // Without sign and mass: B·u' = F with B = I.
+  const auto plain = parse_problem(
+                         "variables x y z\nequation x^3 - y*x - z\nstart 0 0 0\n"
+                         "dynamics parameters z x\n")
+                         .problem->dynamics();
+  ASSERT_TRUE(plain.has_value());
+  EXPECT_EQ(plain->parameters, (std::array<int, 2>{2, 0}));
+  EXPECT_EQ(plain->sign, 1.0);
+  EXPECT_TRUE(plain->has_identity_mass());
+  // Without a dynamics line the problem declares none.
+  EXPECT_FALSE(parse_problem(sphere_text, "sphere.tsr").problem->dynamics().has_value());
+}
+
+TEST(ProblemFile, VariablesMayBeNamedLikeTheDynamicsSections) {
+  const std::string text =
+      "variables sign mass z\nequation sign^3 - mass*sign - z\nstart 0 0 0\n"
+      "dynamics parameters mass z sign -1\n";
+  const auto dynamics = parse_problem(text, "t.tsr").problem->dynamics();
+  ASSERT_TRUE(dynamics.has_value());
+  EXPECT_EQ(dynamics->parameters, (std::array<int, 2>{1, 2}));
+  EXPECT_EQ(dynamics->sign, -1.0);
+}
+
+TEST(ProblemFile, ExampleDynamicsAreTheCataloguesOwn) {
+  for (const std::string name : {"whitney_pleat", "cstr"}) {
+    SCOPED_TRACE(name);
+    const ProblemSetup file =
+        load_problem_file(tessera::testing::source_path("examples/problems/" + name + ".tsr"));
+    const ProblemSetup catalogue = tessera::make_catalogue_problem(name);
+    const auto ours = file.problem->dynamics();
+    const auto theirs = catalogue.problem->dynamics();
+    ASSERT_TRUE(ours.has_value());
+    ASSERT_TRUE(theirs.has_value());
+    EXPECT_EQ(ours->parameters, theirs->parameters);
+    EXPECT_EQ(ours->sign, theirs->sign);
+    EXPECT_TRUE(ours->has_identity_mass());
+    EXPECT_TRUE(theirs->has_identity_mass());
+  }
+}
+
 // ---- errors: each names the file, the line and what is wrong -------------------------------
 
 // Lines 1–5 are valid; a case appends or replaces lines to break one rule.
@@ -314,6 +376,41 @@ TEST(ProblemFile, EveryErrorNamesTheLineAndTheProblem) {
       {header + equation + start + "view z\n", {"t.tsr:6:", "1 functional given, need at least 2"}},
       {header + equation + start + "view\n", {"t.tsr:6:", "expected functionals after 'view'"}},
       {header + equation + start + "view x, y\nview x, z\n", {"t.tsr:7:1:", "duplicate 'view'"}},
+      // dynamics
+      {header + equation + start + "dynamics parameters x w\n",
+       {"t.tsr:6:23: dynamics: unknown variable 'w' (variables: x, y, z)"}},
+      {header + equation + start + "dynamics parameters x x\n",
+       {"t.tsr:6:23:", "the same variable 'x' twice"}},
+      {header + equation + start + "dynamics parameters x r\n",
+       {"t.tsr:6:23:", "'r' is a constant ('parameter' on line 3), not a variable of M",
+        "two of the variables (x, y, z)"}},
+      {header + equation + start + "dynamics parameters x\n",
+       {"t.tsr:6:10:", "parameters: expected two variables, found 1 word"}},
+      {header + equation + start + "dynamics parameters x y z\n",
+       {"t.tsr:6:10:", "expected two variables, found 3 words"}},
+      {header + equation + start + "dynamics parameters x y mass 1 1\n",
+       {"t.tsr:6:25:", "mass has 2 values, expected 1", "one per equation"}},
+      {header + equation + start + "dynamics parameters x y mass -r\n",
+       {"t.tsr:6:30:", "mass entry 1 = -1 must be >= 0", "algebraic equation"}},
+      {header + equation + start + "dynamics parameters x y mass 1/0\n",
+       {"t.tsr:6:", "mass entry 1 = inf is not a finite number"}},
+      {header + equation + start + "dynamics parameters x y mass q\n",
+       {"t.tsr:6:30:", "unknown name 'q'"}},
+      {header + equation + start + "dynamics parameters x y sign 2\n",
+       {"t.tsr:6:30:", "sign = 2 must be 1", "or -1"}},
+      {header + equation + start + "dynamics parameters x y sign\n",
+       {"t.tsr:6:25:", "sign: expected one value, 1 or -1, found 0 words"}},
+      {header + equation + start + "dynamics parameters x y sign 1 sign -1\n",
+       {"t.tsr:6:32:", "'sign' is given twice"}},
+      {header + equation + start + "dynamics x y\n",
+       {"t.tsr:6:10:", "found 'x' where 'parameters', 'sign' or 'mass' was expected",
+        "dynamics parameters P1 P2"}},
+      {header + equation + start + "dynamics sign -1\n",
+       {"t.tsr:6:", "missing 'parameters P1 P2'"}},
+      {header + equation + start + "dynamics\n",
+       {"t.tsr:6:", "expected 'dynamics parameters P1 P2 [sign -1] [mass B1 … Bm]'"}},
+      {header + equation + start + "dynamics parameters x y\ndynamics parameters y z\n",
+       {"t.tsr:7:1:", "duplicate 'dynamics' line", "first given on line 6"}},
   };
   for (const auto& test : cases) {
     try {

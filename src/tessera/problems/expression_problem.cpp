@@ -7,8 +7,9 @@
 
 namespace tessera {
 
-ExpressionProblem::ExpressionProblem(std::string name, std::vector<Expression> equations)
-    : name_(std::move(name)), equations_(std::move(equations)) {
+ExpressionProblem::ExpressionProblem(std::string name, std::vector<Expression> equations,
+                                     std::optional<Dynamics> dynamics)
+    : name_(std::move(name)), equations_(std::move(equations)), dynamics_(std::move(dynamics)) {
   TESSERA_CHECK(!equations_.empty(), "ExpressionProblem '" << name_ << "' has no equations");
   variable_names_ = equations_.front().variable_names();
   const int n = static_cast<int>(variable_names_.size());
@@ -21,6 +22,9 @@ ExpressionProblem::ExpressionProblem(std::string name, std::vector<Expression> e
     TESSERA_CHECK(equations_[i].variable_names() == variable_names_,
                   "ExpressionProblem '" << name_ << "': equation " << i + 1
                                         << " has other variables than equation 1");
+  }
+  if (dynamics_) {
+    check_dynamics(*dynamics_, n, name_);
   }
   gradient_.resize(n);
 }

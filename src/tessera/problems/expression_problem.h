@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,9 +21,13 @@ class ExpressionProblem final : public ImplicitProblem {
  public:
   /// \param name       short identifier returned by name(), e.g. "sphere_cut".
   /// \param equations  n-2 expressions, all of the same variables (same names, same order).
+  /// \param dynamics   the dynamics B·u' = ±F(u, p) whose steady states M is (a problem file's
+  ///                   `dynamics` line); none: the problem declares none.
   /// \pre  n = equations[0].variable_count() >= 3 and equations.size() == n-2.
-  /// \throw InvalidArgument if a precondition fails (the message names the counts or the names).
-  ExpressionProblem(std::string name, std::vector<Expression> equations);
+  /// \throw InvalidArgument if a precondition fails (the message names the counts or the names)
+  ///        or the dynamics are invalid (check_dynamics).
+  ExpressionProblem(std::string name, std::vector<Expression> equations,
+                    std::optional<Dynamics> dynamics = std::nullopt);
 
   int ambient_dimension() const override { return static_cast<int>(variable_names_.size()); }
   /// F(x). \pre x.size() == n, F.size() == n-2.
@@ -34,6 +39,7 @@ class ExpressionProblem final : public ImplicitProblem {
   std::string name() const override { return name_; }
   /// The variable names of the expressions, e.g. {"x1", "x2", "Da", "B"}.
   std::vector<std::string> coordinate_names() const override { return variable_names_; }
+  std::optional<Dynamics> dynamics() const override { return dynamics_; }
 
   const std::vector<Expression>& equations() const { return equations_; }
 
@@ -41,6 +47,7 @@ class ExpressionProblem final : public ImplicitProblem {
   std::string name_;
   std::vector<std::string> variable_names_;
   std::vector<Expression> equations_;
+  std::optional<Dynamics> dynamics_;
   // Scratch only (the ImplicitProblem contract allows caching); never part of the state.
   mutable ExpressionWorkspace workspace_;
   mutable Eigen::VectorXd gradient_;

@@ -7,11 +7,13 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
 
 #include "tessera/core/describe.h"
+#include "tessera/core/dynamics.h"
 #include "tessera/core/error.h"
 #include "tessera/problems/detail/statement_reader.h"
 #include "tessera/problems/expression.h"
@@ -25,9 +27,9 @@ namespace {
 using detail::Statement;
 using detail::Word;
 
-const std::vector<std::string> all_keywords = {"name",      "description", "variables", "parameter",
-                                               "equation",  "start",       "step",      "box",
-                                               "halfspace", "euler",       "area",      "view"};
+const std::vector<std::string> all_keywords = {
+    "name", "description", "variables", "parameter", "equation", "start",   "step",
+    "box",  "halfspace",   "euler",     "area",      "view",     "dynamics"};
 const std::vector<std::string> repeatable_keywords = {"parameter", "equation", "box", "halfspace"};
 
 bool contains(const std::vector<std::string>& list, const std::string& word) {
@@ -58,6 +60,10 @@ class ProblemFileParser {
     read_variables();
     read_parameters();
     std::vector<Expression> equations = read_equations();
+    std::optional<Dynamics> dynamics;
+    if (const Statement* statement = single("dynamics")) {
+      dynamics = read_dynamics(*statement);
+    }
     ProblemSetup setup;
     setup.start = read_start();
     setup.domain = read_domain();
@@ -70,7 +76,8 @@ class ProblemFileParser {
     if (const Statement* euler = single("euler")) {
       setup.expected_euler_characteristic = read_euler(*euler);
     }
-    setup.problem = std::make_unique<ExpressionProblem>(name_, std::move(equations));
+    setup.problem =
+        std::make_unique<ExpressionProblem>(name_, std::move(equations), std::move(dynamics));
     setup.description = describe();
     check_start(setup);
     if (const Statement* view = single("view")) {
@@ -232,6 +239,7 @@ class ProblemFileParser {
         }
       }
       defined_on_line[name] = statement->line;
+      parameter_lines_[name] = statement->line;
       parameters_[name] = value;
       parameter_order_.push_back(name);
     }
@@ -275,6 +283,129 @@ class ProblemFileParser {
                                         variables_, "equation " + std::to_string(i + 1)));
     }
     return equations;
+  }
+
+  // dynamics parameters P1 P2 [sign S] [mass B1 … Bm]: the sections in any order, each once. The
+  // two words after `parameters` are variables even where they are spelled like a section, so
+  // that variables may be called `sign` or `mass` too.
+  Dynamics read_dynamics(const Statement& statement) const {
+    const std::vector<std::string> section_names = {"parameters", "sign", "mass"};
+    const std::string usage =
+        "expected 'dynamics parameters P1 P2 [sign -1] [mass B1 … Bm]', e.g. 'dynamics "
+        "parameters " +
+        variables_[variables_.size() - 2] + " " + variables_.back() + " sign -1'";
+    if (statement.words.empty()) {
+      fail(statement, "dynamics: " + usage, statement.rest_column);
+    }
+    std::map<std::string, std::vector<Word>> sections;
+    std::map<std::string, Word> section_words;
+    std::string current;
+    for (const Word& word : statement.words) {
+      const bool is_parameter_word = current == "parameters" && sections[current].size() < 2 &&
+                                     contains(variables_, word.text);
+      if (contains(section_names, word.text) && !is_parameter_word) {
+        if (section_words.count(word.text) > 0) {
+          fail(statement, "dynamics: '" + word.text + "' is given twice", word.column);
+        }
+        current = word.text;
+        section_words[current] = word;
+        sections[current];
+        continue;
+      }
+      if (current.empty()) {
+        fail(statement,
+             "dynamics: found '" + word.text +
+                 "' where 'parameters', 'sign' or 'mass' was expected; " + usage,
+             word.column);
+      }
+      sections[current].push_back(word);
+    }
+    if (sections.count("parameters") == 0) {
+      fail(statement,
+           "dynamics: missing 'parameters P1 P2', the two variables that are the "
+           "dynamics' parameters (the others are its state)",
+           statement.rest_column);
+    }
+    Dynamics dynamics;
+    read_dynamics_parameters(statement, section_words.at("parameters"), sections.at("parameters"),
+                             dynamics);
+    if (sections.count("sign") > 0) {
+      const auto& words = sections.at("sign");
+      if (words.size() != 1) {
+        fail(statement,
+             "dynamics: sign: expected one value, 1 or -1, found " + plural(words.size(), "word"),
+             section_words.at("sign").column);
+      }
+      dynamics.sign = constant_at(statement, words[0], "dynamics: sign");
+      if (dynamics.sign != 1.0 && dynamics.sign != -1.0) {
+        fail(statement,
+             "dynamics: sign = " + format_number(dynamics.sign) +
+                 " must be 1 (B·u' = F) or -1 (B·u' = -F)",
+             words[0].column);
+      }
+    }
+    if (sections.count("mass") > 0) {
+      dynamics.mass_diagonal = read_mass(statement, section_words.at("mass"), sections.at("mass"));
+    }
+    return dynamics;
+  }
+
+  void read_dynamics_parameters(const Statement& statement, const Word& keyword,
+                                const std::vector<Word>& words, Dynamics& dynamics) const {
+    if (words.size() != 2) {
+      fail(statement,
+           "dynamics: parameters: expected two variables, found " + plural(words.size(), "word"),
+           keyword.column);
+    }
+    for (std::size_t k = 0; k < 2; ++k) {
+      const Word& word = words[k];
+      if (parameters_.count(word.text) > 0) {
+        fail(statement,
+             "dynamics: '" + word.text + "' is a constant ('parameter' on line " +
+                 std::to_string(parameter_lines_.at(word.text)) +
+                 "), not a variable of M; the dynamics' parameters are two of the variables (" +
+                 join_words(variables_) + ")",
+             word.column);
+      }
+      const auto variable = std::find(variables_.begin(), variables_.end(), word.text);
+      if (variable == variables_.end()) {
+        fail(statement,
+             "dynamics: unknown variable '" + word.text +
+                 "' (variables: " + join_words(variables_) + ")",
+             word.column);
+      }
+      dynamics.parameters[k] = static_cast<int>(variable - variables_.begin());
+    }
+    if (dynamics.parameters[0] == dynamics.parameters[1]) {
+      fail(statement,
+           "dynamics: the parameters are the same variable '" + words[1].text +
+               "' twice; give two different variables",
+           words[1].column);
+    }
+  }
+
+  // B's diagonal: one entry per equation, in the order of the equation lines.
+  Eigen::VectorXd read_mass(const Statement& statement, const Word& keyword,
+                            const std::vector<Word>& words) const {
+    const std::size_t expected = variables_.size() - 2;
+    if (words.size() != expected) {
+      fail(statement,
+           "dynamics: mass has " + plural(words.size(), "value") + ", expected " +
+               std::to_string(expected) + " (the diagonal of B: one per equation, in order)",
+           keyword.column);
+    }
+    Eigen::VectorXd mass(static_cast<Eigen::Index>(expected));
+    for (std::size_t i = 0; i < expected; ++i) {
+      const std::string what = "dynamics: mass entry " + std::to_string(i + 1);
+      const double value = constant_at(statement, words[i], what);
+      if (!(value >= 0.0)) {
+        fail(statement,
+             what + " = " + format_number(value) + " must be >= 0 (0: an algebraic equation)",
+             words[i].column);
+      }
+      mass(static_cast<Eigen::Index>(i)) = value;
+    }
+    return mass;
   }
 
   // n values, one per variable, each a constant expression.
@@ -475,6 +606,7 @@ class ProblemFileParser {
   std::vector<std::string> variables_;
   std::map<std::string, double> parameters_;
   std::vector<std::string> parameter_order_;  ///< file order, for the description
+  std::map<std::string, int> parameter_lines_;  ///< where each parameter is defined
 };
 
 }  // namespace

@@ -13,7 +13,7 @@ Dynamics required_dynamics(const ImplicitProblem& problem, const std::string& re
                 request << ": problem '" << problem.name()
                         << "' does not say what its equations are the right-hand side of. "
                            "Stability needs dynamics B·u' = ±F(u, p) with two parameters p: a "
-                           "problem file declares them with a line `dynamics: parameters P1, P2` "
+                           "problem file declares them with a line `dynamics parameters P1 P2` "
                            "(docs/problem-files.md), a Python problem with "
                            "tessera.Problem(..., dynamics=...) (docs/python.md), a C++ problem "
                            "by overriding ImplicitProblem::dynamics()");
