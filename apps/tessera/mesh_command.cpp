@@ -27,7 +27,7 @@
 #include "tessera/io/view_mesh.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/methods/stability/state_jacobian.h"
-#include "tessera/picture/bifurcation_diagram.h"
+#include "tessera/picture/run_diagram.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/start_and_box.h"
 #include "tessera/problems/view.h"
@@ -658,29 +658,11 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   }
   if (has_mesh && hopf && !command.diagram.empty() && is_root) {
     // The two-parameter bifurcation diagram: fold and Hopf curves over the dynamics' parameters.
-    const std::string& p1 = hopf->report.plane_names[0];
-    const std::string& p2 = hopf->report.plane_names[1];
-    BifurcationDiagramScene scene;
-    scene.parameter_names = {p1, p2};
-    if (report.folds) {
-      const auto& columns = report.folds->columns;
-      const bool has_plane = std::find(columns.begin(), columns.end(), p1) != columns.end() &&
-                             std::find(columns.begin(), columns.end(), p2) != columns.end();
-      if (has_plane) {
-        PolylineFileOptions fold_options;
-        fold_options.names = columns;
-        fold_options.kind = "fold";
-        add_to_diagram(scene, fold_curves, fold_options, p1, p2);
-      } else {
-        std::cerr << "tessera: the fold curves are not in the diagram: the view (" << view.specification()
-                  << ") does not hold " << p1 << " and " << p2 << "\n";
-      }
+    const std::string note =
+        write_run_diagram(command.diagram, command.problem, report, fold_curves, *hopf, view);
+    if (!note.empty()) {
+      std::cerr << "tessera: " << note << "\n";
     }
-    add_to_diagram(scene, hopf->file.polylines, hopf->file.options, p1, p2);
-    add_to_diagram(scene, hopf->neutral_saddle_file.polylines, hopf->neutral_saddle_file.options, p1, p2);
-    BifurcationDiagramOptions diagram_options;
-    diagram_options.title = command.problem + ": folds and Hopf curves over (" + p1 + ", " + p2 + ")";
-    write_bifurcation_diagram(command.diagram, scene, diagram_options);
     written.push_back(command.diagram);
   }
   if (!command.summary.empty() && is_root) {

@@ -38,7 +38,7 @@
 #include "tessera/methods/covering_methods.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/methods/stability/state_jacobian.h"
-#include "tessera/picture/bifurcation_diagram.h"
+#include "tessera/picture/run_diagram.h"
 #include "tessera/picture/picture.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/problem_file.h"
@@ -133,37 +133,6 @@ struct MeshRequest {
 // As `tessera mesh --diagram`: the fold curves (where the view holds the dynamics' parameters),
 // the Hopf and neutral saddle curves and their special points over the parameter plane.
 // Returns a note for the user when the fold curves could not be drawn, empty otherwise.
-std::string write_diagram(const std::string& path, const std::string& problem_name,
-                          const MeshReport& report, const std::vector<Polyline>& fold_curves,
-                          const HopfOutput& hopf, const View& view) {
-  const std::string& p1 = hopf.report.plane_names[0];
-  const std::string& p2 = hopf.report.plane_names[1];
-  BifurcationDiagramScene scene;
-  scene.parameter_names = {p1, p2};
-  std::string note;
-  if (report.folds) {
-    const auto& columns = report.folds->columns;
-    const bool has_plane = std::find(columns.begin(), columns.end(), p1) != columns.end() &&
-                           std::find(columns.begin(), columns.end(), p2) != columns.end();
-    if (has_plane) {
-      PolylineFileOptions fold_options;
-      fold_options.names = columns;
-      fold_options.kind = "fold";
-      add_to_diagram(scene, fold_curves, fold_options, p1, p2);
-    } else {
-      note = "the fold curves are not in the diagram: the view (" + view.specification() +
-             ") does not hold " + p1 + " and " + p2;
-    }
-  }
-  add_to_diagram(scene, hopf.file.polylines, hopf.file.options, p1, p2);
-  add_to_diagram(scene, hopf.neutral_saddle_file.polylines, hopf.neutral_saddle_file.options, p1,
-                 p2);
-  BifurcationDiagramOptions options;
-  options.title = problem_name + ": folds and Hopf curves over (" + p1 + ", " + p2 + ")";
-  write_bifurcation_diagram(path, scene, options);
-  return note;
-}
-
 std::string box_text(const MeshRequest& request) {
   if (!request.named_box.empty()) {
     return request.named_box;
@@ -294,7 +263,7 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
       report.hopf = hopf.report;
       if (!request.diagram.empty()) {
         handle->note =
-            write_diagram(request.diagram, problem->argument, report, fold_curves, hopf, view);
+            write_run_diagram(request.diagram, problem->argument, report, fold_curves, hopf, view);
       }
     }
     if (level_set && has_mesh) {
