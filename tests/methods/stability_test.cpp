@@ -203,6 +203,51 @@ TEST(HopfPoint, BrusselatorSparsePointsLieOnBEqualsOnePlusASquared) {
   EXPECT_NEAR(point.omega, a, 1e-8);
 }
 
+TEST(Stability, AnEigensolverThatDoesNotConvergeSaysSoPerVertex) {
+  // Almost no diffusion: 200 modes with nearly the same eigenvalues, which one restart of
+  // Arnoldi cannot separate.
+  const test::Brusselator brusselator(200, 1e-9);
+  StabilityOptions options;
+  options.max_restarts = 1;
+  const VertexStability s = stability_at(brusselator, brusselator.steady_state(1.5, 3.0), options);
+  EXPECT_TRUE(s.has_failed());
+  EXPECT_EQ(s.unstable_count, -1);
+  EXPECT_TRUE(std::isnan(s.leading_real_part));
+  EXPECT_NE(s.message.find("did not converge"), std::string::npos) << s.message;
+}
+
+TEST(Stability, InvalidDynamicsAreRefusedWithTheirFault) {
+  struct Case {
+    Dynamics dynamics;
+    std::string message;
+  };
+  Dynamics out_of_range;
+  out_of_range.parameters = {1, 4};
+  Dynamics same;
+  same.parameters = {2, 2};
+  Dynamics sign;
+  sign.parameters = {2, 3};
+  sign.sign = 0.5;
+  Dynamics mass_size;
+  mass_size.parameters = {2, 3};
+  mass_size.mass_diagonal = Eigen::VectorXd::Ones(3);
+  Dynamics negative_mass;
+  negative_mass.parameters = {2, 3};
+  negative_mass.mass_diagonal = Eigen::Vector2d(1.0, -1.0);
+  for (const Case& c : std::vector<Case>{{out_of_range, "indices 0 … 3), got 1 and 4"},
+                                         {same, "the same coordinate (index 2)"},
+                                         {sign, "+1 or −1, got 0.5"},
+                                         {mass_size, "3 entries, one per state (2)"},
+                                         {negative_mass, "entry 1 is -1"}}) {
+    try {
+      check_dynamics(c.dynamics, 4, "p");
+      ADD_FAILURE() << "accepted: " << c.message;
+    } catch (const InvalidArgument& error) {
+      EXPECT_NE(std::string(error.what()).find(c.message), std::string::npos) << error.what();
+    }
+  }
+}
+
 TEST(Stability, ProblemWithoutDynamicsIsRefusedWithHowToDeclareThem) {
   const Sphere sphere;
   try {
