@@ -575,15 +575,19 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     written.push_back(hopf_file);
     picture_curves.push_back({hopf->curves_in_view, hopf->file.options});
     picture_curves.back().options.names = coordinate_names_in_view(view);
+    if (!hopf->zero_hopf_points_in_view.empty()) {
+      picture_curves.push_back({hopf->zero_hopf_points_in_view, hopf->zero_hopf_points.options});
+      picture_curves.back().options.names = coordinate_names_in_view(view);
+    }
     if (!hopf->report.neutral_saddle_file.empty()) {
       written.push_back(hopf->report.neutral_saddle_file);
       picture_curves.push_back({hopf->neutral_saddle_curves_in_view, hopf->neutral_saddle_file.options});
       picture_curves.back().options.names = coordinate_names_in_view(view);
     }
     if (hopf->report.unrefined_count > 0 && is_root) {
-      std::cerr << "tessera: " << hopf->report.unrefined_count
-                << " Hopf point(s) did not converge and are kept at the mesh's linear estimate "
-                   "(summary: hopf.unrefined_points)\n";
+      std::cerr << "tessera: at " << hopf->report.unrefined_count
+                << " crossing(s) Newton converged neither to a Hopf point nor to a neutral "
+                   "saddle: left out, the curves are cut there (summary: hopf.unrefined_points)\n";
     }
   }
   if (has_mesh && level_set) {

@@ -205,6 +205,42 @@ TEST(StabilityCli, Bratu2dIndexChangesByOneAcrossEachFold) {
   expect_index_parity_follows_the_folds("bratu2d:N=12", "bratu2d");
 }
 
+// The truncated normal form of the fold–Hopf bifurcation (Kuznetsov, Elements of Applied
+// Bifurcation Theory, §8.5): z' = μ₁ + z² + u² + v², (u + iv)' = (μ₂ + z + i)(u + iv). Its steady
+// states u = v = 0, μ₁ = −z² fold along z = 0; there the eigenvalues are 2z and μ₂ + z ± i, so
+// the Hopf curve μ₂ = −z (ω = 1) crosses the fold at the origin: a fold–Hopf point.
+TEST(StabilityCli, FoldHopfPointOfTheNormalFormIsFoundOnTheHopfCurve) {
+  const std::string dir = testing::temporary_directory("stability_cli_zero_hopf");
+  {
+    std::ofstream file(dir + "/zh.tsr");
+    file << "name fold_hopf\nvariables z u v mu1 mu2\n"
+            "equation mu1 + z^2 + u^2 + v^2\n"
+            "equation (mu2 + z)*u - v\n"
+            "equation u + (mu2 + z)*v\n"
+            "start 0.1 0 0 -0.01 0.05\n"
+            "box z -0.5 0.5\nbox u -1 1\nbox v -1 1\nbox mu1 -1 1\nbox mu2 -0.4 0.4\n"
+            "dynamics parameters mu1 mu2\n";
+  }
+  const auto result = run_cli("mesh " + dir + "/zh.tsr --tolerance 0.002 --hopf -o " + dir +
+                              "/zh.ply --summary " + dir + "/zh.json");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(contains(result.output, "1 fold–Hopf point(s)")) << result.output;
+  const auto hopf = read_json(dir + "/zh.json").at("hopf");
+  ASSERT_EQ(hopf.at("special_points").size(), 1u);
+  const auto& zh = hopf.at("special_points")[0];
+  EXPECT_EQ(zh.at("kind"), "zero_hopf");
+  for (const std::string name : {"z", "u", "v", "mu1", "mu2"}) {
+    EXPECT_NEAR(zh.at("point").at(name).get<double>(), 0.0, 1e-8) << name;
+  }
+  EXPECT_NEAR(zh.at("point").at("omega").get<double>(), 1.0, 1e-8);
+  for (const auto& curve : hopf.at("curves")) {
+    for (const auto& point : curve.at("points")) {  // z u v mu1 mu2 omega
+      EXPECT_NEAR(point[4].get<double>(), -point[0].get<double>(), 1e-8);
+      EXPECT_NEAR(point[5].get<double>(), 1.0, 1e-8);
+    }
+  }
+}
+
 TEST(StabilityCli, LevelCurveOfTheSphereIsAClosedGreatCircle) {
   const std::string dir = testing::temporary_directory("stability_cli_level");
   const auto result = run_cli("mesh sphere --tolerance 0.005 --level x=0.6 -o " + dir +

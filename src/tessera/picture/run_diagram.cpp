@@ -32,6 +32,7 @@ std::string write_run_diagram(const std::string& path, const std::string& proble
   add_to_diagram(scene, hopf.file.polylines, hopf.file.options, p1, p2);
   add_to_diagram(scene, hopf.neutral_saddle_file.polylines, hopf.neutral_saddle_file.options, p1,
                  p2);
+  add_to_diagram(scene, hopf.zero_hopf_points.polylines, hopf.zero_hopf_points.options, p1, p2);
   BifurcationDiagramOptions options;
   options.title = problem_name + ": folds and Hopf curves over (" + p1 + ", " + p2 + ")";
   write_bifurcation_diagram(path, scene, options);

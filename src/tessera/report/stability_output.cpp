@@ -145,9 +145,19 @@ HopfOutput compute_hopf_output(const ProblemSetup& setup, const TriangleMesh& me
       written.marked.push_back(point.is_bogdanov_takens);
       const Eigen::VectorXd full = written.points.col(column);
       reported.points.emplace_back(full.data(), full.data() + k);
-      if (point.is_bogdanov_takens) {
+      if (point.is_zero_hopf) {
+        Polyline single_in_view;
+        single_in_view.points = in_view.points.col(column);
+        single_in_view.marked = {true};
+        output.zero_hopf_points_in_view.push_back(std::move(single_in_view));
+        Polyline single;
+        single.points = written.points.col(column);
+        single.marked = {true};
+        output.zero_hopf_points.polylines.push_back(std::move(single));
+      }
+      if (point.is_bogdanov_takens || point.is_zero_hopf) {
         HopfReport::SpecialPoint special;
-        special.kind = "bogdanov_takens";
+        special.kind = point.is_zero_hopf ? "zero_hopf" : "bogdanov_takens";
         special.point = reported.points.back();
         special.plane[0] = point.x(parameters[0]);
         special.plane[1] = point.x(parameters[1]);
@@ -170,6 +180,9 @@ HopfOutput compute_hopf_output(const ProblemSetup& setup, const TriangleMesh& me
       output.file.polylines.push_back(std::move(written));
     }
   }
+  output.zero_hopf_points.options.names = report.columns;
+  output.zero_hopf_points.options.kind = "hopf";
+  output.zero_hopf_points.options.marker_name = "zero_hopf";
   PolylineFileOptions& saddle_options = output.neutral_saddle_file.options;
   saddle_options.names = report.columns;
   saddle_options.names.back() = "kappa";

@@ -42,6 +42,10 @@ struct HopfOutput {
   /// The neutral saddle curves likewise (their last column kappa, kind "neutral_saddle").
   std::vector<Polyline> neutral_saddle_curves_in_view;
   PolylineFile neutral_saddle_file;
+  /// Fold–Hopf points as one-point polylines, marked (marker "zero_hopf"): drawn as special
+  /// points; in the view's columns (`*_in_view`) and in the written ones.
+  std::vector<Polyline> zero_hopf_points_in_view;
+  PolylineFile zero_hopf_points;
 };
 
 /// Where the neutral saddles go beside the Hopf file: "out.hopf.ply" → "out.neutral_saddles.ply".

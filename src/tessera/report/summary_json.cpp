@@ -512,13 +512,19 @@ std::string to_text(const MeshReport& report) {
           << " crossing(s) where Newton converged to neither: left out, the curves cut there)";
     }
     int bogdanov_takens = 0;
+    int zero_hopf = 0;
     for (const auto& p : hopf.special_points) {
       bogdanov_takens += p.kind == "bogdanov_takens";
+      zero_hopf += p.kind == "zero_hopf";
     }
     out << ", " << bogdanov_takens << " Bogdanov–Takens point(s)";
+    if (zero_hopf > 0) {
+      out << ", " << zero_hopf << " fold–Hopf point(s)";
+    }
     for (const auto& p : hopf.special_points) {
-      out << "; BT at " << hopf.plane_names.at(0) << " = " << p.plane[0] << ", "
-          << hopf.plane_names.at(1) << " = " << p.plane[1];
+      out << "; " << (p.kind == "zero_hopf" ? "fold–Hopf" : "BT") << " at "
+          << hopf.plane_names.at(0) << " = " << p.plane[0] << ", " << hopf.plane_names.at(1)
+          << " = " << p.plane[1];
     }
     out << (hopf.file.empty() ? "" : " → " + hopf.file)
         << (hopf.neutral_saddle_curves.empty() || hopf.neutral_saddle_file.empty()

@@ -145,6 +145,23 @@ HopfCurves find_hopf_curves(const ImplicitProblem& problem, const TriangleMesh& 
     return std::nullopt;
   };
 
+  // The sign of the product of the real eigenvalues at a point of M (0 if they fail there).
+  const int state_count = problem.ambient_dimension() - 2;
+  auto real_eigenvalue_sign = [&](const Eigen::VectorXd& x) {
+    const VertexStability s = stability_at(problem, x);
+    if (s.has_failed()) {
+      return 0;
+    }
+    int sign = 1;
+    for (const std::complex<double>& mu : s.eigenvalues) {
+      if (std::abs(mu.imag()) <= options.complex_threshold * std::max(1.0, std::abs(mu)) &&
+          mu.real() < 0.0) {
+        sign = -sign;
+      }
+    }
+    return sign;
+  };
+
   std::vector<Eigen::VectorXd> bogdanov_takens_points;
   auto try_bogdanov_takens = [&](const Eigen::VectorXd& from, double reach) -> std::optional<HopfPoint> {
     HopfPoint bt = refine_bogdanov_takens_point(problem, from, reach, options.newton, result.work);
@@ -256,9 +273,38 @@ HopfCurves find_hopf_curves(const ImplicitProblem& problem, const TriangleMesh& 
         }
       }
     }
+    // Fold–Hopf points: along a Hopf curve, a real eigenvalue crosses 0 where the sign of the
+    // product of the real eigenvalues changes between neighbouring points (n − 2 ≥ 3).
+    if (state_count >= 3) {
+      for (HopfCurve& piece : pieces) {
+        if (piece.is_neutral_saddle) {
+          continue;
+        }
+        std::vector<int> signs;
+        for (const HopfPoint& point : piece.points) {
+          signs.push_back(point.is_bogdanov_takens ? 0 : real_eigenvalue_sign(point.x));
+        }
+        for (std::size_t i = piece.points.size(); i-- > 1;) {
+          if (signs[i] == 0 || signs[i - 1] == 0 || signs[i] == signs[i - 1]) {
+            continue;
+          }
+          const HopfPoint& a = piece.points[i - 1];
+          const HopfPoint& b = piece.points[i];
+          HopfPoint zero_hopf = refine_zero_hopf_point(
+              problem, 0.5 * (a.x + b.x), 0.5 * (a.omega + b.omega),
+              (options.max_displacement_in_edges + 1.0) * metric_length(b.x - a.x), options.newton,
+              result.work);
+          result.newton_iterations += zero_hopf.iterations;
+          if (zero_hopf.is_refined && zero_hopf.omega > options.complex_threshold) {
+            ++result.zero_hopf_count;
+            piece.points.insert(piece.points.begin() + static_cast<std::ptrdiff_t>(i), std::move(zero_hopf));
+          }
+        }
+      }
+    }
     for (HopfCurve& piece : pieces) {
       for (const HopfPoint& point : piece.points) {
-        if (point.is_bogdanov_takens) {
+        if (point.is_bogdanov_takens || point.is_zero_hopf) {
           continue;
         }
         (point.is_neutral_saddle ? result.neutral_saddle_point_count : result.hopf_point_count) += 1;

@@ -41,6 +41,7 @@ struct HopfCurves {
   /// out, so that every point written is on its curve to solver tolerance (the curve is cut).
   int unrefined_count = 0;
   int bogdanov_takens_count = 0;
+  int zero_hopf_count = 0;  ///< fold–Hopf points found on the Hopf curves (marked in them)
   int hopf_point_count = 0;
   int neutral_saddle_point_count = 0;
   int newton_iterations = 0;
@@ -63,7 +64,9 @@ struct HopfCurves {
 /// saddle curve. Every crossing is refined by refine_hopf_point or refine_neutral_saddle_point
 /// (the kind of its vertices' critical pair first); a change of kind along a curve is a
 /// Bogdanov–Takens point, refined by refine_bogdanov_takens_point, as are the ends of Hopf curves
-/// inside the mesh.
+/// inside the mesh. Where the sign of the product of the real eigenvalues changes between two
+/// neighbouring Hopf points (n − 2 ≥ 3), a fold–Hopf point is refined by refine_zero_hopf_point
+/// and inserted.
 /// \param stability  compute_stability(problem, mesh) (one entry per vertex).
 /// \throw InvalidArgument if the sizes disagree or the problem has no dynamics.
 HopfCurves find_hopf_curves(const ImplicitProblem& problem, const TriangleMesh& mesh,

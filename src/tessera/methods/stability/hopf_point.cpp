@@ -19,7 +19,7 @@ namespace {
 using Complex = std::complex<double>;
 using SparseComplex = Eigen::SparseMatrix<Complex>;
 
-enum class PencilKind { Hopf, NeutralSaddle };
+enum class PencilKind { Hopf, NeutralSaddle, ZeroHopf };
 
 Eigen::SparseMatrix<double> sparse_of(const StateJacobian& jacobian) {
   if (jacobian.is_sparse()) {
@@ -128,14 +128,30 @@ class AugmentedNewton {
     HopfPoint point;
     Eigen::VectorXd y = to_metric(x_start);
     const Eigen::VectorXd start = y;
-    const bool is_hopf = kind == PencilKind::Hopf;
-    // The shifts σ_j(p) of the pencils and dσ_j/dp.
+    const bool is_hopf = kind != PencilKind::NeutralSaddle;
+    // The shifts σ_j(p) of the pencils, dσ_j/dp, and whether a pencil's g is complex (two
+    // equations: its real and imaginary part) or real (one). Zero-Hopf: the Hopf pencil and A
+    // itself (a fold).
     auto shifts = [&](double p) {
-      return is_hopf ? std::vector<Complex>{Complex(0.0, p)} : std::vector<Complex>{p, -p};
+      switch (kind) {
+        case PencilKind::Hopf:
+          return std::vector<Complex>{Complex(0.0, p)};
+        case PencilKind::NeutralSaddle:
+          return std::vector<Complex>{p, -p};
+        case PencilKind::ZeroHopf:
+          break;
+      }
+      return std::vector<Complex>{Complex(0.0, p), 0.0};
     };
     const std::vector<Complex> shift_derivatives =
-        is_hopf ? std::vector<Complex>{Complex(0.0, 1.0)} : std::vector<Complex>{1.0, -1.0};
+        kind == PencilKind::Hopf            ? std::vector<Complex>{Complex(0.0, 1.0)}
+        : kind == PencilKind::NeutralSaddle ? std::vector<Complex>{1.0, -1.0}
+                                            : std::vector<Complex>{Complex(0.0, 1.0), 0.0};
+    const std::vector<bool> is_complex = kind == PencilKind::Hopf            ? std::vector<bool>{true}
+                                         : kind == PencilKind::NeutralSaddle ? std::vector<bool>{false, false}
+                                                                             : std::vector<bool>{true, false};
     const std::size_t pencils = shift_derivatives.size();
+    const int rows = kind == PencilKind::ZeroHopf ? 3 : 2;
     std::vector<Eigen::VectorXcd> v(pencils);
     std::vector<Eigen::VectorXcd> w(pencils);
     for (std::size_t j = 0; j < pencils; ++j) {
@@ -143,7 +159,7 @@ class AugmentedNewton {
         point.x = x_start;
         return point;
       }
-      if (!is_hopf) {  // real shifts: real null vectors
+      if (!is_complex[j]) {  // real shifts: real null vectors
         v[j] = v[j].real().cast<Complex>().normalized();
         w[j] = w[j].real().cast<Complex>().normalized();
       }
@@ -156,9 +172,10 @@ class AugmentedNewton {
       if (!manifold_step(y, F, T, dy_p)) {
         break;
       }
-      // Rows of the 2×3 system in (a₁, a₂, dp): Hopf: Re and Im of g; neutral saddle: g₁, g₂.
-      Eigen::Matrix<double, 2, 3> J;
-      Eigen::Vector2d rhs;
+      // Rows of the system in (a₁, a₂, dp): Re and Im of a complex g, a real g once.
+      Eigen::MatrixXd J(rows, 3);
+      Eigen::VectorXd rhs(rows);
+      Eigen::Index row = 0;
       bool ok = true;
       for (std::size_t j = 0; j < pencils && ok; ++j) {
         Complex g;
@@ -172,29 +189,36 @@ class AugmentedNewton {
         const Complex q_p = gradient.dot(dy_p);
         const Complex q_1 = gradient.dot(Eigen::VectorXd(T.col(0)));
         const Complex q_2 = gradient.dot(Eigen::VectorXd(T.col(1)));
-        if (is_hopf) {
-          J << q_1.real(), q_2.real(), g_p.real(), q_1.imag(), q_2.imag(), g_p.imag();
-          rhs << -(g + q_p).real(), -(g + q_p).imag();
-        } else {
-          const auto row = static_cast<Eigen::Index>(j);
-          J.row(row) << q_1.real(), q_2.real(), g_p.real();
-          rhs(row) = -(g + q_p).real();
+        J.row(row) << q_1.real(), q_2.real(), g_p.real();
+        rhs(row++) = -(g + q_p).real();
+        if (is_complex[j]) {
+          J.row(row) << q_1.imag(), q_2.imag(), g_p.imag();
+          rhs(row++) = -(g + q_p).imag();
         }
       }
       if (!ok) {
         break;
       }
-      const Eigen::Matrix2d JJt = J * J.transpose();
-      if (!J.allFinite() || !(std::abs(JJt.determinant()) > 0.0)) {
-        break;
-      }
-      const Eigen::Vector3d z = J.transpose() * JJt.ldlt().solve(rhs);
-      // The curve's direction: the null vector of J (a cross product of its rows), its tangent
-      // part.
-      const Eigen::Vector3d null = Eigen::Vector3d(J.row(0)).cross(Eigen::Vector3d(J.row(1)));
-      point.curve_tangent = T * null.head<2>();
-      if (point.curve_tangent.norm() > 0.0) {
-        point.curve_tangent = from_metric(point.curve_tangent).normalized();
+      Eigen::Vector3d z;
+      if (rows == 3) {  // a point: the square system
+        if (!J.allFinite() || !(std::abs(J.determinant()) > 0.0)) {
+          break;
+        }
+        z = J.partialPivLu().solve(rhs);
+        point.curve_tangent.resize(0);
+      } else {
+        const Eigen::Matrix2d JJt = J * J.transpose();
+        if (!J.allFinite() || !(std::abs(JJt.determinant()) > 0.0)) {
+          break;
+        }
+        z = J.transpose() * JJt.ldlt().solve(rhs);
+        // The curve's direction: the null vector of J (a cross product of its rows), its
+        // tangent part.
+        const Eigen::Vector3d null = Eigen::Vector3d(J.row(0)).cross(Eigen::Vector3d(J.row(1)));
+        point.curve_tangent = T * null.head<2>();
+        if (point.curve_tangent.norm() > 0.0) {
+          point.curve_tangent = from_metric(point.curve_tangent).normalized();
+        }
       }
       const Eigen::VectorXd dy = dy_p + T * z.head<2>();
       y += dy;
@@ -212,6 +236,7 @@ class AugmentedNewton {
         }
         (is_hopf ? point.omega : point.kappa) = std::abs(parameter);
         point.is_neutral_saddle = !is_hopf;
+        point.is_zero_hopf = kind == PencilKind::ZeroHopf;
         return point;
       }
     }
@@ -313,23 +338,39 @@ class AugmentedNewton {
       return false;
     }
     const int m = jacobian_.state_count();
-    if (!pencil_.factor(sparse_of(jacobian_), mass_, sigma, {}, {})) {
-      // σ is an eigenvalue to rounding: any vector is as good a start; move σ off it.
-      if (!pencil_.factor(sparse_of(jacobian_), mass_, sigma * (1.0 + 1e-8) + 1e-10, {}, {})) {
-        return false;
-      }
-    }
+    const Eigen::SparseMatrix<double> A = sparse_of(jacobian_);
     Eigen::VectorXcd u(m);
     for (int i = 0; i < m; ++i) {
       u(i) = Complex(1.0 + 0.1 * (i % 7), i % 2 == 0 ? 0.5 : -0.5);
     }
-    v = u;
-    w = u;
-    for (int step = 0; step < 2; ++step) {
-      v = pencil_.solve(Eigen::VectorXcd(mass_ * v)).normalized();
-      w = pencil_.solve_adjoint(Eigen::VectorXcd(mass_.transpose() * w)).normalized();
+    // σ may be an eigenvalue to rounding (an estimate on the curve): the factorisation then
+    // fails or its solves overflow. Any vector is as good a start there, so move σ off it, by
+    // 10⁻⁸ relative to the pencil's scale, in a complex direction.
+    const double scale = 1.0 + std::abs(sigma) + A.norm();
+    for (const double offset : {0.0, 1e-8, 1e-6}) {
+      const Complex shift = sigma + offset * scale * Complex(1.0, 1.0);
+      if (!pencil_.factor(A, mass_, shift, {}, {})) {
+        continue;
+      }
+      v = u;
+      w = u;
+      for (int step = 0; step < 2; ++step) {
+        v = pencil_.solve(Eigen::VectorXcd(mass_ * v));
+        w = pencil_.solve_adjoint(Eigen::VectorXcd(mass_.transpose() * w));
+        const double v_norm = v.norm();
+        const double w_norm = w.norm();
+        if (!(v_norm > 0.0) || !(w_norm > 0.0) || !std::isfinite(v_norm) || !std::isfinite(w_norm)) {
+          break;
+        }
+        v /= v_norm;
+        w /= w_norm;
+      }
+      if (v.allFinite() && w.allFinite() && std::abs(v.norm() - 1.0) < 1e-8 &&
+          std::abs(w.norm() - 1.0) < 1e-8) {
+        return true;
+      }
     }
-    return v.allFinite() && w.allFinite();
+    return false;
   }
 
   // Factors the bordered pencil at x with borders b = w, c = v and solves: on return v, w are the
@@ -455,6 +496,15 @@ HopfPoint refine_hopf_point(const ImplicitProblem& problem, const Eigen::VectorX
                             double max_displacement, const HopfOptions& options, WorkCounts& work) {
   AugmentedNewton newton(problem, options);
   HopfPoint point = newton.pencil_point(PencilKind::Hopf, x, omega, max_displacement);
+  work += newton.work();
+  return point;
+}
+
+HopfPoint refine_zero_hopf_point(const ImplicitProblem& problem, const Eigen::VectorXd& x,
+                                 double omega, double max_displacement, const HopfOptions& options,
+                                 WorkCounts& work) {
+  AugmentedNewton newton(problem, options);
+  HopfPoint point = newton.pencil_point(PencilKind::ZeroHopf, x, omega, max_displacement);
   work += newton.work();
   return point;
 }

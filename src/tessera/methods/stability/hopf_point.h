@@ -41,6 +41,8 @@ struct HopfPoint {
   /// A neutral saddle (refine_neutral_saddle_point): ±κ are eigenvalues, omega is 0.
   bool is_neutral_saddle = false;
   double kappa = 0.0;
+  /// A fold–Hopf (zero-Hopf) point: 0 and ±iω are eigenvalues; a Hopf curve crosses a fold there.
+  bool is_zero_hopf = false;
 };
 
 /// Newton's method from (x, ω) onto the Hopf set {F = 0, A − iωB singular}, A = s·D_uF, with
@@ -60,6 +62,13 @@ HopfPoint refine_hopf_point(const ImplicitProblem& problem, const Eigen::VectorX
 HopfPoint refine_neutral_saddle_point(const ImplicitProblem& problem, const Eigen::VectorXd& x,
                                       double kappa, double max_displacement,
                                       const HopfOptions& options, WorkCounts& work);
+
+/// Newton's method from (x, ω) onto a fold–Hopf (zero-Hopf) point: F = 0, A − iωB singular and A
+/// singular (n + 1 equations for x and ω: a point), where a Hopf curve crosses a fold curve
+/// (n − 2 ≥ 3).
+HopfPoint refine_zero_hopf_point(const ImplicitProblem& problem, const Eigen::VectorXd& x,
+                                 double omega, double max_displacement, const HopfOptions& options,
+                                 WorkCounts& work);
 
 /// Newton's method from x onto a Bogdanov–Takens point: F = 0, A singular (the real bordered
 /// system's g₁ = 0) and the null vectors B-orthogonal, wᵀBv = 0 (a Jordan block at 0): n
