@@ -162,7 +162,9 @@ class SparseStability {
 
  private:
   int subspace_size(int m) const {
-    return std::min(m, std::max(2 * options_.eigenvalue_count + 1, 20));
+    const int wanted = options_.subspace_size > 0 ? options_.subspace_size
+                                                  : std::max(2 * options_.eigenvalue_count + 1, 16);
+    return std::min(m, std::max(wanted, options_.eigenvalue_count + 2));
   }
 
   // Sylvester: the pencil (A, B), B positive definite, has as many positive eigenvalues as A has

@@ -21,6 +21,11 @@ struct StabilityOptions {
   /// Sparse problems with at most this many states are solved as dense ones (all eigenvalues):
   /// below it a dense QR algorithm costs less than a sparse factorisation and an iteration.
   int dense_state_limit = 50;
+  /// The Krylov subspace of the Lanczos/Arnoldi iteration (0: max(2k + 1, 16), bounded by the
+  /// number of states). With the previous vertex's eigenvectors as the start, the first
+  /// factorisation usually converges: about m + 1 solves per vertex (bench/RESULTS.md,
+  /// "Stability": 13–16 cost the same, 20 10 % more, 30 twice as much on bvp:points=10000).
+  int subspace_size = 0;
   /// Relative accuracy of the Ritz values (Spectra's tolerance).
   double tolerance = 1e-10;
   /// Restarts of the implicitly restarted Arnoldi/Lanczos method before a vertex is given up.
