@@ -501,19 +501,22 @@ class Mesh:
     def hopf_curves(self) -> List[np.ndarray]:
         """mesh(..., hopf=True): one (m, k) array per Hopf curve, its points in order, in the
         columns ``summary["hopf"]["columns"]``: the mesh's view, the dynamics' parameters not in
-        it, then omega (the imaginary part of the crossing pair ±iω). Empty without hopf."""
+        it, then omega (the imaginary part of the crossing pair ±iω) and l1 (the first Lyapunov
+        coefficient: < 0 supercritical, > 0 subcritical; NaN for sparse problems). Empty without
+        hopf."""
         return self._curves("hopf", "curves")
 
     @property
     def neutral_saddle_curves(self) -> List[np.ndarray]:
         """mesh(..., hopf=True): the neutral saddle curves (a real pair ±κ), as `hopf_curves`,
-        with κ in the last column."""
+        with κ in the omega column."""
         return self._curves("hopf", "neutral_saddle_curves")
 
     @property
     def special_points(self) -> List[Dict[str, Any]]:
-        """mesh(..., hopf=True): the Bogdanov-Takens points, as dicts {"kind":
-        "bogdanov_takens", "point": {column: value}, "plane": {p1: value, p2: value}}."""
+        """mesh(..., hopf=True): the Bogdanov-Takens, fold-Hopf and Bautin points, as dicts
+        {"kind": "bogdanov_takens" | "zero_hopf" | "bautin", "point": {column: value},
+        "plane": {p1: value, p2: value}}."""
         hopf = self.summary.get("hopf")
         return [] if hopf is None else hopf["special_points"]
 

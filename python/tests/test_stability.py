@@ -117,7 +117,7 @@ def test_every_problem_tells_its_dynamics():
 
 def check_cstr_hopf(mesh):
     hopf = mesh.summary["hopf"]
-    assert hopf["columns"] == ["x1", "x2", "Da", "B", "omega"]
+    assert hopf["columns"] == ["x1", "x2", "Da", "B", "omega", "l1"]
     assert hopf["plane"] == ["Da", "B"]
     assert hopf["unrefined_points"] == 0
     curves = mesh.hopf_curves

@@ -82,7 +82,7 @@ TEST(StabilityCli, CstrCountsHopfCurveNeutralSaddlesAndBogdanovTakensPointAreExa
   EXPECT_EQ(stability.at("parameters"), nlohmann::json({"Da", "B"}));
   const auto& hopf = summary.at("hopf");
   EXPECT_EQ(hopf.at("unrefined_points"), 0);
-  EXPECT_EQ(hopf.at("columns"), nlohmann::json({"x1", "x2", "Da", "B", "omega"}));
+  EXPECT_EQ(hopf.at("columns"), nlohmann::json({"x1", "x2", "Da", "B", "omega", "l1"}));
   ASSERT_EQ(hopf.at("curves").size(), 1u);
   ASSERT_EQ(hopf.at("neutral_saddle_curves").size(), 1u);
   int hopf_points = 0;
@@ -239,6 +239,47 @@ TEST(StabilityCli, FoldHopfPointOfTheNormalFormIsFoundOnTheHopfCurve) {
       EXPECT_NEAR(point[5].get<double>(), 1.0, 1e-8);
     }
   }
+}
+
+// The Bautin normal form in real coordinates, r² = u² + v²:
+//     u' = μ₁u − v + μ₂u r² − u r⁴,  v' = u + μ₁v + μ₂v r² − v r⁴.
+// Its steady states u = v = 0 form the plane over (μ₁, μ₂); the Hopf curve is μ₁ = 0 (ω = 1). In
+// w = u + iv, w' = (μ₁ + i)w + μ₂ w|w|²; with the unit eigenvector q = (1, −i)/√2, x = z q + z̄ q̄
+// gives z = w/√2 and z' = (μ₁ + i)z + 2μ₂ z|z|², so l₁ = 2μ₂: supercritical below μ₂ = 0,
+// subcritical above, and the Bautin point at the origin.
+TEST(StabilityCli, BautinPointOfTheNormalFormAndTheSignsOfTheLyapunovCoefficient) {
+  const std::string dir = testing::temporary_directory("stability_cli_bautin");
+  {
+    std::ofstream file(dir + "/gh.tsr");
+    file << "name bautin\nvariables u v mu1 mu2\n"
+            "equation mu1*u - v + mu2*u*(u^2 + v^2) - u*(u^2 + v^2)^2\n"
+            "equation u + mu1*v + mu2*v*(u^2 + v^2) - v*(u^2 + v^2)^2\n"
+            "start 0 0 0.05 0.05\n"
+            "box u -1 1\nbox v -1 1\nbox mu1 -0.5 0.5\nbox mu2 -0.5 0.5\n"
+            "dynamics parameters mu1 mu2\n";
+  }
+  const auto result = run_cli("mesh " + dir + "/gh.tsr --tolerance 0.002 --hopf -o " + dir +
+                              "/gh.ply --summary " + dir + "/gh.json");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(contains(result.output, "1 Bautin point(s)")) << result.output;
+  const auto hopf = read_json(dir + "/gh.json").at("hopf");
+  EXPECT_GE(hopf.at("supercritical_points").get<int>(), 4);
+  EXPECT_GE(hopf.at("subcritical_points").get<int>(), 4);
+  int checked = 0;
+  for (const auto& curve : hopf.at("curves")) {
+    for (const auto& point : curve.at("points")) {  // u v mu1 mu2 omega l1
+      EXPECT_NEAR(point[2].get<double>(), 0.0, 1e-9);
+      EXPECT_NEAR(point[4].get<double>(), 1.0, 1e-9);
+      EXPECT_NEAR(point[5].get<double>(), 2 * point[3].get<double>(), 1e-6);
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 10);
+  ASSERT_EQ(hopf.at("special_points").size(), 1u);
+  const auto& bautin = hopf.at("special_points")[0];
+  EXPECT_EQ(bautin.at("kind"), "bautin");
+  EXPECT_NEAR(bautin.at("plane").at("mu1").get<double>(), 0.0, 1e-9);
+  EXPECT_NEAR(bautin.at("plane").at("mu2").get<double>(), 0.0, 1e-6);
 }
 
 TEST(StabilityCli, LevelCurveOfTheSphereIsAClosedGreatCircle) {

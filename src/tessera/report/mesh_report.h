@@ -156,6 +156,8 @@ struct HopfReport {
   int unrefined_count = 0;
   int hopf_point_count = 0;
   int neutral_saddle_point_count = 0;
+  int supercritical_count = 0;  ///< Hopf points with l₁ < 0 (dense problems)
+  int subcritical_count = 0;    ///< Hopf points with l₁ > 0
   int newton_iterations = 0;
   double max_residual = 0.0;
   double max_condition_residual = 0.0;

@@ -110,12 +110,22 @@ HopfOutput compute_hopf_output(const ProblemSetup& setup, const TriangleMesh& me
     }
   }
   report.columns.push_back("omega");
+  report.columns.push_back("l1");  // the first Lyapunov coefficient (NaN: not computed)
   report.file = path;
   report.point_count = hopf.point_count();
   report.crossing_count = hopf.crossing_count;
   report.unrefined_count = hopf.unrefined_count;
   report.hopf_point_count = hopf.hopf_point_count;
   report.neutral_saddle_point_count = hopf.neutral_saddle_point_count;
+  for (const HopfCurve& curve : hopf.curves) {
+    for (const HopfPoint& point : curve.points) {
+      if (point.is_bautin) {
+        continue;
+      }
+      report.supercritical_count += point.first_lyapunov_coefficient < 0.0;
+      report.subcritical_count += point.first_lyapunov_coefficient > 0.0;
+    }
+  }
   report.newton_iterations = hopf.newton_iterations;
   report.max_residual = hopf.max_residual;
   report.max_condition_residual = hopf.max_condition_residual;
@@ -140,7 +150,8 @@ HopfOutput compute_hopf_output(const ProblemSetup& setup, const TriangleMesh& me
       for (std::size_t e = 0; e < extra.size(); ++e) {
         written.points(k_view + static_cast<Eigen::Index>(e), column) = point.x(extra[e]);
       }
-      written.points(k - 1, column) = curve.is_neutral_saddle ? point.kappa : point.omega;
+      written.points(k - 2, column) = curve.is_neutral_saddle ? point.kappa : point.omega;
+      written.points(k - 1, column) = point.first_lyapunov_coefficient;
       in_view.marked.push_back(point.is_bogdanov_takens);
       written.marked.push_back(point.is_bogdanov_takens);
       const Eigen::VectorXd full = written.points.col(column);
@@ -155,15 +166,19 @@ HopfOutput compute_hopf_output(const ProblemSetup& setup, const TriangleMesh& me
         single.marked = {true};
         output.zero_hopf_points.polylines.push_back(std::move(single));
       }
-      if (point.is_bogdanov_takens || point.is_zero_hopf) {
+      if (point.is_bogdanov_takens || point.is_zero_hopf || point.is_bautin) {
         HopfReport::SpecialPoint special;
-        special.kind = point.is_zero_hopf ? "zero_hopf" : "bogdanov_takens";
+        special.kind = point.is_zero_hopf ? "zero_hopf"
+                       : point.is_bautin  ? "bautin"
+                                          : "bogdanov_takens";
         special.point = reported.points.back();
         special.plane[0] = point.x(parameters[0]);
         special.plane[1] = point.x(parameters[1]);
+        // The same point ends two curves (a BT point the Hopf and the neutral saddle curve).
         const bool is_known = std::any_of(
             report.special_points.begin(), report.special_points.end(), [&](const auto& other) {
-              return other.point == special.point;
+              return other.kind == special.kind && other.plane[0] == special.plane[0] &&
+                     other.plane[1] == special.plane[1];
             });
         if (!is_known) {
           report.special_points.push_back(std::move(special));
@@ -185,7 +200,7 @@ HopfOutput compute_hopf_output(const ProblemSetup& setup, const TriangleMesh& me
   output.zero_hopf_points.options.marker_name = "zero_hopf";
   PolylineFileOptions& saddle_options = output.neutral_saddle_file.options;
   saddle_options.names = report.columns;
-  saddle_options.names.back() = "kappa";
+  saddle_options.names[saddle_options.names.size() - 2] = "kappa";
   saddle_options.comments = comments;
   saddle_options.comments.push_back("neutral saddles of the dynamics over (" +
                                     report.plane_names[0] + ", " + report.plane_names[1] +

@@ -136,6 +136,8 @@ nlohmann::json hopf_json(const HopfReport& hopf) {
           {"unrefined_points", hopf.unrefined_count},
           {"hopf_points", hopf.hopf_point_count},
           {"neutral_saddle_points", hopf.neutral_saddle_point_count},
+          {"supercritical_points", hopf.supercritical_count},
+          {"subcritical_points", hopf.subcritical_count},
           {"neutral_saddle_file", hopf.neutral_saddle_file},
           {"special_points", std::move(special)},
           {"max_residual", hopf.max_residual},
@@ -513,16 +515,26 @@ std::string to_text(const MeshReport& report) {
     }
     int bogdanov_takens = 0;
     int zero_hopf = 0;
+    int bautin = 0;
     for (const auto& p : hopf.special_points) {
       bogdanov_takens += p.kind == "bogdanov_takens";
       zero_hopf += p.kind == "zero_hopf";
+      bautin += p.kind == "bautin";
+    }
+    if (hopf.supercritical_count + hopf.subcritical_count > 0) {
+      out << " (" << hopf.supercritical_count << " supercritical, " << hopf.subcritical_count
+          << " subcritical)";
     }
     out << ", " << bogdanov_takens << " Bogdanov–Takens point(s)";
     if (zero_hopf > 0) {
       out << ", " << zero_hopf << " fold–Hopf point(s)";
     }
+    if (bautin > 0) {
+      out << ", " << bautin << " Bautin point(s)";
+    }
     for (const auto& p : hopf.special_points) {
-      out << "; " << (p.kind == "zero_hopf" ? "fold–Hopf" : "BT") << " at "
+      out << "; " << (p.kind == "zero_hopf" ? "fold–Hopf" : p.kind == "bautin" ? "Bautin" : "BT")
+          << " at "
           << hopf.plane_names.at(0) << " = " << p.plane[0] << ", " << hopf.plane_names.at(1)
           << " = " << p.plane[1];
     }

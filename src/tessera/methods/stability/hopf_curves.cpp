@@ -9,6 +9,7 @@
 #include "tessera/core/metric_problem.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/methods/common/zero_set_curves.h"
+#include "tessera/methods/stability/lyapunov.h"
 #include "tessera/methods/stability/state_jacobian.h"
 
 namespace tessera {
@@ -162,6 +163,55 @@ HopfCurves find_hopf_curves(const ImplicitProblem& problem, const TriangleMesh& 
     return sign;
   };
 
+  // Regula falsi (Illinois) on l₁ over the chord from a to b, each trial point refined onto the
+  // Hopf curve; stops when the bracket is below 10⁻⁸ of the chord or after 40 trials.
+  auto locate_bautin = [&](const HopfPoint& a, const HopfPoint& b) -> std::optional<HopfPoint> {
+    const Eigen::VectorXd chord = b.x - a.x;
+    const double reach = (options.max_displacement_in_edges + 1.0) * metric.length(chord);
+    double s_lo = 0.0, s_hi = 1.0;
+    double l_lo = a.first_lyapunov_coefficient, l_hi = b.first_lyapunov_coefficient;
+    int side = 0;
+    std::optional<HopfPoint> best;
+    for (int trial = 0; trial < 40 && (s_hi - s_lo) > 1e-8; ++trial) {
+      const double s = (s_lo * l_hi - s_hi * l_lo) / (l_hi - l_lo);
+      const double omega = a.omega + s * (b.omega - a.omega);
+      HopfPoint point = refine_hopf_point(problem, a.x + s * chord, omega, reach, options.newton,
+                                          result.work);
+      result.newton_iterations += point.iterations;
+      if (!point.is_refined) {
+        break;
+      }
+      const double l = first_lyapunov_coefficient(problem, point.x, point.omega);
+      if (!std::isfinite(l)) {
+        break;
+      }
+      point.first_lyapunov_coefficient = l;
+      best = point;
+      if (l == 0.0) {
+        break;
+      }
+      if ((l > 0.0) == (l_lo > 0.0)) {
+        s_lo = s;
+        l_lo = l;
+        if (side == 1) {
+          l_hi /= 2;
+        }
+        side = 1;
+      } else {
+        s_hi = s;
+        l_hi = l;
+        if (side == -1) {
+          l_lo /= 2;
+        }
+        side = -1;
+      }
+    }
+    if (best) {
+      best->is_bautin = true;
+    }
+    return best;
+  };
+
   std::vector<Eigen::VectorXd> bogdanov_takens_points;
   auto try_bogdanov_takens = [&](const Eigen::VectorXd& from, double reach) -> std::optional<HopfPoint> {
     HopfPoint bt = refine_bogdanov_takens_point(problem, from, reach, options.newton, result.work);
@@ -302,9 +352,34 @@ HopfCurves find_hopf_curves(const ImplicitProblem& problem, const TriangleMesh& 
         }
       }
     }
+    // The first Lyapunov coefficient at the Hopf points, and Bautin points where it changes
+    // sign (dense problems; NaN elsewhere).
+    for (HopfCurve& piece : pieces) {
+      if (piece.is_neutral_saddle) {
+        continue;
+      }
+      for (HopfPoint& point : piece.points) {
+        if (!point.is_bogdanov_takens && !point.is_zero_hopf) {
+          point.first_lyapunov_coefficient = first_lyapunov_coefficient(problem, point.x, point.omega);
+        }
+      }
+      for (std::size_t i = piece.points.size(); i-- > 1;) {
+        const HopfPoint& a = piece.points[i - 1];
+        const HopfPoint& b = piece.points[i];
+        const double la = a.first_lyapunov_coefficient;
+        const double lb = b.first_lyapunov_coefficient;
+        if (!(la * lb < 0.0)) {
+          continue;  // same sign, or not computed (NaN)
+        }
+        if (auto bautin = locate_bautin(a, b)) {
+          ++result.bautin_count;
+          piece.points.insert(piece.points.begin() + static_cast<std::ptrdiff_t>(i), std::move(*bautin));
+        }
+      }
+    }
     for (HopfCurve& piece : pieces) {
       for (const HopfPoint& point : piece.points) {
-        if (point.is_bogdanov_takens || point.is_zero_hopf) {
+        if (point.is_bogdanov_takens || point.is_zero_hopf || point.is_bautin) {
           continue;
         }
         (point.is_neutral_saddle ? result.neutral_saddle_point_count : result.hopf_point_count) += 1;

@@ -42,6 +42,7 @@ struct HopfCurves {
   int unrefined_count = 0;
   int bogdanov_takens_count = 0;
   int zero_hopf_count = 0;  ///< fold–Hopf points found on the Hopf curves (marked in them)
+  int bautin_count = 0;     ///< Bautin points found on the Hopf curves (dense problems)
   int hopf_point_count = 0;
   int neutral_saddle_point_count = 0;
   int newton_iterations = 0;
@@ -66,7 +67,10 @@ struct HopfCurves {
 /// Bogdanov–Takens point, refined by refine_bogdanov_takens_point, as are the ends of Hopf curves
 /// inside the mesh. Where the sign of the product of the real eigenvalues changes between two
 /// neighbouring Hopf points (n − 2 ≥ 3), a fold–Hopf point is refined by refine_zero_hopf_point
-/// and inserted.
+/// and inserted. Dense problems: the first Lyapunov coefficient at every Hopf point, and where it
+/// changes sign a Bautin point, located by regula falsi on l₁ along the curve (each trial point
+/// refined onto the Hopf curve; l₁ has about 8 significant digits, so the Bautin point is found
+/// to about 10⁻⁷ of the curve's scale).
 /// \param stability  compute_stability(problem, mesh) (one entry per vertex).
 /// \throw InvalidArgument if the sizes disagree or the problem has no dynamics.
 HopfCurves find_hopf_curves(const ImplicitProblem& problem, const TriangleMesh& mesh,

@@ -43,6 +43,11 @@ struct HopfPoint {
   double kappa = 0.0;
   /// A fold–Hopf (zero-Hopf) point: 0 and ±iω are eigenvalues; a Hopf curve crosses a fold there.
   bool is_zero_hopf = false;
+  /// A Bautin (generalised Hopf) point: the first Lyapunov coefficient vanishes.
+  bool is_bautin = false;
+  /// l₁ at a Hopf point (lyapunov.h): < 0 supercritical, > 0 subcritical; NaN where not
+  /// computed (sparse problems, neutral saddles, other special points).
+  double first_lyapunov_coefficient = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Newton's method from (x, ω) onto the Hopf set {F = 0, A − iωB singular}, A = s·D_uF, with
