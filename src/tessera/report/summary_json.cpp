@@ -505,6 +505,10 @@ std::string to_text(const MeshReport& report) {
     const HopfReport& hopf = *report.hopf;
     out << "hopf           " << hopf.curves.size() << " curve(s), " << hopf.hopf_point_count
         << " points on them to solver tolerance";
+    if (hopf.supercritical_count + hopf.subcritical_count > 0) {
+      out << " (" << hopf.supercritical_count << " supercritical, " << hopf.subcritical_count
+          << " subcritical)";
+    }
     if (!hopf.neutral_saddle_curves.empty()) {
       out << "; " << hopf.neutral_saddle_curves.size() << " neutral saddle curve(s), "
           << hopf.neutral_saddle_point_count << " points";
@@ -520,10 +524,6 @@ std::string to_text(const MeshReport& report) {
       bogdanov_takens += p.kind == "bogdanov_takens";
       zero_hopf += p.kind == "zero_hopf";
       bautin += p.kind == "bautin";
-    }
-    if (hopf.supercritical_count + hopf.subcritical_count > 0) {
-      out << " (" << hopf.supercritical_count << " supercritical, " << hopf.subcritical_count
-          << " subcritical)";
     }
     out << ", " << bogdanov_takens << " Bogdanov–Takens point(s)";
     if (zero_hopf > 0) {
