@@ -50,6 +50,12 @@ struct StatesReport {
   std::vector<CoordinateBlock> blocks;
 };
 
+/// A curve on M as a report lists it: its points in the report's columns, in order along it.
+struct ReportedCurve {
+  bool is_closed = false;
+  std::vector<std::vector<double>> points;
+};
+
 /// The fold curves of M over a parameter plane (`tessera mesh --folds`, methods/folds), with
 /// their points in the mesh file's view.
 struct FoldReport {
@@ -57,10 +63,7 @@ struct FoldReport {
   std::vector<std::string> plane_names;  ///< the plane's two column names
   std::string file;                      ///< the polylines file (empty: not written)
   std::vector<std::string> columns;      ///< names of the view coordinates of the points below
-  struct Curve {
-    bool is_closed = false;
-    std::vector<std::vector<double>> points;  ///< in the view, in order along the curve
-  };
+  using Curve = ReportedCurve;
   std::vector<Curve> curves;
   struct Cusp {
     std::vector<double> point;  ///< in the view
@@ -88,10 +91,7 @@ struct LevelReport {
   double value = 0.0;                ///< c
   std::string file;                  ///< the polylines file (empty: not written)
   std::vector<std::string> columns;  ///< names of the view coordinates of the points below
-  struct Curve {
-    bool is_closed = false;
-    std::vector<std::vector<double>> points;  ///< in the view, in order along the curve
-  };
+  using Curve = ReportedCurve;
   std::vector<Curve> curves;
   int point_count = 0;
   int crossing_count = 0;
@@ -135,10 +135,7 @@ struct HopfReport {
   std::string file;                       ///< the polylines file (empty: not written)
   std::vector<std::string> columns;       ///< view, then the parameters not in it, then omega
   std::vector<std::string> plane_names;   ///< the dynamics' two parameters
-  struct Curve {
-    bool is_closed = false;
-    std::vector<std::vector<double>> points;  ///< in `columns`, in order along the curve
-  };
+  using Curve = ReportedCurve;
   std::vector<Curve> curves;
   /// The neutral saddle curves (real pairs ±κ; the column omega holds κ there), written to
   /// neutral_saddle_file: the rest of the bialternate product's zero set, which meets the Hopf
