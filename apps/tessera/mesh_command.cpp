@@ -33,6 +33,7 @@
 #include "tessera/problems/view.h"
 #include "tessera/report/fold_output.h"
 #include "tessera/report/level_output.h"
+#include "tessera/report/mesh_analyses.h"
 #include "tessera/report/mesh_report.h"
 #include "tessera/report/stability_output.h"
 #include "tessera/report/summary_json.h"
@@ -515,96 +516,39 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   report.run = result.summary;
   report.view = view_report;
   report.backend = backend_report;
-  std::vector<Polyline> fold_curves;
-  if (has_mesh && fold_plane) {
-    // On the finished mesh, in its view; a partial mesh has the folds of what it covers.
-    const FoldOutput folds =
-        compute_folds(setup, result.mesh, *fold_plane, view, is_root ? fold_file : std::string(),
-                      file_options.comments);
-    fold_curves = folds.curves_in_view;
-    report.folds = folds.report;
-    written.push_back(fold_file);
-    if (folds.report.unrefined_count > 0 && is_root) {
-      std::cerr << "tessera: " << folds.report.unrefined_count
-                << " fold point(s) did not converge onto the fold curve and are kept at the "
-                   "mesh's linear estimate (summary: folds.unrefined_points)\n";
-    }
-    if (folds.report.singular_triangle_count > 0 && is_root) {
-      std::cerr << "tessera: det(Dpi T) vanishes on " << folds.report.singular_triangle_count
-                << " triangle(s): there (" << folds.report.plane
-                << ") is singular on M's tangent planes over a region, not along a fold curve; "
-                   "those triangles are left out (summary: folds.singular_triangles)\n";
-    }
+  // Folds, stability, Hopf and level curves on the finished mesh, in its view; the root writes
+  // their files.
+  AnalysisRequest request;
+  request.fold_plane = fold_plane;
+  if (wants_stability) {
+    request.stability = StabilityOptions{};
+    request.stability->eigenvalue_count = command.eigenvalues;
   }
-  // Curves for the picture and the diagram, each with its kind (columns: the view's).
-  std::vector<PolylineFile> picture_curves;
-  if (fold_plane) {
-    picture_curves.push_back({fold_curves, {}});
-    picture_curves.back().options.names = coordinate_names_in_view(view);
-    picture_curves.back().options.kind = "fold";
+  request.hopf = wants_hopf;
+  request.level = level_set;
+  if (is_root) {
+    request.fold_file = fold_file;
+    request.hopf_file = hopf_file;
+    request.level_file = level_file;
   }
-  std::optional<StabilityOutput> stability;
-  if (has_mesh && wants_stability) {
-    StabilityOptions stability_options;
-    stability_options.eigenvalue_count = command.eigenvalues;
-    stability = compute_stability_output(setup, result.mesh, stability_options);
-    report.stability = stability->report;
+  request.comments = file_options.comments;
+  const MeshAnalyses analyses = analyse_mesh(setup, result.mesh, view, request, report);
+  written.insert(written.end(), analyses.written.begin(), analyses.written.end());
+  for (const std::string& warning : is_root ? analyses.warnings : std::vector<std::string>()) {
+    std::cerr << "tessera: " << warning << "\n";
+  }
+  if (analyses.stability && is_root) {
     // The mesh file again, now with the stability as point data.
-    if (is_root) {
-      MeshFileOptions with_data = file_options;
-      with_data.vertex_scalars = stability->vertex_data;
-      if (view.is_all_coordinates()) {
-        write_mesh(command.output, result.mesh, with_data);
-      } else {
-        write_mesh_in_view(command.output, result.mesh, view, with_data);
-      }
-    }
-    if (stability->report.failed_count > 0 && is_root) {
-      std::cerr << "tessera: the eigenvalues failed at " << stability->report.failed_count
-                << " vertex(es), whose unstable_count is -1 (summary: stability.failures); "
-                   "first: vertex "
-                << stability->report.failures.front().vertex << ": "
-                << stability->report.failures.front().message << "\n";
+    MeshFileOptions with_data = file_options;
+    with_data.vertex_scalars = analyses.stability->vertex_data;
+    if (view.is_all_coordinates()) {
+      write_mesh(command.output, result.mesh, with_data);
+    } else {
+      write_mesh_in_view(command.output, result.mesh, view, with_data);
     }
   }
-  std::optional<HopfOutput> hopf;
-  if (has_mesh && wants_hopf) {
-    hopf = compute_hopf_output(setup, result.mesh, stability->result, view,
-                               is_root ? hopf_file : std::string(), file_options.comments);
-    report.hopf = hopf->report;
-    written.push_back(hopf_file);
-    picture_curves.push_back({hopf->curves_in_view, hopf->file.options});
-    picture_curves.back().options.names = coordinate_names_in_view(view);
-    if (!hopf->zero_hopf_points_in_view.empty()) {
-      picture_curves.push_back({hopf->zero_hopf_points_in_view, hopf->zero_hopf_points.options});
-      picture_curves.back().options.names = coordinate_names_in_view(view);
-    }
-    if (!hopf->report.neutral_saddle_file.empty()) {
-      written.push_back(hopf->report.neutral_saddle_file);
-      picture_curves.push_back({hopf->neutral_saddle_curves_in_view, hopf->neutral_saddle_file.options});
-      picture_curves.back().options.names = coordinate_names_in_view(view);
-    }
-    if (hopf->report.unrefined_count > 0 && is_root) {
-      std::cerr << "tessera: at " << hopf->report.unrefined_count
-                << " crossing(s) Newton converged neither to a Hopf point nor to a neutral "
-                   "saddle: left out, the curves are cut there (summary: hopf.unrefined_points)\n";
-    }
-  }
-  if (has_mesh && level_set) {
-    const LevelOutput level = compute_level_curves(setup, result.mesh, *level_set, view,
-                                                   is_root ? level_file : std::string(),
-                                                   file_options.comments);
-    report.level = level.report;
-    written.push_back(level_file);
-    picture_curves.push_back({level.curves_in_view, {}});
-    picture_curves.back().options.names = coordinate_names_in_view(view);
-    picture_curves.back().options.kind = "level";
-    if (level.report.unrefined_count > 0 && is_root) {
-      std::cerr << "tessera: " << level.report.unrefined_count
-                << " level curve point(s) did not converge and are kept at the mesh's linear "
-                   "estimate (summary: level.unrefined_points)\n";
-    }
-  }
+  // Curves for the picture, each with its kind (columns: the view's).
+  std::vector<PolylineFile> picture_curves = analyses.curves_in_view(coordinate_names_in_view(view));
   if (has_mesh && !command.states.empty() && (is_root || is_split)) {
     if (is_split) {
       write_mesh_output(result.mesh, {"", view, {}, command.states});  // streamed to rank 0
@@ -655,15 +599,17 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     if (is_root) {
       write_mesh_picture(command.picture, result.mesh, shown,
                          coordinate_names_in_view(picture_view), picture_curves,
-                         stability ? stability->vertex_data : std::vector<VertexScalars>(),
-                         stability ? "stability" : "height", picture, &setup);
+                         analyses.stability ? analyses.stability->vertex_data
+                                            : std::vector<VertexScalars>(),
+                         analyses.stability ? "stability" : "height", picture, &setup);
     }
     written.push_back(command.picture);
   }
-  if (has_mesh && hopf && !command.diagram.empty() && is_root) {
+  if (has_mesh && analyses.hopf && !command.diagram.empty() && is_root) {
     // The two-parameter bifurcation diagram: fold and Hopf curves over the dynamics' parameters.
     const std::string note =
-        write_run_diagram(command.diagram, command.problem, report, fold_curves, *hopf, view);
+        write_run_diagram(command.diagram, command.problem, report, analyses.fold_curves,
+                          *analyses.hopf, view);
     if (!note.empty()) {
       std::cerr << "tessera: " << note << "\n";
     }

@@ -44,6 +44,7 @@
 #include "tessera/problems/problem_file.h"
 #include "tessera/problems/start_and_box.h"
 #include "tessera/problems/view.h"
+#include "tessera/report/mesh_analyses.h"
 #include "tessera/report/fold_output.h"
 #include "tessera/report/improvement_report.h"
 #include "tessera/report/level_output.h"
@@ -243,36 +244,23 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
                                                   : "--view"};
     // As `tessera mesh --folds/--stability/--hopf/--level`, on the finished mesh, in the view;
     // the curves are in the summary, no file is written.
-    const bool has_mesh = result.mesh.triangle_count() > 0;
-    std::vector<Polyline> fold_curves;
-    if (fold_plane && has_mesh) {
-      FoldOutput folds = compute_folds(setup, result.mesh, *fold_plane, view, "", {});
-      report.folds = std::move(folds.report);
-      fold_curves = std::move(folds.curves_in_view);
+    AnalysisRequest analysis;
+    analysis.fold_plane = fold_plane;
+    if (wants_stability) {
+      analysis.stability = StabilityOptions{};
+      analysis.stability->eigenvalue_count = request.eigenvalues;
     }
-    std::optional<StabilityOutput> stability;
-    if (wants_stability && has_mesh) {
-      StabilityOptions stability_options;
-      stability_options.eigenvalue_count = request.eigenvalues;
-      stability = compute_stability_output(setup, result.mesh, stability_options);
-      report.stability = stability->report;
+    analysis.hopf = wants_hopf;
+    analysis.level = level_set;
+    MeshAnalyses analyses = analyse_mesh(setup, result.mesh, view, analysis, report);
+    if (analyses.hopf && !request.diagram.empty()) {
+      handle->note = write_run_diagram(request.diagram, problem->argument, report,
+                                       analyses.fold_curves, *analyses.hopf, view);
     }
-    if (wants_hopf && has_mesh) {
-      const HopfOutput hopf =
-          compute_hopf_output(setup, result.mesh, stability->result, view, "", {});
-      report.hopf = hopf.report;
-      if (!request.diagram.empty()) {
-        handle->note =
-            write_run_diagram(request.diagram, problem->argument, report, fold_curves, hopf, view);
-      }
-    }
-    if (level_set && has_mesh) {
-      report.level = compute_level_curves(setup, result.mesh, *level_set, view, "", {}).report;
-    }
-    if (stability) {
+    if (analyses.stability) {
       // Written by Mesh.write as point data, as `tessera mesh --stability` writes them.
-      handle->vertex_scalars = std::move(stability->vertex_data);
-      handle->stability = std::move(stability->result.vertices);
+      handle->vertex_scalars = std::move(analyses.stability->vertex_data);
+      handle->stability = std::move(analyses.stability->result.vertices);
     }
     handle->summary_json = to_json(report);
     handle->termination = to_string(result.summary.termination);
