@@ -317,8 +317,8 @@ CLI::App* add_render_command(CLI::App& app, RenderCommand& command) {
                      "the file's unstable_count, from `mesh --stability`), a vertex data array "
                      "of the file by name, or none");
   render->add_option("--curves", command.curves,
-                     "polylines drawn over the surface (or in the --diagram), repeatable: .json "
-                     "or .csv curve files of `mesh --folds` and the like, drawn by their kind "
+                     "polylines drawn over the surface (or in the --diagram), repeatable: the "
+                     "curve files of `mesh --folds/--hopf/--level` (.json, .csv, .vtk, .vtu, .ply), drawn by their kind "
                      "(fold solid, hopf dashed, neutral_saddle dotted); marked points by their "
                      "marker (cusp triangle, bogdanov_takens square, zero_hopf diamond)");
   render->add_option("--diagram", command.diagram,

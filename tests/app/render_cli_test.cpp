@@ -94,7 +94,7 @@ TEST(RenderCli, BadOptionsAreRefusedBeforeDrawing) {
            Case{"render " + dir + "/s.ply -o " + dir + "/s.jpg", ".png or .svg"},
            Case{"render " + mesh + " --size 800", "WIDTHxHEIGHT"},
            Case{"render " + mesh + " --view x,y", "needs --problem"},
-           Case{"render " + mesh + " --curves " + dir + "/s.ply", ".json or .csv"},
+           Case{"render " + mesh + " --curves " + dir + "/s.ply", "not a polylines file of tessera"},
            Case{"render " + dir + "/missing.ply -o " + dir + "/s.png", "missing.ply"},
            Case{"render " + dir + "/empty.ply -o " + dir + "/s.png", "no triangles"},
            Case{"render " + mesh + " --curves " + dir + "/nan.csv", "line 3: not a finite number"},

@@ -60,9 +60,11 @@ struct PolylineFile {
 };
 
 /// Reads a polylines file written by write_polylines (or by hand, docs/pictures.md) by its
-/// extension: .json or .csv. Every point has the same count k >= 2 of finite coordinates; JSON
-/// "columns", when present, names them (k names).
-/// 	hrow InvalidArgument naming the file (and the line of a CSV file, the polyline and point of
+/// extension: .json, .csv, and the .vtk, .vtu and ASCII .ply files write_polylines writes (their
+/// columns from the arrays' names, or the PLY's `comment coordinate names:` line; a point in no
+/// line, such as a fold–Hopf point, is a polyline of one point). Every point has the same count
+/// k >= 2 of finite coordinates; JSON "columns", when present, names them (k names).
+/// \throw InvalidArgument naming the file (and the line of a CSV file, the polyline and point of
 ///        a JSON file) if it cannot be read, is not valid JSON, or breaks the layout; another
 ///        extension is refused with a message naming the formats read.
 PolylineFile read_polylines(const std::string& path);

@@ -1,5 +1,4 @@
 // SPDX-License-Identifier: MIT
-#include "tessera/io/text_file.h"
 #include "tessera/io/vtk.h"
 
 #include <algorithm>
@@ -7,6 +6,7 @@
 #include "tessera/core/error.h"
 #include "tessera/io/detail/file_buffer.h"
 #include "tessera/io/detail/write_checks.h"
+#include "tessera/io/text_file.h"
 
 namespace tessera {
 

@@ -1,5 +1,4 @@
 // SPDX-License-Identifier: MIT
-#include "tessera/io/text_file.h"
 #include "tessera/picture/detail/cairo_drawing.h"
 
 #include <cairo-svg.h>
@@ -11,6 +10,7 @@
 #include "tessera/core/error.h"
 #include "tessera/io/detail/file_buffer.h"
 #include "tessera/io/file_names.h"
+#include "tessera/io/text_file.h"
 
 namespace tessera::picture_detail {
 
