@@ -321,7 +321,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   const bool wants_hopf = command.hopf || !command.diagram.empty();
   const bool wants_stability = command.stability || wants_hopf;
   backend.adopt(setup, /*split_states=*/splits && !command.improve && command.folds.empty() &&
-                           !wants_stability && command.level.empty());
+                           !wants_hopf && command.level.empty());
   // Every rank computes; the root prints and writes.
   const bool is_root = backend.is_root();
   const bool quiet = command.quiet || !is_root;
@@ -367,9 +367,14 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   std::string hopf_file;
   if (wants_stability) {
     const std::string option = command.stability ? "--stability" : command.hopf ? "--hopf" : "--diagram";
-    TESSERA_CHECK(command.backend != "petsc",
-                  option << " is not yet available with --backend petsc: run it with the serial "
-                            "backend (eigenvalues on the ranks with SLEPc are planned)");
+    // The Hopf points' Newton solves complex (or doubled real) bordered systems, which the
+    // PETSc backend does not have yet; the eigenvalues of --stability it has (SLEPc).
+    TESSERA_CHECK(command.backend != "petsc" || !wants_hopf,
+                  (command.hopf ? "--hopf" : "--diagram")
+                      << " is not yet available with --backend petsc (its Hopf points need complex "
+                         "distributed systems): run it with the serial backend; --stability alone "
+                         "runs on the PETSc backend");
+    backend.check_stability_available(option);
     const Dynamics dynamics = required_dynamics(*setup.problem, option);
     if (!command.diagram.empty() && !fold_plane) {
       // The diagram's fold curves: over the dynamics' parameters, written beside the mesh too.
@@ -547,12 +552,14 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   if (has_mesh && wants_stability) {
     StabilityOptions stability_options;
     stability_options.eigenvalue_count = command.eigenvalues;
-    stability = compute_stability_output(setup, result.mesh, stability_options);
+    stability = backend.stability_output(setup, result.mesh, stability_options);
     report.stability = stability->report;
-    // The mesh file again, now with the stability as point data.
-    if (is_root) {
-      MeshFileOptions with_data = file_options;
-      with_data.vertex_scalars = stability->vertex_data;
+    // The mesh file again, now with the stability as point data (a split mesh by every rank).
+    MeshFileOptions with_data = file_options;
+    with_data.vertex_scalars = stability->vertex_data;
+    if (is_split) {
+      write_mesh_output(result.mesh, {command.output, view, with_data, ""});
+    } else if (is_root) {
       if (view.is_all_coordinates()) {
         write_mesh(command.output, result.mesh, with_data);
       } else {
