@@ -13,11 +13,14 @@ set -euo pipefail
 # libcairo2-dev: pictures (`tessera render`, `mesh --picture`), PNG and SVG from one drawing.
 # petsc-dev (with Open MPI, MUMPS, SuperLU_dist, hypre): the PETSc backend for problems beyond one
 # machine (src/tessera/petsc, docs/cluster.md); about 100 packages, 90 s to install.
+# slepc-dev (3.18, built on petsc-dev 3.18): the eigenvalues of `mesh --stability` on the PETSc
+# backend (shift-invert Krylov-Schur on the ranks, src/tessera/petsc/petsc_stability.cpp).
 # python3-dev, python3-pybind11, python3-pytest, python3-scipy: the Python module (python/,
 # docs/python.md) for Debian's /usr/bin/python3, and its tests.
 packages=(cmake ninja-build g++ libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev
           libbenchmark-dev ccache libcgal-dev python3-meshio python3-numpy libsuitesparse-dev
-          libsuperlu-dev libmetis-dev libspectra-dev python3-dev python3-pybind11 python3-pytest python3-scipy libcairo2-dev petsc-dev "$@")
+          libsuperlu-dev libmetis-dev libspectra-dev python3-dev python3-pybind11 python3-pytest python3-scipy libcairo2-dev petsc-dev slepc-dev
+          "$@")
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||

@@ -322,7 +322,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   const bool wants_hopf = command.hopf || !command.diagram.empty();
   const bool wants_stability = command.stability || wants_hopf;
   backend.adopt(setup, /*split_states=*/splits && !command.improve && command.folds.empty() &&
-                           !wants_stability && command.level.empty());
+                           !wants_hopf && command.level.empty());
   // Every rank computes; the root prints and writes.
   const bool is_root = backend.is_root();
   const bool quiet = command.quiet || !is_root;
@@ -368,9 +368,14 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   std::string hopf_file;
   if (wants_stability) {
     const std::string option = command.stability ? "--stability" : command.hopf ? "--hopf" : "--diagram";
-    TESSERA_CHECK(command.backend != "petsc",
-                  option << " is not yet available with --backend petsc: run it with the serial "
-                            "backend (eigenvalues on the ranks with SLEPc are planned)");
+    // The Hopf points' Newton solves complex (or doubled real) bordered systems, which the
+    // PETSc backend does not have yet; the eigenvalues of --stability it has (SLEPc).
+    TESSERA_CHECK(command.backend != "petsc" || !wants_hopf,
+                  (command.hopf ? "--hopf" : "--diagram")
+                      << " is not yet available with --backend petsc (its Hopf points need complex "
+                         "distributed systems): run it with the serial backend; --stability alone "
+                         "runs on the PETSc backend");
+    backend.check_stability_available(option);
     const Dynamics dynamics = required_dynamics(*setup.problem, option);
     if (!command.diagram.empty() && !fold_plane) {
       // The diagram's fold curves: over the dynamics' parameters, written beside the mesh too.
@@ -532,19 +537,28 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     request.level_file = level_file;
   }
   request.comments = file_options.comments;
+  // The stability on the backend's own (the PETSc backend's: SLEPc on the ranks).
+  request.compute_stability = [&backend](const ProblemSetup& s, const TriangleMesh& m,
+                                         const StabilityOptions& o) {
+    return backend.stability_output(s, m, o);
+  };
   const MeshAnalyses analyses = analyse_mesh(setup, result.mesh, view, request, report);
   written.insert(written.end(), analyses.written.begin(), analyses.written.end());
   for (const std::string& warning : is_root ? analyses.warnings : std::vector<std::string>()) {
     std::cerr << "tessera: " << warning << "\n";
   }
-  if (analyses.stability && is_root) {
-    // The mesh file again, now with the stability as point data.
+  if (analyses.stability) {
+    // The mesh file again, now with the stability as point data (a split mesh by every rank).
     MeshFileOptions with_data = file_options;
     with_data.vertex_scalars = analyses.stability->vertex_data;
-    if (view.is_all_coordinates()) {
-      write_mesh(command.output, result.mesh, with_data);
-    } else {
-      write_mesh_in_view(command.output, result.mesh, view, with_data);
+    if (is_split) {
+      write_mesh_output(result.mesh, {command.output, view, with_data, ""});
+    } else if (is_root) {
+      if (view.is_all_coordinates()) {
+        write_mesh(command.output, result.mesh, with_data);
+      } else {
+        write_mesh_in_view(command.output, result.mesh, view, with_data);
+      }
     }
   }
   // Curves for the picture, each with its kind (columns: the view's).

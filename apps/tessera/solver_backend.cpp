@@ -9,12 +9,15 @@
 #include <cstring>
 
 #include "tessera/core/error.h"
+#include "tessera/methods/stability/state_jacobian.h"
 #include "tessera/problems/examples.h"
+#include "tessera/report/stability_output.h"
 
 #if defined(TESSERA_CLI_HAS_PETSC)
 #include "tessera/core/scaled_problem.h"
 #include "tessera/petsc/distributed_problem.h"
 #include "tessera/petsc/petsc_bratu.h"
+#include "tessera/petsc/petsc_stability.h"
 #include "tessera/petsc/petsc_support.h"
 #include "tessera/petsc/replicated_problem.h"
 #endif
@@ -211,6 +214,27 @@ CoveringResult SolverBackend::cover(const ProblemSetup& setup, const CoveringMet
   return result;
 }
 
+void SolverBackend::check_stability_available(const std::string& option) const {
+  TESSERA_CHECK(!petsc_ || petsc::has_slepc(),
+                option << " on --backend petsc needs SLEPc, and this tessera was built without "
+                          "it: install Debian's slepc-dev (scripts/install-dependencies.sh does) "
+                          "and build again, or run "
+                       << option << " on the serial backend");
+}
+
+StabilityOutput SolverBackend::stability_output(const ProblemSetup& setup, const TriangleMesh& mesh,
+                                                const StabilityOptions& options) const {
+  if (!petsc_) {
+    return compute_stability_output(setup, mesh, options);
+  }
+  // The mesh is in x (cover brought it back from the metric's y), on split states or whole;
+  // the PETSc problem in x has the dynamics.
+  required_dynamics(*setup.problem, "--stability");
+  return make_stability_output(
+      *setup.problem, petsc::compute_distributed_stability(*petsc_->problem, mesh, options),
+      options);
+}
+
 void SolverBackend::abort(int code) const {
   if (petsc_) {
     MPI_Abort(petsc_->session->communicator(), code);
@@ -247,6 +271,13 @@ bool SolverBackend::splits_states() const { return false; }
 CoveringResult SolverBackend::cover(const ProblemSetup& setup, const CoveringMethod& method,
                                     const MethodSettings& settings) const {
   return tessera::cover(setup, method, settings);
+}
+
+void SolverBackend::check_stability_available(const std::string& /*option*/) const {}
+
+StabilityOutput SolverBackend::stability_output(const ProblemSetup& setup, const TriangleMesh& mesh,
+                                                const StabilityOptions& options) const {
+  return compute_stability_output(setup, mesh, options);
 }
 
 void SolverBackend::abort(int code) const { std::exit(code); }

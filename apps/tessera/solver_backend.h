@@ -14,6 +14,12 @@
 #include "tessera/methods/covering_methods.h"
 #include "tessera/problems/problem_setup.h"
 
+namespace tessera {
+struct StabilityOptions;
+struct StabilityOutput;
+class TriangleMesh;
+}  // namespace tessera
+
 namespace tessera::app {
 
 /// Moves PETSc's own options out of argv (so that the command line parser does not see them):
@@ -55,6 +61,17 @@ class SolverBackend {
   /// metric's coordinates y = W x (ScaledPetscProblem) and its mesh comes back to x.
   CoveringResult cover(const ProblemSetup& setup, const CoveringMethod& method,
                        const MethodSettings& settings) const;
+  /// Refuses `option` (--stability, or what implies it) before the covering if this backend
+  /// cannot compute eigenvalues: the PETSc backend of a tessera built without SLEPc.
+  /// \throw InvalidArgument naming the option and how to get SLEPc.
+  void check_stability_available(const std::string& option) const;
+  /// The stability of every vertex of `mesh` (setup's problem, after cover) and its report:
+  /// compute_stability_output, or on the PETSc backend on the ranks with MUMPS and SLEPc
+  /// (petsc::compute_distributed_stability), split states or whole. The same on every rank.
+  /// Collective on the PETSc backend.
+  /// \throw InvalidArgument if the problem declares no dynamics.
+  StabilityOutput stability_output(const ProblemSetup& setup, const TriangleMesh& mesh,
+                                   const StabilityOptions& options) const;
   /// Ends every rank with `code` (MPI_Abort): after an error on some ranks, the others may wait
   /// in a collective call forever. The serial backend exits.
   [[noreturn]] void abort(int code) const;

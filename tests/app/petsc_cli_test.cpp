@@ -14,6 +14,7 @@
 
 #include "io/npy_test_support.h"
 #include "support/test_support.h"
+#include "tessera/io/mesh_io.h"
 #include "tessera/problems/catalogue.h"
 
 namespace tessera {
@@ -228,6 +229,82 @@ TEST(PetscCli, AProblemWithoutAPetscImplementationIsAUsageErrorOnEveryRank) {
   EXPECT_TRUE(contains(result.output, "problem 'torus' has no PETSc implementation"))
       << result.output;
   EXPECT_FALSE(fs::exists(folder + "/t.ply"));
+}
+
+const std::vector<double>& scalars(const std::vector<VertexScalars>& data,
+                                   const std::string& name) {
+  for (const VertexScalars& scalars : data) {
+    if (scalars.name == name) {
+      return scalars.values;
+    }
+  }
+  ADD_FAILURE() << "no point data " << name;
+  static const std::vector<double> none;
+  return none;
+}
+
+// `--stability` on two ranks, the states split: the serial counts vertex for vertex in the mesh
+// file's point data (the same mesh, see expect_two_ranks_give_the_serial_mesh), certain (the
+// inertia of MUMPS's LDLT), and the summary's stability block the serial one's.
+TEST(PetscCli, StabilityOnTwoRanksHasTheSerialCounts) {
+  const std::string folder = testing::temporary_directory("petsc_cli_stability");
+  // A smaller box than small_bratu2d_run's, across the ignition fold: about 150 vertices, 88 of
+  // them on the middle sheet (1 unstable eigenvalue), for a test of seconds on two ranks.
+  const ProblemSetup setup = make_catalogue_problem("bratu2d:N=8");
+  const double lambda = setup.start(setup.problem->ambient_dimension() - 2);
+  const std::string run = "mesh bratu2d:N=8 --box lambda=" + std::to_string(lambda - 0.2) + ":" +
+                          std::to_string(lambda + 0.2) +
+                          ",epsilon=0.18:0.22 --tolerance 0.04 --report-samples 30 --stability";
+  const auto serial =
+      run_cli(run + " -o " + folder + "/serial.vtu --summary " + folder + "/serial.json -q");
+  ASSERT_EQ(serial.exit_code, 0) << serial.output;
+  const auto petsc = run_shell(mpiexec(2) + TESSERA_CLI + " " + run + " --backend petsc -o " +
+                               folder + "/petsc.vtu --summary " + folder + "/petsc.json");
+  ASSERT_EQ(petsc.exit_code, 0) << petsc.output;
+  EXPECT_TRUE(contains(petsc.output, "counts from the inertia of s·D_uF (Sylvester's law): exact"))
+      << petsc.output;
+  const nlohmann::json expected = read_summary(folder + "/serial.json")["stability"];
+  const nlohmann::json summary = read_summary(folder + "/petsc.json");
+  EXPECT_EQ(summary["backend"]["states"], "split");
+  const nlohmann::json& stability = summary["stability"];
+  for (const char* key :
+       {"parameters", "vertices", "stable_vertices", "vertices_by_index", "failed_vertices",
+        "uncertain_vertices", "eigenvalues_per_vertex", "certainty"}) {
+    EXPECT_EQ(stability.at(key), expected.at(key)) << key;
+  }
+  EXPECT_EQ(stability.at("uncertain_vertices"), 0);
+  EXPECT_GE(stability.at("vertices_by_index").size(), 2u);  // the box reaches the unstable sheet
+  EXPECT_EQ(stability.at("jacobian_evaluations"), stability.at("vertices"));
+  std::vector<VertexScalars> serial_data;
+  std::vector<VertexScalars> petsc_data;
+  const TriangleMesh serial_mesh = read_mesh(folder + "/serial.vtu", serial_data);
+  const TriangleMesh petsc_mesh = read_mesh(folder + "/petsc.vtu", petsc_data);
+  ASSERT_EQ(petsc_mesh.vertex_count(), serial_mesh.vertex_count());
+  EXPECT_EQ(scalars(petsc_data, "unstable_count"), scalars(serial_data, "unstable_count"));
+  EXPECT_EQ(scalars(petsc_data, "stability_certain"), scalars(serial_data, "stability_certain"));
+  const auto& leading = scalars(petsc_data, "leading_real_part");
+  const auto& serial_leading = scalars(serial_data, "leading_real_part");
+  ASSERT_EQ(leading.size(), serial_leading.size());
+  for (std::size_t v = 0; v < leading.size(); ++v) {
+    // Ritz values to 1e-10 relative, at vertices 1e-10 apart.
+    EXPECT_NEAR(leading[v], serial_leading[v], 1e-7 * (1.0 + std::abs(serial_leading[v])))
+        << "vertex " << v;
+  }
+}
+
+// The Hopf curves need complex distributed systems, which the PETSc backend does not have: a
+// usage error before the covering, naming what does work.
+TEST(PetscCli, HopfIsRefusedOnThePetscBackendWithTheReason) {
+  const std::string folder = testing::temporary_directory("petsc_cli_hopf");
+  for (const std::string& option : {std::string("--hopf"), "--diagram " + folder + "/d.png"}) {
+    const auto result = run_shell(mpiexec(2) + TESSERA_CLI + " " + small_bvp_run() + " " + option +
+                                  " --backend petsc -o " + folder + "/h.ply");
+    EXPECT_EQ(result.exit_code, kUsageError) << result.output;
+    EXPECT_TRUE(contains(result.output, "not yet available with --backend petsc")) << result.output;
+    EXPECT_TRUE(contains(result.output, "--stability alone runs on the PETSc backend"))
+        << result.output;
+    EXPECT_FALSE(fs::exists(folder + "/h.ply"));
+  }
 }
 
 // SuperLU_dist aborted the job (its own abort, exit 255) on the border rows' zero diagonal:

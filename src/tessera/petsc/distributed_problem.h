@@ -67,6 +67,8 @@ class DistributedProblem final : public ImplicitProblem, public JacobianProduct 
   std::string name() const override { return problem_.name(); }
   std::vector<CoordinateBlock> coordinate_blocks() const override;
   std::vector<std::string> coordinate_names() const override;
+  /// The PetscProblem's (none for a ScaledPetscProblem, as ScaledProblem forwards none).
+  std::optional<Dynamics> dynamics() const override { return problem_.dynamics(); }
   std::shared_ptr<const AmbientSpace> space() const override { return space_; }
   std::unique_ptr<LinearizationBackend> make_linearization_backend() const override;
 

@@ -96,6 +96,14 @@ std::vector<CoordinateBlock> PetscArrheniusBratu::coordinate_blocks() const {
   return {{"u", 0, static_cast<int>(grid_values_), spatial_dimension_ == 1 ? std::sqrt(h) : h}};
 }
 
+std::optional<Dynamics> PetscArrheniusBratu::dynamics() const {
+  Dynamics dynamics;
+  const auto m = static_cast<int>(grid_values_);
+  dynamics.parameters = {m, m + 1};
+  dynamics.mass_diagonal = Eigen::VectorXd::Constant(m, h2_);
+  return dynamics;
+}
+
 void PetscArrheniusBratu::gather_neighbourhood(Vec x) const {
   check(VecScatterBegin(to_local_, x, local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
   check(VecScatterEnd(to_local_, x, local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");

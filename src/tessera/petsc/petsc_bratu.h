@@ -28,6 +28,9 @@ class PetscArrheniusBratu final : public PetscProblem {
   std::string name() const override { return spatial_dimension_ == 1 ? "bvp" : "bratu2d"; }
   /// One block "u" of weight √h (1-D) or h (2-D), as the serial problems.
   std::vector<CoordinateBlock> coordinate_blocks() const override;
+  /// The serial problems' dynamics: parameters λ, ε (the last two coordinates), sign +1,
+  /// B = h²·I.
+  std::optional<Dynamics> dynamics() const override;
 
   int spatial_dimension() const { return spatial_dimension_; }
   PetscInt grid_size() const { return grid_size_; }

@@ -5,10 +5,12 @@
 
 #include <petscmat.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "tessera/core/counted_problem.h"
+#include "tessera/core/dynamics.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/petsc/petsc_support.h"
 
@@ -55,6 +57,10 @@ class PetscProblem {
   virtual std::string name() const { return "problem"; }
   /// Named coordinate ranges and their weights in the metric, as in ImplicitProblem.
   virtual std::vector<CoordinateBlock> coordinate_blocks() const { return {}; }
+  /// The dynamics B·u' = ±F(u, p) whose steady states M is, as ImplicitProblem::dynamics (the
+  /// mass matrix as an Eigen vector or matrix of n − 2 rows: each rank reads its rows). Nothing
+  /// (the default): `mesh --stability` is refused.
+  virtual std::optional<Dynamics> dynamics() const { return std::nullopt; }
 
   /// Evaluations of F and DF so far; factorisations are counted by the linearisation.
   const WorkCounts& counts() const { return counts_; }

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/petsc/petsc_support.h"
 
+#if defined(TESSERA_HAS_SLEPC)
+#include <slepcsys.h>
+#endif
+
 #include "tessera/core/error.h"
 
 namespace tessera::petsc {
@@ -59,14 +63,23 @@ Owned<Vec> array_vector(MPI_Comm communicator, PetscInt local_rows, PetscInt glo
 }
 
 Session::Session(int* argc, char*** argv) {
+#if defined(TESSERA_HAS_SLEPC)
+  // SLEPc (the eigenvalues of --stability) starts PETSc and its own packages.
+  check(SlepcInitialize(argc, argv, nullptr, nullptr), "SlepcInitialize");
+#else
   check(PetscInitialize(argc, argv, nullptr, nullptr), "PetscInitialize");
+#endif
   // Errors come back as codes, which `check` turns into exceptions with PETSc's message.
   check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
 }
 
 Session::~Session() {
   PetscPopErrorHandler();
+#if defined(TESSERA_HAS_SLEPC)
+  SlepcFinalize();
+#else
   PetscFinalize();
+#endif
 }
 
 int Session::rank() const {
@@ -101,8 +114,9 @@ void scatter(const Eigen::Ref<const Eigen::VectorXd>& values, Vec x) {
   PetscInt first = 0;
   PetscInt end = 0;
   check(VecGetSize(x, &n), "VecGetSize");
-  TESSERA_CHECK(values.size() == n, "petsc::scatter: " << values.size() << " values for a vector of "
-                                                       << n << " entries");
+  TESSERA_CHECK(values.size() == n, "petsc::scatter: " << values.size()
+                                                       << " values for a vector of " << n
+                                                       << " entries");
   check(VecGetOwnershipRange(x, &first, &end), "VecGetOwnershipRange");
   PetscScalar* local = nullptr;
   check(VecGetArray(x, &local), "VecGetArray");

@@ -77,6 +77,7 @@ class ReplicatedProblem final : public ImplicitProblem {
   std::vector<CoordinateBlock> coordinate_blocks() const override {
     return problem_.coordinate_blocks();
   }
+  std::optional<Dynamics> dynamics() const override { return problem_.dynamics(); }
   /// The distributed factorisation (DistributedLinearization, MUMPS by default), its tangent
   /// bases and solutions gathered to every rank.
   std::unique_ptr<LinearizationBackend> make_linearization_backend() const override;

@@ -65,7 +65,9 @@ MeshAnalyses analyse_mesh(const ProblemSetup& setup, const TriangleMesh& mesh, c
     }
   }
   if (request.stability) {
-    analyses.stability = compute_stability_output(setup, mesh, *request.stability);
+    analyses.stability = request.compute_stability
+                             ? request.compute_stability(setup, mesh, *request.stability)
+                             : compute_stability_output(setup, mesh, *request.stability);
     const StabilityReport& stability = analyses.stability->report;
     report.stability = stability;
     if (stability.failed_count > 0) {

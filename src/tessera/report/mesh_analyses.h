@@ -4,6 +4,7 @@
 // the mesh's view. One place, so that the command line and the bindings cannot drift apart.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,10 @@ struct AnalysisRequest {
   std::string hopf_file;
   std::string level_file;
   std::vector<std::string> comments;  ///< written into every curve file
+  /// Computes the stability in place of compute_stability_output (the PETSc backend's, on split
+  /// states); empty: compute_stability_output.
+  std::function<StabilityOutput(const ProblemSetup&, const TriangleMesh&, const StabilityOptions&)>
+      compute_stability;
 };
 
 struct MeshAnalyses {

@@ -36,32 +36,39 @@ std::string certainty_of(const StabilityResult& result, const StabilityOptions& 
 
 StabilityOutput compute_stability_output(const ProblemSetup& setup, const TriangleMesh& mesh,
                                          const StabilityOptions& options) {
-  StabilityOutput output;
   const ImplicitProblem& problem = *setup.problem;
+  required_dynamics(problem, "--stability");  // the message that says how to declare them
+  return make_stability_output(problem, compute_stability(problem, mesh, options), options);
+}
+
+StabilityOutput make_stability_output(const ImplicitProblem& problem, StabilityResult result,
+                                      const StabilityOptions& options) {
+  StabilityOutput output;
   const Dynamics dynamics = required_dynamics(problem, "--stability");
-  output.result = compute_stability(problem, mesh, options);
-  const StabilityResult& result = output.result;
+  output.result = std::move(result);
+  const StabilityResult& computed = output.result;
+  const int vertex_count = static_cast<int>(computed.vertices.size());
   StabilityReport& report = output.report;
   const auto names = problem.coordinate_names();
   report.parameters = {names.at(static_cast<std::size_t>(dynamics.parameters[0])),
                        names.at(static_cast<std::size_t>(dynamics.parameters[1]))};
-  report.method = result.method;
-  report.eigenvalue_count = result.eigenvalue_count;
-  report.vertex_count = mesh.vertex_count();
-  report.stable_count = result.stable_count;
-  report.index_counts = result.index_counts;
-  report.failed_count = result.failed_count;
-  report.uncertain_count = result.uncertain_count;
-  report.certainty = certainty_of(result, options);
-  report.factorisations = result.factorisations;
-  report.solves = result.solves;
-  report.jacobian_evaluations = result.jacobian_evaluations;
-  report.seconds = result.seconds;
+  report.method = computed.method;
+  report.eigenvalue_count = computed.eigenvalue_count;
+  report.vertex_count = vertex_count;
+  report.stable_count = computed.stable_count;
+  report.index_counts = computed.index_counts;
+  report.failed_count = computed.failed_count;
+  report.uncertain_count = computed.uncertain_count;
+  report.certainty = certainty_of(computed, options);
+  report.factorisations = computed.factorisations;
+  report.solves = computed.solves;
+  report.jacobian_evaluations = computed.jacobian_evaluations;
+  report.seconds = computed.seconds;
   VertexScalars counts{"unstable_count", {}};
   VertexScalars leading{"leading_real_part", {}};
   VertexScalars certain{"stability_certain", {}};
-  for (int v = 0; v < mesh.vertex_count(); ++v) {
-    const VertexStability& s = result.vertices[static_cast<std::size_t>(v)];
+  for (int v = 0; v < vertex_count; ++v) {
+    const VertexStability& s = computed.vertices[static_cast<std::size_t>(v)];
     counts.values.push_back(s.unstable_count);
     leading.values.push_back(s.leading_real_part);
     certain.values.push_back(s.is_certain ? 1.0 : 0.0);

@@ -29,6 +29,13 @@ struct StabilityOutput {
 StabilityOutput compute_stability_output(const ProblemSetup& setup, const TriangleMesh& mesh,
                                          const StabilityOptions& options);
 
+/// The report and point data of a stability computed elsewhere (the PETSc backend's,
+/// petsc/petsc_stability.h), one VertexStability per vertex of the mesh, as
+/// compute_stability_output makes them. `problem` names the parameters.
+/// 	hrow InvalidArgument if the problem declares no dynamics.
+StabilityOutput make_stability_output(const ImplicitProblem& problem, StabilityResult result,
+                                      const StabilityOptions& options);
+
 /// The Hopf file beside the mesh when --hopf-output is not given: "out.ply" → "out.hopf.ply";
 /// meshes in formats without lines (.obj) get "out.hopf.csv".
 std::string default_hopf_file(const std::string& mesh_path);

@@ -55,10 +55,16 @@ VertexStability from_eigenvalues(std::vector<Complex> values, bool is_certain, d
 
 // All finite eigenvalues: QR (B = I) or QZ, an eigenvalue infinite when |β| ≤ 10⁻¹³(|α| + |β|)
 // (the rows of B that vanish: algebraic equations).
-VertexStability dense_stability(const StateJacobian& jacobian) {
-  const Eigen::MatrixXd A = jacobian.as_dense();
+VertexStability dense_stability_of(const StateJacobian& jacobian) {
+  return dense_stability(jacobian.as_dense(), jacobian.mass(), jacobian.has_identity_mass());
+}
+
+}  // namespace
+
+VertexStability dense_stability(const Eigen::MatrixXd& A, const Eigen::SparseMatrix<double>& mass,
+                                bool has_identity_mass) {
   std::vector<Complex> values;
-  if (jacobian.has_identity_mass()) {
+  if (has_identity_mass) {
     Eigen::EigenSolver<Eigen::MatrixXd> solver(A, /*computeEigenvectors=*/false);
     if (solver.info() != Eigen::Success) {
       return failed("the QR algorithm did not converge");
@@ -67,7 +73,7 @@ VertexStability dense_stability(const StateJacobian& jacobian) {
       values.push_back(solver.eigenvalues()(i));
     }
   } else {
-    const Eigen::MatrixXd B(jacobian.mass());
+    const Eigen::MatrixXd B(mass);
     Eigen::GeneralizedEigenSolver<Eigen::MatrixXd> solver(A, B, /*computeEigenvectors=*/false);
     if (solver.info() != Eigen::Success) {
       return failed("the QZ algorithm did not converge");
@@ -83,6 +89,8 @@ VertexStability dense_stability(const StateJacobian& jacobian) {
   return from_eigenvalues(std::move(values), /*is_certain=*/true,
                           std::numeric_limits<double>::infinity());
 }
+
+namespace {
 
 // y = D^½ A⁻¹ D^½ x, D = B (positive diagonal): symmetric, with eigenvalues 1/μ for the
 // eigenvalues μ of the pencil (A, B), A symmetric.
@@ -315,8 +323,9 @@ class SparseStability {
   bool has_start_ = false;
 };
 
-// Vertices in breadth-first order over the mesh's edges, component by component.
-std::vector<int> breadth_first_order(const TriangleMesh& mesh) {
+}  // namespace
+
+std::vector<int> stability_vertex_order(const TriangleMesh& mesh) {
   const int vertex_count = mesh.vertex_count();
   std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(vertex_count));
   for (const Triangle& t : mesh.triangles()) {
@@ -351,13 +360,15 @@ std::vector<int> breadth_first_order(const TriangleMesh& mesh) {
   return order;
 }
 
+namespace {
+
 VertexStability stability_with(StateJacobian& jacobian, SparseStability& sparse,
                                const Eigen::VectorXd& x, const StabilityOptions& options) {
   if (!jacobian.evaluate(x)) {
     return failed("DF is not finite here");
   }
   if (!jacobian.is_sparse() || jacobian.state_count() <= options.dense_state_limit) {
-    return dense_stability(jacobian);
+    return dense_stability_of(jacobian);
   }
   return sparse.compute(jacobian);
 }
@@ -402,7 +413,7 @@ StabilityResult compute_stability(const ImplicitProblem& problem, const Triangle
   SparseStability sparse(options);
   bool any_symmetric = false;
   bool any_general = false;
-  for (const int v : breadth_first_order(mesh)) {
+  for (const int v : stability_vertex_order(mesh)) {
     VertexStability& vertex = result.vertices[static_cast<std::size_t>(v)];
     vertex = stability_with(jacobian, sparse, mesh.point(v), options);
     if (!is_dense && !vertex.has_failed()) {
@@ -414,6 +425,19 @@ StabilityResult compute_stability(const ImplicitProblem& problem, const Triangle
                       ? "sparse symmetric (inertia), shift-invert Arnoldi where LDLT failed"
                   : any_general ? "sparse (shift-invert Arnoldi)"
                                 : "sparse symmetric (inertia)";
+  count_stability_classes(result);
+  result.factorisations = sparse.factorisations;
+  result.solves = sparse.solves;
+  result.jacobian_evaluations = jacobian.jacobian_evaluations();
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+void count_stability_classes(StabilityResult& result) {
+  result.index_counts.clear();
+  result.failed_count = 0;
+  result.uncertain_count = 0;
   for (const VertexStability& vertex : result.vertices) {
     if (vertex.has_failed()) {
       ++result.failed_count;
@@ -429,12 +453,6 @@ StabilityResult compute_stability(const ImplicitProblem& problem, const Triangle
     ++result.index_counts[index];
   }
   result.stable_count = result.index_counts.empty() ? 0 : result.index_counts[0];
-  result.factorisations = sparse.factorisations;
-  result.solves = sparse.solves;
-  result.jacobian_evaluations = jacobian.jacobian_evaluations();
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  return result;
 }
 
 }  // namespace tessera

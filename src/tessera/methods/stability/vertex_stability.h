@@ -91,4 +91,20 @@ StabilityResult compute_stability(const ImplicitProblem& problem, const Triangle
 VertexStability stability_at(const ImplicitProblem& problem, const Eigen::VectorXd& x,
                              const StabilityOptions& options = {});
 
+/// Every finite eigenvalue of the pencil (A, B) by the QR algorithm (`has_identity_mass`: B = I,
+/// `B` unread) or the QZ algorithm (an eigenvalue infinite when |β| ≤ 10⁻¹³(|α| + |β|), and
+/// dropped): what compute_stability does for dense problems. The count is certain.
+/// \param A  m×m, s·D_uF.   \param B  m×m mass matrix.
+VertexStability dense_stability(const Eigen::MatrixXd& A, const Eigen::SparseMatrix<double>& B,
+                                bool has_identity_mass);
+
+/// Fills result's stable_count, index_counts, failed_count and uncertain_count from its
+/// vertices (for a computation elsewhere: the PETSc backend's).
+void count_stability_classes(StabilityResult& result);
+
+/// The order compute_stability visits the vertices in: breadth first over the mesh's edges,
+/// component by component, so that each eigenvalue iteration starts from a neighbour's
+/// eigenvectors. Also the PETSc backend's order (petsc_stability.h).
+std::vector<int> stability_vertex_order(const TriangleMesh& mesh);
+
 }  // namespace tessera
