@@ -143,8 +143,10 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
       ->check(CLI::PositiveNumber);
   mesh_app->add_flag("--hopf", mesh.hopf,
                      "compute the Hopf curves (a complex pair of eigenvalues crosses the "
-                     "imaginary axis; implies --stability), refined to solver tolerance, with their "
-                     "frequency omega and Bogdanov–Takens points");
+                     "imaginary axis; implies --stability) and the neutral saddle curves, every "
+                     "point refined to solver tolerance, with the frequency omega, the first "
+                     "Lyapunov coefficient l1 (dense problems) and the Bogdanov–Takens, fold–Hopf "
+                     "and Bautin points");
   mesh_app->add_option("--hopf-output", mesh.hopf_output,
                        "file of the Hopf curves: .vtk, .vtu, .ply, .json or .csv (default: beside "
                        "the mesh, e.g. out.hopf.ply)");
@@ -160,8 +162,9 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
                        "curves over the dynamics' parameters (or --folds), the Hopf curves and "
                        "their special points (implies --hopf)");
   mesh_app->add_option("--picture", mesh.picture,
-                       "draw the mesh in its view to this .png or .svg, coloured by height, with "
-                       "its boundary and fold curves (`tessera render` for more control)");
+                       "draw the mesh in its view to this .png or .svg, coloured by height (by "
+                       "stability with --stability), with its boundary and its fold, Hopf and "
+                       "level curves (`tessera render` for more control)");
   mesh_app->add_option("--obj-coordinates", mesh.obj_coordinates,
                        "deprecated, use --view: the view of three coordinate indices, e.g. 0,2,3 "
                        "(every format)");
