@@ -2,7 +2,9 @@
 // `tessera improve` as a user meets it.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -52,6 +54,24 @@ TEST(CliImprove, SmoothingKeepsTheMeshValidAndOnM) {
   // `check` passes only if the mesh is valid, a disk, and its vertices are on M (1e-6).
   result = testing::run_cli("check " + output + " --problem sphere_cut");
   EXPECT_EQ(result.exit_code, 0) << result.output;
+}
+
+// The command line recorded in the file holds "--criterion", which an XML comment may not: every
+// format the command offers must still be written (issue 34).
+TEST(CliImprove, EveryOutputFormatIsWrittenWhateverTheRecordedCommandLine) {
+  const std::string dir = testing::temporary_directory("cli_improve_formats");
+  const std::string input = dir + "/in.ply";
+  ASSERT_EQ(testing::run_cli("mesh sphere_cut --step 0.3 -q -o " + input).exit_code, 0);
+  for (const std::string extension : {".vtu", ".vtk", ".ply", ".obj"}) {
+    const std::string output = dir + "/out" + extension;
+    const auto result = testing::run_cli("improve " + input +
+                                         " --problem sphere_cut --criterion angle -o " + output);
+    EXPECT_EQ(result.exit_code, 0) << extension << "\n" << result.output;
+    EXPECT_TRUE(std::filesystem::exists(output)) << output;
+  }
+  std::ifstream vtu(dir + "/out.vtu");
+  const std::string text((std::istreambuf_iterator<char>(vtu)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("- -criterion angle"), std::string::npos);  // "--" in a comment, kept legible
 }
 
 TEST(CliImprove, BadInputIsAUsageError) {

@@ -141,11 +141,7 @@ void write_vtu(const std::string& path, const std::vector<Polyline>& polylines,
     file.text("<!-- kind: " + options.kind + " -->\n");
   }
   for (const auto& comment : options.comments) {
-    std::string text = comment;
-    for (std::size_t at = text.find("--"); at != std::string::npos; at = text.find("--")) {
-      text.replace(at, 2, "- -");  // "--" may not occur in an XML comment
-    }
-    file.text("<!-- " + text + " -->\n");
+    file.text("<!-- " + xml_comment_text(comment) + " -->\n");
   }
   file.text("<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
             "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"");

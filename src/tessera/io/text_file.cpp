@@ -35,4 +35,12 @@ std::string xml_escaped(std::string_view text) {
   return escaped;
 }
 
+std::string xml_comment_text(std::string_view text) {
+  std::string comment(text);
+  for (auto at = comment.find("--"); at != std::string::npos; at = comment.find("--", at)) {
+    comment.replace(at, 2, "- -");
+  }
+  return comment;
+}
+
 }  // namespace tessera

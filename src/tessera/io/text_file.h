@@ -20,4 +20,8 @@ void write_text_file(const std::string& path, std::string_view content,
 /// files and the titles of SVG pictures.
 std::string xml_escaped(std::string_view text);
 
+/// `text` fit for an XML comment, which may not hold "--": each "--" becomes "- -" (a recorded
+/// command line `tessera improve … --criterion angle` stays readable).
+std::string xml_comment_text(std::string_view text);
+
 }  // namespace tessera

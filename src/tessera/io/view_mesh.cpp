@@ -45,13 +45,8 @@ void write_mesh_in_view(const std::string& path, const TriangleMesh& mesh, const
   const TriangleMesh shown = mesh_in_view(mesh, view);
   options.coordinate_names = coordinate_names_in_view(view);
   options.obj_coordinates = {0, 1, 2};
-  // An expression may hold "--" (x--y), which ends an XML comment early in a .vtu file.
-  std::string comment = "view: " + view.specification();
-  for (auto dashes = comment.find("--"); dashes != std::string::npos;
-       dashes = comment.find("--", dashes)) {
-    comment.replace(dashes, 2, "- -");
-  }
-  options.comments.push_back(comment);
+  // An expression may hold "--" (x--y): the VTU writer makes it fit an XML comment.
+  options.comments.push_back("view: " + view.specification());
   if (!mesh.space().is_distributed()) {
     write_mesh(path, shown, options);
     return;

@@ -124,11 +124,6 @@ void write_vtu(const std::string& path, const TriangleMesh& mesh, const VtkOptio
   const auto names = io_detail::checked_vertex_data_names(mesh, options.coordinate_names,
                                                           options.vertex_scalars, "VtkOptions");
   io_detail::check_comments(options.comments, "VtkOptions");
-  for (const auto& comment : options.comments) {
-    TESSERA_CHECK(
-        comment.find("--") == std::string::npos,
-        "VtkOptions::comments: '" << comment << "' contains \"--\", which XML comments forbid");
-  }
   io_detail::check_triangle_indices(mesh, path);
 
   io_detail::OutputFile file("VTU", path);
@@ -138,7 +133,7 @@ void write_vtu(const std::string& path, const TriangleMesh& mesh, const VtkOptio
   file.text(" -->\n");
   for (const auto& comment : options.comments) {
     file.text("<!-- ");
-    file.text(comment);
+    file.text(xml_comment_text(comment));  // "--" may not occur in an XML comment
     file.text(" -->\n");
   }
   file.text(
