@@ -281,6 +281,24 @@ ChosenView choose_view(const MeshCommand& command, const ProblemSetup& setup) {
   return chosen;
 }
 
+// Two outputs of one run at the same path would silently replace one another (a summary
+// `torus.json` and `--patches torus.json`): refused, naming both options.
+void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) {
+  std::vector<std::pair<std::filesystem::path, std::string>> seen;
+  for (const auto& [option, path] : outputs) {
+    if (path.empty()) {
+      continue;
+    }
+    const std::filesystem::path normal = std::filesystem::absolute(path).lexically_normal();
+    for (const auto& [other, other_option] : seen) {
+      TESSERA_CHECK(other != normal, option << " " << path << " is the file of " << other_option
+                                            << " too: one would replace the other; give "
+                                               "them different names");
+    }
+    seen.emplace_back(normal, option);
+  }
+}
+
 void check_states_output(const std::string& path) {
   check_output_folder(path);
   TESSERA_CHECK(std::filesystem::path(path).extension() == ".npy",
@@ -422,6 +440,19 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
                   "--level-output " << level_file
                                     << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
   }
+  check_distinct_outputs({{"-o", command.output},
+                          {"--summary", command.summary},
+                          {"--patches", command.patches},
+                          {"--states", command.states},
+                          {"--states (its triangles)",
+                           command.states.empty() ? "" : triangles_npy_path(command.states)},
+                          {"--folds-output", fold_file},
+                          {"--hopf-output", hopf_file},
+                          {"--hopf-output (its neutral saddles)",
+                           hopf_file.empty() ? "" : neutral_saddle_file_beside(hopf_file)},
+                          {"--level-output", level_file},
+                          {"--picture", command.picture},
+                          {"--diagram", command.diagram}});
   MeshFileOptions file_options;
   MethodSettings settings = command.settings;
   const bool show_progress = !quiet && isatty(STDERR_FILENO);

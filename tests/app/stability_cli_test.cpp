@@ -314,6 +314,11 @@ TEST(StabilityCli, BadStabilityOptionsAreRefusedBeforeTheComputation) {
       {"mesh cstr --stability --eigenvalues 0 -o " + dir + "/s.ply", "--eigenvalues"},
       {"mesh cstr --level x1 -o " + dir + "/s.ply", "--level x1"},
       {"mesh cstr --level-output " + dir + "/l.csv -o " + dir + "/s.ply", "needs --level"},
+      {"mesh cstr --summary " + dir + "/s.json --patches " + dir + "/s.json --method bezier -o " +
+           dir + "/s.ply",
+       "--patches " + dir + "/s.json is the file of --summary too"},
+      {"mesh cstr --hopf --hopf-output " + dir + "/s.ply -o " + dir + "/s.ply",
+       "--hopf-output " + dir + "/s.ply is the file of -o too"},
   };
   for (const Case& c : cases) {
     const auto result = run_cli(c.arguments);
