@@ -299,6 +299,13 @@ void check_distinct_outputs(const std::vector<std::pair<std::string, std::string
   }
 }
 
+// A curve file of --folds-output, --hopf-output or --level-output: its folder and format.
+void check_polyline_output(const std::string& option, const std::string& path) {
+  check_output_folder(path);
+  TESSERA_CHECK(is_polyline_file(path),
+                option << " " << path << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
+}
+
 void check_states_output(const std::string& path) {
   check_output_folder(path);
   TESSERA_CHECK(std::filesystem::path(path).extension() == ".npy",
@@ -381,10 +388,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     fold_plane = parse_folds_option(command.folds, *setup.problem);
     fold_file = command.folds_output.empty() ? default_fold_file(command.output)
                                              : command.folds_output;
-    check_output_folder(fold_file);
-    TESSERA_CHECK(is_polyline_file(fold_file),
-                  "--folds-output " << fold_file
-                                    << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
+    check_polyline_output("--folds-output", fold_file);
   }
   std::string hopf_file;
   if (wants_stability) {
@@ -407,20 +411,14 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
                                       *setup.problem);
       fold_file = command.folds_output.empty() ? default_fold_file(command.output)
                                                : command.folds_output;
-      check_output_folder(fold_file);
-      TESSERA_CHECK(is_polyline_file(fold_file),
-                    "--folds-output " << fold_file
-                                      << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
+      check_polyline_output("--folds-output", fold_file);
     }
   }
   TESSERA_CHECK(wants_hopf || command.hopf_output.empty(),
                 "--hopf-output " << command.hopf_output << " needs --hopf");
   if (wants_hopf) {
     hopf_file = command.hopf_output.empty() ? default_hopf_file(command.output) : command.hopf_output;
-    check_output_folder(hopf_file);
-    TESSERA_CHECK(is_polyline_file(hopf_file),
-                  "--hopf-output " << hopf_file
-                                   << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
+    check_polyline_output("--hopf-output", hopf_file);
   }
   if (!command.diagram.empty()) {
     check_output_folder(command.diagram);
@@ -435,10 +433,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   if (!command.level.empty()) {
     level_set = parse_level_option(command.level, *setup.problem);
     level_file = command.level_output.empty() ? default_level_file(command.output) : command.level_output;
-    check_output_folder(level_file);
-    TESSERA_CHECK(is_polyline_file(level_file),
-                  "--level-output " << level_file
-                                    << ": unknown extension (use .vtk, .vtu, .ply, .json or .csv)");
+    check_polyline_output("--level-output", level_file);
   }
   check_distinct_outputs({{"-o", command.output},
                           {"--summary", command.summary},
