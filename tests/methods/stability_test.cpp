@@ -11,6 +11,7 @@
 
 #include "support/brusselator.h"
 #include "tessera/core/error.h"
+#include "tessera/methods/stability/hopf_curves.h"
 #include "tessera/methods/stability/hopf_point.h"
 #include "tessera/methods/stability/vertex_stability.h"
 #include "tessera/problems/examples.h"
@@ -245,6 +246,47 @@ TEST(Stability, InvalidDynamicsAreRefusedWithTheirFault) {
     } catch (const InvalidArgument& error) {
       EXPECT_NE(std::string(error.what()).find(c.message), std::string::npos) << error.what();
     }
+  }
+}
+
+// The sparse path end to end: a grid of the Brusselator's steady states over (a, b), its
+// stability by shift-invert Arnoldi (the 6 eigenvalues nearest 0) and its Hopf curve b = 1 + a².
+TEST(HopfCurves, SparseBrusselatorCurveIsBEqualsOnePlusASquared) {
+  const test::Brusselator brusselator(40, 0.2);
+  const int n = brusselator.ambient_dimension();
+  const int rows = 13;
+  const int columns = 17;
+  Eigen::MatrixXd points(n, rows * columns);
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < columns; ++j) {
+      const double a = 1.0 + 1.0 * i / (rows - 1);
+      const double b = 1.5 + 5.0 * j / (columns - 1);
+      points.col(i * columns + j) = brusselator.steady_state(a, b);
+    }
+  }
+  std::vector<Triangle> triangles;
+  for (int i = 0; i + 1 < rows; ++i) {
+    for (int j = 0; j + 1 < columns; ++j) {
+      const int v = i * columns + j;
+      triangles.push_back({v, v + 1, v + columns + 1});
+      triangles.push_back({v, v + columns + 1, v + columns});
+    }
+  }
+  const TriangleMesh mesh(points, triangles);
+  const StabilityResult stability = compute_stability(brusselator, mesh);
+  EXPECT_EQ(stability.failed_count, 0);
+  EXPECT_EQ(stability.uncertain_count, mesh.vertex_count());  // Arnoldi: the 6 nearest 0
+  const HopfCurves hopf = find_hopf_curves(brusselator, mesh, stability);
+  EXPECT_EQ(hopf.unrefined_count, 0);
+  ASSERT_EQ(hopf.curves.size(), 1u);
+  EXPECT_FALSE(hopf.curves[0].is_neutral_saddle);
+  EXPECT_GE(hopf.curves[0].points.size(), 12u);
+  for (const HopfPoint& point : hopf.curves[0].points) {
+    const double a = point.x(n - 2);
+    const double b = point.x(n - 1);
+    EXPECT_NEAR(b, 1 + a * a, 1e-8);
+    EXPECT_NEAR(point.omega, a, 1e-8);
+    EXPECT_TRUE(std::isnan(point.first_lyapunov_coefficient));  // sparse: not computed
   }
 }
 

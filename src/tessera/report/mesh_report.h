@@ -153,6 +153,7 @@ struct HopfReport {
   int unrefined_count = 0;
   int hopf_point_count = 0;
   int neutral_saddle_point_count = 0;
+  int mixed_crossing_count = 0;  ///< sparse problems: crossings where a real eigenvalue changes too
   int supercritical_count = 0;  ///< Hopf points with l₁ < 0 (dense problems)
   int subcritical_count = 0;    ///< Hopf points with l₁ > 0
   int newton_iterations = 0;

@@ -124,6 +124,7 @@ HopfOutput compute_hopf_output(const ProblemSetup& setup, const TriangleMesh& me
   report.unrefined_count = hopf.unrefined_count;
   report.hopf_point_count = hopf.hopf_point_count;
   report.neutral_saddle_point_count = hopf.neutral_saddle_point_count;
+  report.mixed_crossing_count = hopf.mixed_crossing_count;
   for (const HopfCurve& curve : hopf.curves) {
     for (const HopfPoint& point : curve.points) {
       if (point.is_bautin) {

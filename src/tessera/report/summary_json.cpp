@@ -136,6 +136,7 @@ nlohmann::json hopf_json(const HopfReport& hopf) {
           {"unrefined_points", hopf.unrefined_count},
           {"hopf_points", hopf.hopf_point_count},
           {"neutral_saddle_points", hopf.neutral_saddle_point_count},
+          {"mixed_crossings", hopf.mixed_crossing_count},
           {"supercritical_points", hopf.supercritical_count},
           {"subcritical_points", hopf.subcritical_count},
           {"neutral_saddle_file", hopf.neutral_saddle_file},

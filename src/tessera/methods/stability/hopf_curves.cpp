@@ -30,6 +30,8 @@ struct VertexSpectrum {
   bool is_complex = false;  // the pair with the smallest |μᵢ + μⱼ| is a complex one
   double omega = 0.0;       // its Im μ (complex)
   double kappa = 0.0;       // half the distance of the real pair (real)
+  bool is_partial = false;  // only the eigenvalues nearest 0 were computed (sparse problems)
+  int real_unstable = 0;    // computed real eigenvalues with Re > 0
 };
 
 VertexSpectrum spectrum_of(const VertexStability& vertex, double threshold) {
@@ -39,8 +41,37 @@ VertexSpectrum spectrum_of(const VertexStability& vertex, double threshold) {
   }
   std::vector<double> reals;
   std::vector<std::complex<double>> pairs;  // Im > 0 representatives
+  // Where only the eigenvalues nearest 0 were computed, the set changes from vertex to vertex:
+  // an eigenvalue entering it at the rim, or a stable pair turning real, would flip the
+  // product's sign with no bifurcation between. There the value's sign is the parity of the
+  // complex pairs with positive real part well inside the examined disk (Hopf points only: the
+  // neutral saddles, sums of two real eigenvalues, are not looked for), and a crossing where a
+  // real eigenvalue changes sign too is left out (find_hopf_curves).
+  spectrum.is_partial = std::isfinite(vertex.examined_radius);
+  if (spectrum.is_partial) {
+    int unstable_pairs = 0;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const std::complex<double>& mu : vertex.eigenvalues) {
+      const bool is_real = std::abs(mu.imag()) <= threshold * std::max(1.0, std::abs(mu));
+      if (is_real) {
+        spectrum.real_unstable += mu.real() > 0.0;
+      } else if (mu.imag() > 0.0 && std::abs(mu) <= 0.9 * vertex.examined_radius) {
+        unstable_pairs += mu.real() > 0.0;
+        if (2 * std::abs(mu.real()) < nearest) {
+          nearest = 2 * std::abs(mu.real());
+          spectrum.is_complex = true;
+          spectrum.omega = mu.imag();
+        }
+      }
+    }
+    const double magnitude =
+        std::max(std::isfinite(nearest) ? nearest : 1.0, std::numeric_limits<double>::min());
+    spectrum.value = unstable_pairs % 2 == 0 ? magnitude : -magnitude;
+    return spectrum;
+  }
   for (const std::complex<double>& mu : vertex.eigenvalues) {
-    if (std::abs(mu.imag()) <= threshold * std::max(1.0, std::abs(mu))) {
+    const bool is_real = std::abs(mu.imag()) <= threshold * std::max(1.0, std::abs(mu));
+    if (is_real) {
       reals.push_back(mu.real());
     } else if (mu.imag() > 0.0) {
       pairs.push_back(mu);
@@ -129,7 +160,13 @@ HopfCurves find_hopf_curves(const ImplicitProblem& problem, const TriangleMesh& 
                          : !b.is_complex                 ? b.kappa
                                                          : 0.0;
     const bool hopf_first = a.is_complex || b.is_complex;
-    for (int attempt = 0; attempt < 2; ++attempt) {
+    const bool is_partial = a.is_partial || b.is_partial;
+    if (is_partial && a.real_unstable != b.real_unstable) {
+      ++result.mixed_crossing_count;  // a pair turned real, or a fold: no Hopf point to find
+      return std::nullopt;
+    }
+    const int attempts = is_partial ? 1 : 2;  // no neutral saddles where the set is partial
+    for (int attempt = 0; attempt < attempts; ++attempt) {
       const bool try_hopf = (attempt == 0) == hopf_first;
       HopfPoint point =
           try_hopf ? refine_hopf_point(problem, estimate, omega, reach, options.newton, result.work)

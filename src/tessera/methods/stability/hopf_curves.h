@@ -40,6 +40,10 @@ struct HopfCurves {
   /// Crossings where Newton converged neither to a Hopf point nor to a neutral saddle: left
   /// out, so that every point written is on its curve to solver tolerance (the curve is cut).
   int unrefined_count = 0;
+  /// Sparse problems: crossings left out because a real eigenvalue changes sign on the same edge
+  /// (a fold, or an unstable pair turning real): the parity of the unstable pairs changed with
+  /// no Hopf point between.
+  int mixed_crossing_count = 0;
   int bogdanov_takens_count = 0;
   int zero_hopf_count = 0;  ///< fold–Hopf points found on the Hopf curves (marked in them)
   int bautin_count = 0;     ///< Bautin points found on the Hopf curves (dense problems)
