@@ -346,20 +346,7 @@ class ShiftInvert {
         check(VecAXPY(start_, 1.0, imaginary_), "VecAXPY");
       }
     }
-    // A complex eigenvalue whose conjugate fell just outside the k: the pair is one.
-    const std::size_t found = values.size();
-    for (std::size_t i = 0; i < found; ++i) {
-      if (values[i].imag() == 0.0) {
-        continue;
-      }
-      const Complex conjugate = std::conj(values[i]);
-      const bool has = std::any_of(values.begin(), values.end(), [&](const Complex& other) {
-        return std::abs(other - conjugate) <= 1e-8 * std::abs(conjugate);
-      });
-      if (!has) {
-        values.push_back(conjugate);
-      }
-    }
+    complete_conjugate_pairs(values);
     PetscReal norm = 0.0;
     check(VecNorm(start_, NORM_2, &norm), "VecNorm");
     has_start_ = std::isfinite(norm) && norm > 0.0;

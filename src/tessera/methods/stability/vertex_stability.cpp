@@ -266,20 +266,7 @@ class SparseStability {
       values.push_back(mu);
       radius = std::max(radius, std::abs(mu));
     }
-    // A complex eigenvalue whose conjugate fell just outside the k: the pair is one.
-    const std::size_t found = values.size();
-    for (std::size_t i = 0; i < found; ++i) {
-      if (values[i].imag() == 0.0) {
-        continue;
-      }
-      const Complex conjugate = std::conj(values[i]);
-      const bool has = std::any_of(values.begin(), values.end(), [&](const Complex& other) {
-        return std::abs(other - conjugate) <= 1e-8 * std::abs(conjugate);
-      });
-      if (!has) {
-        values.push_back(conjugate);
-      }
-    }
+    complete_conjugate_pairs(values);
     const Eigen::MatrixXcd vectors = eigs.eigenvectors();
     remember(vectors.real(), vectors.imag(), Eigen::VectorXd::Ones(m));
     return from_eigenvalues(std::move(values), /*is_certain=*/false, radius);
@@ -432,6 +419,22 @@ StabilityResult compute_stability(const ImplicitProblem& problem, const Triangle
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
+}
+
+void complete_conjugate_pairs(std::vector<std::complex<double>>& values) {
+  const std::size_t found = values.size();
+  for (std::size_t i = 0; i < found; ++i) {
+    if (values[i].imag() == 0.0) {
+      continue;
+    }
+    const Complex conjugate = std::conj(values[i]);
+    const bool has = std::any_of(values.begin(), values.end(), [&](const Complex& other) {
+      return std::abs(other - conjugate) <= 1e-8 * std::abs(conjugate);
+    });
+    if (!has) {
+      values.push_back(conjugate);
+    }
+  }
 }
 
 void count_stability_classes(StabilityResult& result) {

@@ -102,6 +102,10 @@ VertexStability dense_stability(const Eigen::MatrixXd& A, const Eigen::SparseMat
 /// vertices (for a computation elsewhere: the PETSc backend's).
 void count_stability_classes(StabilityResult& result);
 
+/// Adds the conjugate of every complex eigenvalue whose conjugate is not among `values` (it fell
+/// just outside the k an Arnoldi method returned): a pair counts as one.
+void complete_conjugate_pairs(std::vector<std::complex<double>>& values);
+
 /// The order compute_stability visits the vertices in: breadth first over the mesh's edges,
 /// component by component, so that each eigenvalue iteration starts from a neighbour's
 /// eigenvectors. Also the PETSc backend's order (petsc_stability.h).
