@@ -24,6 +24,7 @@
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/methods/atlas/atlas.h"
+#include "tessera/problems/catalogue.h"
 #include "tessera/problems/examples.h"
 
 namespace tessera {
@@ -147,6 +148,24 @@ TEST(GeometricValidation, FindsAFlippedTriangleWithASparseJacobian) {
   EXPECT_TRUE(contains(validation.flipped_triangles, t)) << validation.report();
   EXPECT_EQ(validation.flipped_triangles, validate(mesh, Sphere(1.0), Domain()).flipped_triangles)
       << "dense and sparse linearisations agree";
+}
+
+// A pair folded across its edge where one of them nearly stands across M at one end of the
+// edge: the oriented cosines at the edge's ends are (0.979, 0.044) and (0.968, −0.259). The
+// near-standing corner used to outvote the fold at the other end, and the pair, which covers
+// the same part of M (the stress campaign's sampled check, seed 2026, case 65), passed as
+// valid. Four vertices of that bezier partial mesh of cstr (n = 4), on M to 1e-13.
+TEST(GeometricValidation, FindsAFoldOutvotedByACornerStandingAcrossM) {
+  const ProblemSetup cstr = make_catalogue_problem("cstr");
+  Eigen::MatrixXd points(4, 4);
+  points.col(0) << 0.9898829515004597, 7.758186612266293, 0.041801549196827284, 11.756218147569577;
+  points.col(1) << 0.9778258636122821, 7.742439161059287, 0.019138865996011563, 11.87702143476322;
+  points.col(2) << 0.9877624796227416, 7.737124701873143, 0.035218311757177496, 11.74947144908997;
+  points.col(3) << 0.9977910561834582, 7.729197500583389, 0.19865848209147535, 11.61946299180236;
+  const TriangleMesh mesh(points, {{0, 1, 2}, {1, 0, 3}});
+  const MeshValidation validation = validate(mesh, *cstr.problem, Domain(), all_examples());
+  EXPECT_FALSE(validation.flipped_triangles.empty()) << validation.report();
+  expect_defect_named(validation, MeshDefectKind::FlippedTriangle, "folded over its neighbour");
 }
 
 // A triangle folded up to stand across M: neither orientation, flagged as standing across.

@@ -71,7 +71,13 @@ INSTANTIATE_TEST_SUITE_P(
         StressCase{"case608_cstr_bezier_over_tolerance", "cstr", "bezier", 0.041383483618890833,
                    0.019627408073769989,
                    {0.08458105454964561, 0.083248922141750947, 0.086552330039866843,
-                    4.9705949786146864}}),
+                    4.9705949786146864}},
+        // A pair folded across its edge (cosines 0.968 and −0.259 at one end) that a corner
+        // standing across M at the other end (0.044) outvoted: the overlap passed as valid.
+        StressCase{"seed2026_case65_cstr_bezier_fold_outvoted", "cstr", "bezier",
+                   0.036629770183323473, 0.018754408517000058,
+                   {0.12175489755588756, 0.099284320641779777, 0.090145511765373831,
+                    4.9965115717577158}}),
     [](const ::testing::TestParamInfo<StressCase>& info) { return info.param.name; });
 
 }  // namespace

@@ -181,7 +181,13 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
     for (int v : topology.edge(e)) {
       const double sa = corner_cosine[a][corner_of(a, v)];
       const double sb = corner_cosine[b][corner_of(b, v)];
-      if (std::isnan(sa) || std::isnan(sb)) {
+      // A corner where either plane stands across M (|s| below min_tangent_cosine) casts no
+      // vote: there the sign of a projected area tells the plane's tilt, not which side of the
+      // edge the triangle lies on. (cstr, bezier, stress seed 2026: a triangle at 0.044 at one
+      // end of its edge outvoted a fold at 0.26 at the other, and the pair's overlap on M
+      // passed as valid.)
+      if (std::isnan(sa) || std::isnan(sb) ||
+          std::min(std::abs(sa), std::abs(sb)) < options.min_tangent_cosine) {
         continue;
       }
       ++judged;
