@@ -230,7 +230,7 @@ TEST(RenderCli, DrawsCurvesByKindAndTheBifurcationDiagram) {
   ASSERT_EQ(diagram.exit_code, 0) << diagram.output;
   const std::string svg = text_of(dir + "/diagram.svg");
   EXPECT_TRUE(contains(svg, "<title>two-parameter diagram</title>"));
-  EXPECT_TRUE(contains(svg, "<desc>legend: Hopf; fold; cusp; Bogdanov-Takens</desc>"))
+  EXPECT_TRUE(contains(svg, "<desc>axes: Da, B\nlegend: Hopf; fold; cusp; Bogdanov-Takens</desc>"))
       << svg.substr(0, 500);
   const auto png = run_cli("render --diagram B,omega --curves " + dir + "/grid.hopf.csv -o " + dir +
                            "/omega.png");

@@ -345,7 +345,7 @@ void write_bifurcation_diagram(const std::string& path, const BifurcationDiagram
   picture_detail::write_drawing(
       path, options.width, options.height,
       [&](cairo_t* cr) { draw(cr, scene, options, measured, layout); }, options.title,
-      measured.legend);
+      measured.legend, {"axes: " + scene.parameter_names[0] + ", " + scene.parameter_names[1]});
 }
 
 }  // namespace tessera
