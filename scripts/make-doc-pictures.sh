@@ -26,9 +26,10 @@ small=(--size 480x360)
 "$tessera" render "$work/flat_torus.vtu" --problem flat_torus \
   --view 'a = (2 + x3)*x1, b = (2 + x3)*x2, c = x4' --colour min-angle "${small[@]}" \
   --title "flat torus in R^4, atlas: smallest angles (in R^4)" -o "$out/flat_torus_atlas.png"
-# A continuation surface in its default view (lambda, epsilon, max:u): the axes scaled apart.
+# A continuation surface in its default view (lambda, epsilon, max:u): the axes scaled apart,
+# ticked and named, seen from where its folds show (no --azimuth/--elevation: chosen).
 "$tessera" mesh bvp:points=100 -q -o "$work/bvp100.ply"
-"$tessera" render "$work/bvp100.ply" "${size[@]}" --edges off --azimuth -50 \
+"$tessera" render "$work/bvp100.ply" "${size[@]}" --edges off \
   --title "bvp:points=100 in (lambda, epsilon, max u), coloured by max u" -o "$out/bvp100_view.png"
 # Fold curves and cusps.
 "$tessera" mesh whitney_pleat --folds lambda,mu -q -o "$work/pleat.ply" --picture "$out/pleat_folds.png"

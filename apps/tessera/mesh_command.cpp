@@ -609,7 +609,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   }
   if (has_mesh && !command.picture.empty() && (is_root || is_split)) {
     PictureOptions picture;
-    picture.edges = result.mesh.triangle_count() <= 20000;
+    picture.choose_view = true;  // kept for continuation views (write_mesh_picture)
     picture.title = command.problem + " (" + method.name + ")";
     // Fold curves of a surface in R³ are pictured with the parameter plane horizontal and the
     // third coordinate (the state) as the height, as bifurcation diagrams are drawn.

@@ -112,32 +112,6 @@ Eigen::VectorXd centroid_distances(const TriangleMesh& mesh, const ImplicitProbl
   return distance;
 }
 
-Eigen::VectorXd column_means(const TriangleMesh& mesh_in_view, int column) {
-  Eigen::VectorXd values(mesh_in_view.triangle_count());
-  for (int t = 0; t < mesh_in_view.triangle_count(); ++t) {
-    double sum = 0.0;
-    for (const int v : mesh_in_view.triangle(t)) {
-      sum += mesh_in_view.point(v)(column);
-    }
-    values(t) = sum / 3.0;
-  }
-  return values;
-}
-
-// The mean over each triangle's corners of a per-vertex quantity (NaN where a corner has NaN:
-// drawn grey).
-Eigen::VectorXd corner_means(const TriangleMesh& mesh, const std::vector<double>& values) {
-  Eigen::VectorXd means(mesh.triangle_count());
-  for (int t = 0; t < mesh.triangle_count(); ++t) {
-    double sum = 0.0;
-    for (const int v : mesh.triangle(t)) {
-      sum += values[static_cast<std::size_t>(v)];
-    }
-    means(t) = sum / 3.0;
-  }
-  return means;
-}
-
 const VertexScalars* find_scalars(const std::vector<VertexScalars>& data, const std::string& name) {
   const auto found = std::find_if(data.begin(), data.end(),
                                   [&](const VertexScalars& s) { return s.name == name; });
@@ -201,13 +175,15 @@ void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
     scene.axis_names[static_cast<std::size_t>(c)] = names[static_cast<std::size_t>(c)];
   }
   // A flat picture (the third coordinate constant: a 2-D view, a planar triangulation) is seen
-  // from above.
-  if (scene.positions.cols() > 0 &&
-      scene.positions.row(2).maxCoeff() == scene.positions.row(2).minCoeff() &&
-      options.elevation_degrees == PictureOptions{}.elevation_degrees &&
-      options.azimuth_degrees == PictureOptions{}.azimuth_degrees) {
+  // from above, as a map.
+  const bool is_flat = scene.positions.cols() > 0 &&
+                       scene.positions.row(2).maxCoeff() == scene.positions.row(2).minCoeff();
+  if (is_flat &&
+      (options.choose_view || (options.elevation_degrees == PictureOptions{}.elevation_degrees &&
+                               options.azimuth_degrees == PictureOptions{}.azimuth_degrees))) {
     options.azimuth_degrees = -90.0;
     options.elevation_degrees = 90.0;
+    options.choose_view = false;
   }
   const auto column = std::find(names.begin(), names.end(), colour);
   const VertexScalars* scalars = find_scalars(vertex_data, colour);
@@ -216,15 +192,15 @@ void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
                   "vertex data '" << data.name << "' has " << data.values.size()
                                   << " values, the mesh " << mesh.vertex_count() << " vertices");
   }
-  const bool is_flat = scene.positions.cols() > 0 &&
-                       scene.positions.row(2).maxCoeff() == scene.positions.row(2).minCoeff();
+  // Coordinates and vertex data are values at the vertices: interpolated across the triangles.
   if (colour == "height" && is_flat) {
     // A flat picture has no height to show.
   } else if (colour == "height") {
-    scene.triangle_values = column_means(mesh_in_view, std::min(k, 3) - 1);
+    scene.vertex_values = mesh_in_view.points().row(std::min(k, 3) - 1).transpose();
     scene.value_label = names.size() >= 3 ? names[2] : "height";
   } else if (column != names.end() && column - names.begin() < k) {
-    scene.triangle_values = column_means(mesh_in_view, static_cast<int>(column - names.begin()));
+    scene.vertex_values =
+        mesh_in_view.points().row(static_cast<Eigen::Index>(column - names.begin())).transpose();
     scene.value_label = colour;
   } else if (colour == "min-angle") {
     scene.triangle_values = minimum_angles(mesh);
@@ -253,7 +229,8 @@ void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
                   "unstable eigenvalues at each vertex): run tessera mesh … --stability");
     colour_by_stability(scene, counts->values);
   } else if (scalars != nullptr) {
-    scene.triangle_values = corner_means(mesh, scalars->values);
+    scene.vertex_values = Eigen::Map<const Eigen::VectorXd>(
+        scalars->values.data(), static_cast<Eigen::Index>(scalars->values.size()));
     scene.value_label = colour;
   } else if (colour != "none") {
     std::string known;
@@ -297,6 +274,22 @@ void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
   for (std::size_t i = 0; i < markers.size(); ++i) {
     scene.markers.col(static_cast<Eigen::Index>(i)) = markers[i];
   }
+  // A continuation view: the axes have units to read, and the folds want a view that shows
+  // them. Its bifurcation curves make it one whatever the aspect (Whitney's pleat in (λ, μ, x)
+  // has comparable extents).
+  bool has_bifurcation_curves = false;
+  for (const PolylineFile& file : curve_files) {
+    const CurveKind kind = curve_kind_from_name(file.options.kind);
+    has_bifurcation_curves =
+        has_bifurcation_curves ||
+        ((kind == CurveKind::Fold || kind == CurveKind::Hopf) && !file.polylines.empty());
+  }
+  const bool is_continuation =
+      has_bifurcation_curves || has_axes_scaled_apart(scene.positions, options.aspect);
+  if (is_continuation && options.axes == PictureAxes::Automatic && !is_flat) {
+    options.axes = PictureAxes::Ticked;
+  }
+  options.choose_view = options.choose_view && is_continuation;
   write_picture(path, scene, options);
 }
 
@@ -318,24 +311,36 @@ CLI::App* add_render_command(CLI::App& app, RenderCommand& command) {
                      "of the file by name, or none");
   render->add_option("--curves", command.curves,
                      "polylines drawn over the surface (or in the --diagram), repeatable: the "
-                     "curve files of `mesh --folds/--hopf/--level` (.json, .csv, .vtk, .vtu, .ply), drawn by their kind "
+                     "curve files of `mesh --folds/--hopf/--level` (.json, .csv, .vtk, .vtu, "
+                     ".ply), drawn by their kind "
                      "(fold solid, hopf dashed, neutral_saddle dotted); marked points by their "
                      "marker (cusp triangle, bogdanov_takens square, zero_hopf diamond)");
   render->add_option("--diagram", command.diagram,
                      "P1,P2: draw the two-parameter bifurcation diagram of the --curves files "
                      "over their columns P1 and P2 instead of a mesh");
-  render->add_option("--azimuth", command.azimuth, "camera azimuth about the third axis, degrees (default -60)");
+  render->add_option("--azimuth", command.azimuth,
+                     "camera azimuth about the third axis, degrees (default -60; without it and "
+                     "--elevation a continuation view is seen from where its folds show)");
   render->add_option("--elevation", command.elevation, "camera elevation, degrees (default 30)")
       ->check(CLI::Range(-90.0, 90.0));
   render->add_option("--zoom", command.zoom, "1: the surface fills the frame (default)")
       ->check(finite_positive());
   render->add_flag("--perspective", command.perspective, "perspective instead of orthographic");
-  render->add_option("--edges", command.edges,
-                     "draw the edges: on, off or auto (on up to 20000 triangles, default)")
+  render
+      ->add_option("--edges", command.edges,
+                   "draw the edges: on, off or auto (where the triangles are large enough on "
+                   "the screen: a median edge of 6 pixels and more, default)")
       ->check(CLI::IsMember({"on", "off", "auto"}));
-  render->add_option("--aspect", command.aspect,
-                     "auto (equal scales unless the axes' extents differ by more than 4x, "
-                     "default), equal or box (every axis to the same length)")
+  render
+      ->add_option("--axes", command.axes,
+                   "ticks (axes with ticks, numbers and names along the bounding box), triad, "
+                   "off, or auto (ticks for continuation views and --top maps, else the "
+                   "triad; default)")
+      ->check(CLI::IsMember({"auto", "ticks", "triad", "off"}));
+  render
+      ->add_option("--aspect", command.aspect,
+                   "auto (equal scales unless the axes' extents differ by more than 10x, "
+                   "default), equal or box (every axis to the same length)")
       ->check(CLI::IsMember({"auto", "equal", "box"}));
   render->add_option("--size", command.size, "WIDTHxHEIGHT in pixels (default 800x600)");
   render->add_flag("--top", command.top,
@@ -388,8 +393,13 @@ int run_render(const RenderCommand& command) {
   PictureOptions options;
   options.width = width;
   options.height = height;
-  options.azimuth_degrees = command.azimuth;
-  options.elevation_degrees = command.elevation;
+  options.azimuth_degrees = command.azimuth.value_or(PictureOptions{}.azimuth_degrees);
+  options.elevation_degrees = command.elevation.value_or(PictureOptions{}.elevation_degrees);
+  options.choose_view = !command.azimuth && !command.elevation && !command.top;
+  options.axes = command.axes == "ticks"   ? PictureAxes::Ticked
+                 : command.axes == "triad" ? PictureAxes::Triad
+                 : command.axes == "off"   ? PictureAxes::Off
+                                           : PictureAxes::Automatic;
   options.zoom = command.zoom;
   options.perspective = command.perspective;
   options.aspect = command.aspect == "equal" ? PictureAspect::Equal
@@ -445,7 +455,9 @@ int run_render(const RenderCommand& command) {
       names.resize(3);
     }
   }
-  options.edges = command.edges == "on" || (command.edges == "auto" && mesh.triangle_count() <= 20000);
+  options.edges = command.edges == "on"    ? PictureEdges::On
+                  : command.edges == "off" ? PictureEdges::Off
+                                           : PictureEdges::Automatic;
   write_mesh_picture(command.output, mesh, in_view, names, curves, vertex_data, command.colour,
                      options, setup ? &*setup : nullptr, !command.no_boundary);
   std::cout << "wrote " << command.output << "\n";

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,12 @@ struct RenderCommand {
   std::string diagram;  ///< "P1,P2": the bifurcation diagram of `curves` over these columns
   std::string size = "800x600";
   std::string edges = "auto";
+  std::string axes = "auto";
   std::string aspect = "auto";
-  double azimuth = -60.0;
-  double elevation = 30.0;
+  /// The camera's angles; without either, continuation views are seen from the direction that
+  /// shows their folds (best_view_direction), other surfaces from (-60, 30).
+  std::optional<double> azimuth;
+  std::optional<double> elevation;
   double zoom = 1.0;
   bool perspective = false;
   bool top = false;
@@ -47,6 +51,9 @@ std::vector<std::string> picture_quantities();
 /// first three columns, a third of 0 for k = 2 gives a top view), coloured by `colour` (a
 /// quantity or one of `names`), with the mesh's boundary and `curves` (in the view, e.g. fold
 /// curves; their marked points as dots) over it. `setup` may be null (then `distance` is refused).
+/// A continuation view (axes scaled apart, or fold or Hopf curves drawn) gets ticked axes under
+/// PictureAxes::Automatic and keeps `options.choose_view`; other views drop it (geometry is seen
+/// from the angles given). A flat view (constant third coordinate) is seen from above.
 /// \throw InvalidArgument for an unknown quantity (listing the known ones) and as write_picture.
 void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
                         const TriangleMesh& mesh_in_view, const std::vector<std::string>& names,

@@ -94,11 +94,14 @@ TEST(RenderCli, BadOptionsAreRefusedBeforeDrawing) {
            Case{"render " + dir + "/s.ply -o " + dir + "/s.jpg", ".png or .svg"},
            Case{"render " + mesh + " --size 800", "WIDTHxHEIGHT"},
            Case{"render " + mesh + " --view x,y", "needs --problem"},
-           Case{"render " + mesh + " --curves " + dir + "/s.ply", "not a polylines file of tessera"},
+           Case{"render " + mesh + " --curves " + dir + "/s.ply",
+                "not a polylines file of tessera"},
            Case{"render " + dir + "/missing.ply -o " + dir + "/s.png", "missing.ply"},
            Case{"render " + dir + "/empty.ply -o " + dir + "/s.png", "no triangles"},
            Case{"render " + mesh + " --curves " + dir + "/nan.csv", "line 3: not a finite number"},
            Case{"render " + mesh + " --aspect squashed", "--aspect"},
+           Case{"render " + mesh + " --axes boxed", "--axes"},
+           Case{"render " + mesh + " --edges some", "--edges"},
            Case{"mesh sphere -o " + dir + "/t.ply --picture " + dir + "/t.gif", ".png or .svg"},
        }) {
     const auto result = run_cli(bad.arguments);
@@ -167,7 +170,10 @@ TEST(RenderCli, ColoursAMeshByStabilityFromEveryFormat) {
                                 "/grid.svg --title 'stability of " + extension + "'");
     ASSERT_EQ(result.exit_code, 0) << extension << "\n" << result.output;
     const std::string svg = text_of(dir + "/grid.svg");
-    EXPECT_TRUE(contains(svg, "<desc>legend: stable; index 1; index &gt;= 2; unknown</desc>"))
+    // The axes named as the file names its columns, the legend's entries: text in the SVG.
+    EXPECT_TRUE(contains(svg,
+                         "<desc>axes: Da, B, x1\nlegend: stable; index 1; index &gt;= 2; "
+                         "unknown</desc>"))
         << extension;
     // Another array of the file, by name: a colour bar, not a legend.
     const auto by_name =
@@ -184,6 +190,45 @@ TEST(RenderCli, ColoursAMeshByStabilityFromEveryFormat) {
               contains(missing.output, "--stability"))
       << missing.output;
   EXPECT_FALSE(std::filesystem::exists(dir + "/plain.png"));
+}
+
+// A continuation view, (lambda, epsilon, max_u) of unrelated extents as `tessera mesh` writes
+// bvp's: ticked axes named by the file's columns (docs/images/bvp_folds.png said x, y, z), the
+// camera chosen unless angles are given; --axes and --edges as asked.
+TEST(RenderCli, ContinuationViewsNameTheirAxesByTheFilesColumns) {
+  const std::string dir = testing::temporary_directory("render_cli_axes");
+  constexpr int cells = 8;
+  Eigen::MatrixXd points(3, (cells + 1) * (cells + 1));
+  std::vector<Triangle> triangles;
+  for (int j = 0; j <= cells; ++j) {
+    for (int i = 0; i <= cells; ++i) {
+      const double s = -1.3 + 2.6 * i / cells;  // an S-shaped sheet: folds along epsilon
+      points.col(j * (cells + 1) + i) =
+          Eigen::Vector3d(3.5 + 2 * (s * s * s - s), 0.3 * j / cells, 10 + 8 * s);
+    }
+  }
+  for (int j = 0; j < cells; ++j) {
+    for (int i = 0; i < cells; ++i) {
+      const int v = j * (cells + 1) + i;
+      triangles.push_back({v, v + 1, v + cells + 2});
+      triangles.push_back({v, v + cells + 2, v + cells + 1});
+    }
+  }
+  write_mesh(dir + "/view.ply", TriangleMesh(points, triangles),
+             {.coordinate_names = {"lambda", "epsilon", "max_u"}});
+  for (const std::string options : {"", " --azimuth 210 --elevation 25", " --axes triad --edges on",
+                                    " --axes off --edges off"}) {
+    const auto result = run_cli("render " + dir + "/view.ply -o " + dir + "/view.svg" + options);
+    ASSERT_EQ(result.exit_code, 0) << options << "\n" << result.output;
+    const std::string svg = text_of(dir + "/view.svg");
+    const bool has_axes = options.find("--axes off") == std::string::npos;
+    EXPECT_EQ(contains(svg, "<desc>axes: lambda, epsilon, max_u\ncolour: max_u</desc>"), has_axes)
+        << options << "\n"
+        << svg.substr(0, 600);
+  }
+  const auto png = run_cli("render " + dir + "/view.ply -o " + dir + "/view.png --size 320x240");
+  ASSERT_EQ(png.exit_code, 0) << png.output;
+  EXPECT_TRUE(is_png(dir + "/view.png"));
 }
 
 // Fold curves (JSON, cusps) and Hopf curves (CSV with an omega column and Bogdanov–Takens
@@ -221,7 +266,7 @@ TEST(RenderCli, DrawsCurvesByKindAndTheBifurcationDiagram) {
                                dir + "/old.json -o " + dir + "/surface.svg");
   ASSERT_EQ(surface.exit_code, 0) << surface.output;
   EXPECT_TRUE(contains(text_of(dir + "/surface.svg"),
-                       "<desc>legend: stable; index 1; index &gt;= 2; unknown; fold; Hopf; cusp; "
+                       "\nlegend: stable; index 1; index &gt;= 2; unknown; fold; Hopf; cusp; "
                        "Bogdanov-Takens</desc>"));
 
   const auto diagram =
@@ -230,7 +275,7 @@ TEST(RenderCli, DrawsCurvesByKindAndTheBifurcationDiagram) {
   ASSERT_EQ(diagram.exit_code, 0) << diagram.output;
   const std::string svg = text_of(dir + "/diagram.svg");
   EXPECT_TRUE(contains(svg, "<title>two-parameter diagram</title>"));
-  EXPECT_TRUE(contains(svg, "<desc>legend: Hopf; fold; cusp; Bogdanov-Takens</desc>"))
+  EXPECT_TRUE(contains(svg, "<desc>axes: Da, B\nlegend: Hopf; fold; cusp; Bogdanov-Takens</desc>"))
       << svg.substr(0, 500);
   const auto png = run_cli("render --diagram B,omega --curves " + dir + "/grid.hopf.csv -o " + dir +
                            "/omega.png");

@@ -139,8 +139,8 @@ TEST(BifurcationDiagram, TheSvgNamesTheTitleAndTheLegend) {
   std::stringstream text;
   text << in.rdbuf();
   EXPECT_NE(text.str().find("<title>CSTR in (Da, B)</title>"), std::string::npos);
-  EXPECT_NE(text.str().find("<desc>legend: Hopf; fold; neutral saddle; cusp; Bogdanov-Takens"
-                            "</desc>"),
+  EXPECT_NE(text.str().find("<desc>axes: Da, B\nlegend: Hopf; fold; neutral saddle; cusp; "
+                            "Bogdanov-Takens</desc>"),
             std::string::npos)
       << text.str().substr(0, 800);
   EXPECT_GT(std::filesystem::file_size(dir + "/d.PNG"), 1000u);

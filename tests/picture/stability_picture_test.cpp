@@ -41,8 +41,8 @@ PictureOptions top_view(int size) {
   options.azimuth_degrees = -90;  // x to the right, y up
   options.elevation_degrees = 90;
   options.flat_shading = true;
-  options.edges = false;
-  options.axes = false;
+  options.edges = PictureEdges::Off;
+  options.axes = PictureAxes::Off;
   options.colour_bar = false;
   options.legend = false;
   return options;

@@ -92,38 +92,24 @@ std::array<double, 2> padded_range(double low, double high, double margin) {
   return {low - margin * extent, high + margin * extent};
 }
 
-std::string tick_label(double value, double step) {
-  char text[32];
-  if (value == 0.0 || std::abs(value) < 1e-9 * step) {
-    return "0";
-  }
-  const double largest = std::abs(value);
-  if (largest >= 1e6 || step < 1e-5) {
-    std::snprintf(text, sizeof text, "%.3g", value);
-  } else {
-    const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
-    std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  }
-  return text;
-}
-
 struct Measured {
   double legend_width = 0;
   std::vector<LegendEntry> legend;
+  picture_detail::Surface surface;  // a 1×1 image: text extents in the output's font metrics
+  picture_detail::Context cr;
 };
 
-// Text extents need a cairo context: a 1×1 image gives the same font metrics as the output.
 Measured measure(const BifurcationDiagramScene& scene, const BifurcationDiagramOptions& options) {
   Measured measured;
-  if (!options.legend) {
-    return measured;
+  measured.surface.reset(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1));
+  measured.cr.reset(cairo_create(measured.surface.get()));
+  cairo_select_font_face(measured.cr.get(), "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                         CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(measured.cr.get(), kFontSize);
+  if (options.legend) {
+    measured.legend = legend_entries(scene);
+    measured.legend_width = picture_detail::legend_width(measured.cr.get(), measured.legend);
   }
-  measured.legend = legend_entries(scene);
-  picture_detail::Surface surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1));
-  picture_detail::Context cr(cairo_create(surface.get()));
-  cairo_select_font_face(cr.get(), "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr.get(), kFontSize);
-  measured.legend_width = picture_detail::legend_width(cr.get(), measured.legend);
   return measured;
 }
 
@@ -143,16 +129,24 @@ DiagramLayout layout_of(const BifurcationDiagramScene& scene,
   DiagramLayout layout;
   layout.p1_range = padded_range(low(0), high(0), options.margin);
   layout.p2_range = padded_range(low(1), high(1), options.margin);
-  layout.left = 76.0;
   layout.top = options.title.empty() ? 16.0 : 34.0;
+  layout.bottom = std::max(layout.top + 8.0, options.height - 52.0);
+  const int p2_target = std::clamp(static_cast<int>((layout.bottom - layout.top) / 60.0), 2, 10);
+  layout.p2_ticks = nice_ticks(layout.p2_range[0], layout.p2_range[1], p2_target);
+  // Left of the box: the rotated name of p2 (about 24 pixels), the widest p2 label and the
+  // tick, so that long labels (-0.000125) are not cut at the picture's edge.
+  double widest = 0.0;
+  for (const std::string& label : tick_labels(layout.p2_ticks)) {
+    cairo_text_extents_t extents;
+    cairo_text_extents(measured.cr.get(), label.c_str(), &extents);
+    widest = std::max(widest, extents.x_advance);
+  }
+  layout.left = std::max(76.0, 28.0 + widest + kTickLength + 8.0);
   const double legend_space =
       measured.legend.empty() ? 0.0 : std::min(measured.legend_width + 16.0, 0.4 * options.width);
   layout.right = std::max(layout.left + 8.0, options.width - 20.0 - legend_space);
-  layout.bottom = std::max(layout.top + 8.0, options.height - 52.0);
   const int p1_target = std::clamp(static_cast<int>((layout.right - layout.left) / 90.0), 2, 10);
-  const int p2_target = std::clamp(static_cast<int>((layout.bottom - layout.top) / 60.0), 2, 10);
   layout.p1_ticks = nice_ticks(layout.p1_range[0], layout.p1_range[1], p1_target);
-  layout.p2_ticks = nice_ticks(layout.p2_range[0], layout.p2_range[1], p2_target);
   return layout;
 }
 
@@ -232,25 +226,25 @@ void draw(cairo_t* cr, const BifurcationDiagramScene& scene,
   cairo_set_line_width(cr, 1.0);
   cairo_rectangle(cr, layout.left, layout.top, width, height);
   cairo_stroke(cr);
-  const double p1_step = layout.p1_ticks.size() > 1 ? layout.p1_ticks[1] - layout.p1_ticks[0] : 1.0;
-  const double p2_step = layout.p2_ticks.size() > 1 ? layout.p2_ticks[1] - layout.p2_ticks[0] : 1.0;
+  const std::vector<std::string> p1_labels = tick_labels(layout.p1_ticks);
+  const std::vector<std::string> p2_labels = tick_labels(layout.p2_ticks);
   cairo_text_extents_t extents;
-  for (const double tick : layout.p1_ticks) {
-    const double x = layout.pixel({tick, layout.p2_range[0]})(0);
+  for (std::size_t i = 0; i < layout.p1_ticks.size(); ++i) {
+    const double x = layout.pixel({layout.p1_ticks[i], layout.p2_range[0]})(0);
     cairo_move_to(cr, x, layout.bottom);
     cairo_line_to(cr, x, layout.bottom + kTickLength);
     cairo_stroke(cr);
-    const std::string label = tick_label(tick, p1_step);
+    const std::string& label = p1_labels[i];
     cairo_text_extents(cr, label.c_str(), &extents);
     cairo_move_to(cr, x - extents.x_advance / 2.0, layout.bottom + kTickLength + 14.0);
     cairo_show_text(cr, label.c_str());
   }
-  for (const double tick : layout.p2_ticks) {
-    const double y = layout.pixel({layout.p1_range[0], tick})(1);
+  for (std::size_t i = 0; i < layout.p2_ticks.size(); ++i) {
+    const double y = layout.pixel({layout.p1_range[0], layout.p2_ticks[i]})(1);
     cairo_move_to(cr, layout.left - kTickLength, y);
     cairo_line_to(cr, layout.left, y);
     cairo_stroke(cr);
-    const std::string label = tick_label(tick, p2_step);
+    const std::string& label = p2_labels[i];
     cairo_text_extents(cr, label.c_str(), &extents);
     cairo_move_to(cr, layout.left - kTickLength - 4.0 - extents.x_advance, y + 4.0);
     cairo_show_text(cr, label.c_str());
@@ -323,32 +317,6 @@ void add_to_diagram(BifurcationDiagramScene& scene, const std::vector<Polyline>&
   }
 }
 
-std::vector<double> nice_ticks(double low, double high, int target) {
-  TESSERA_CHECK(std::isfinite(low) && std::isfinite(high) && low <= high,
-                "nice_ticks: [" << low << ", " << high << "] must be a finite interval");
-  TESSERA_CHECK(target >= 2, "nice_ticks: target " << target << " must be >= 2");
-  if (high == low) {
-    return {low};
-  }
-  // The step: (high - low)/(target - 1) rounded to 1, 2 or 5 times a power of ten.
-  const double raw = (high - low) / (target - 1);
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  const double fraction = raw / power;
-  const double step = (fraction < 1.5   ? 1.0
-                       : fraction < 3.0 ? 2.0
-                       : fraction < 7.0 ? 5.0
-                                        : 10.0) *
-                      power;
-  std::vector<double> ticks;
-  const auto first = static_cast<long long>(std::ceil(low / step - 1e-9));
-  const auto last = static_cast<long long>(std::floor(high / step + 1e-9));
-  for (long long i = first; i <= last; ++i) {
-    // i·step, not a running sum: 0.1 + 0.1 + 0.1 would print 0.30000000000000004.
-    ticks.push_back(static_cast<double>(i) * step);
-  }
-  return ticks;
-}
-
 DiagramLayout bifurcation_diagram_layout(const BifurcationDiagramScene& scene,
                                          const BifurcationDiagramOptions& options) {
   check_diagram(scene, options);
@@ -377,7 +345,7 @@ void write_bifurcation_diagram(const std::string& path, const BifurcationDiagram
   picture_detail::write_drawing(
       path, options.width, options.height,
       [&](cairo_t* cr) { draw(cr, scene, options, measured, layout); }, options.title,
-      measured.legend);
+      measured.legend, {"axes: " + scene.parameter_names[0] + ", " + scene.parameter_names[1]});
 }
 
 }  // namespace tessera

@@ -14,6 +14,7 @@
 #include "tessera/io/polylines.h"
 #include "tessera/picture/picture.h"
 #include "tessera/picture/picture_styles.h"
+#include "tessera/picture/ticks.h"  // nice_ticks, tick_labels
 
 namespace tessera {
 
@@ -68,12 +69,6 @@ struct DiagramLayout {
 void add_to_diagram(BifurcationDiagramScene& scene, const std::vector<Polyline>& polylines,
                     const PolylineFileOptions& options, const std::string& p1,
                     const std::string& p2);
-
-/// About `target` tick values covering [low, high] at a round step (1, 2 or 5 × 10^k), from the
-/// first multiple of the step at or above `low` to the last at or below `high` (Heckbert's "nice
-/// numbers"); a single value where low == high.
-/// \pre low <= high, both finite; target >= 2.
-std::vector<double> nice_ticks(double low, double high, int target);
 
 /// The layout render_bifurcation_diagram and write_bifurcation_diagram use for these inputs.
 /// \throw InvalidArgument as render_bifurcation_diagram.

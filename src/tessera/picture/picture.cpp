@@ -1,35 +1,27 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/picture/picture.h"
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <memory>
-#include <numeric>
+#include <optional>
 
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/planar.h"
 #include "tessera/io/file_names.h"
+#include "tessera/picture/detail/axes.h"
 #include "tessera/picture/detail/cairo_drawing.h"
+#include "tessera/picture/detail/camera.h"
+#include "tessera/picture/detail/surface_drawing.h"
+#include "tessera/picture/view_direction.h"
 
 namespace tessera {
 
 namespace {
 
+using picture_detail::Camera;
 using picture_detail::LegendEntry;
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr int kColourBarWidth = 110;  // pixels kept on the right for the bar and its labels
-constexpr int kTitleHeight = 24;
-// PictureAspect::Automatic keeps equal scales up to this ratio of the largest to the smallest
-// axis extent. Geometry stays below it (a torus of R/r = 9 has 10; at 4 a torus of R = 2,
-// r = 0.5 was drawn as a barrel), continuation views lie far above it (bvp:points=100 in
-// (λ, ε, max u): 66; cstr in (x1, x2, Da): 27).
-constexpr double kMaxEqualAspectRatio = 10.0;
+using picture_detail::Rect;
 
 void check_scene(const PictureScene& scene, const PictureOptions& options) {
   TESSERA_CHECK(!scene.triangles.empty(), "a picture needs at least one triangle, the mesh has none");
@@ -71,10 +63,18 @@ void check_scene(const PictureScene& scene, const PictureOptions& options) {
                                          << " (PictureScene::categories)");
     }
   }
-  TESSERA_CHECK(scene.triangle_values.size() == 0 ||
-                    scene.triangle_values.size() == static_cast<Eigen::Index>(scene.triangles.size()),
-                "picture: " << scene.triangle_values.size() << " values for "
-                            << scene.triangles.size() << " triangles");
+  TESSERA_CHECK(scene.vertex_values.size() == 0 || scene.vertex_values.size() == vertex_count,
+                "picture: " << scene.vertex_values.size() << " vertex values for " << vertex_count
+                            << " vertices");
+  TESSERA_CHECK(scene.vertex_values.size() == 0 || scene.triangle_values.size() == 0,
+                "picture: values per vertex and per triangle at once; give one");
+  TESSERA_CHECK(!has_categories || scene.vertex_values.size() == 0,
+                "picture: values and categories at once; colour by one");
+  TESSERA_CHECK(
+      scene.triangle_values.size() == 0 ||
+          scene.triangle_values.size() == static_cast<Eigen::Index>(scene.triangles.size()),
+      "picture: " << scene.triangle_values.size() << " values for " << scene.triangles.size()
+                  << " triangles");
   TESSERA_CHECK(options.width >= 16 && options.width <= 20000 && options.height >= 16 &&
                     options.height <= 20000,
                 "picture size " << options.width << "x" << options.height
@@ -84,102 +84,6 @@ void check_scene(const PictureScene& scene, const PictureOptions& options) {
   TESSERA_CHECK(std::isfinite(options.azimuth_degrees) && std::isfinite(options.elevation_degrees),
                 "picture: azimuth and elevation must be finite");
 }
-
-// The map from scene coordinates to pixels (and depth): the aspect's scaling, the camera's
-// rotation (and perspective) and the fit to the frame.
-class Camera {
- public:
-  Camera(const PictureScene& scene, const PictureOptions& options, double frame_x0,
-         double frame_y0, double frame_width, double frame_height)
-      : perspective_(options.perspective) {
-    const Eigen::Vector3d lower = scene.positions.rowwise().minCoeff();
-    const Eigen::Vector3d upper = scene.positions.rowwise().maxCoeff();
-    centre_ = 0.5 * (lower + upper);
-    const Eigen::Vector3d extent = upper - lower;
-    const double largest = std::max(extent.maxCoeff(), 1e-300);
-    double smallest = largest;
-    for (int k = 0; k < 3; ++k) {
-      if (extent(k) > 1e-12 * largest) {
-        smallest = std::min(smallest, extent(k));
-      }
-    }
-    const bool is_box =
-        options.aspect == PictureAspect::Box ||
-        (options.aspect == PictureAspect::Automatic && largest > kMaxEqualAspectRatio * smallest);
-    for (int k = 0; k < 3; ++k) {
-      scale_(k) = is_box && extent(k) > 1e-12 * largest ? 1.0 / extent(k) : 1.0 / largest;
-    }
-    const double a = options.azimuth_degrees * kPi / 180.0;
-    const double e = options.elevation_degrees * kPi / 180.0;
-    toward_eye_ = Eigen::Vector3d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
-    right_ = Eigen::Vector3d(-std::sin(a), std::cos(a), 0.0);
-    up_ = toward_eye_.cross(right_);
-    // Fit: the projected extent of everything drawn fills 92 % of the frame at zoom 1.
-    Eigen::Vector2d low(INFINITY, INFINITY), high(-INFINITY, -INFINITY);
-    auto include = [&](const Eigen::Vector3d& p) {
-      const Eigen::Vector3d s = screen(p);
-      low = low.cwiseMin(s.head<2>());
-      high = high.cwiseMax(s.head<2>());
-    };
-    for (Eigen::Index v = 0; v < scene.positions.cols(); ++v) {
-      include(scene.positions.col(v));
-    }
-    for (const auto& curve : scene.curves) {
-      for (Eigen::Index i = 0; i < curve.points.cols(); ++i) {
-        include(curve.points.col(i));
-      }
-    }
-    const Eigen::Vector2d range = (high - low).cwiseMax(1e-12);
-    pixels_per_unit_ = options.zoom * 0.92 *
-                       std::min(frame_width / range(0), frame_height / range(1));
-    middle_ = 0.5 * (low + high);
-    frame_centre_ = Eigen::Vector2d(frame_x0 + 0.5 * frame_width, frame_y0 + 0.5 * frame_height);
-  }
-
-  // (right, up, depth toward the eye) of a scene point, before the fit to the frame.
-  Eigen::Vector3d screen(const Eigen::Vector3d& p) const {
-    const Eigen::Vector3d q = scale_.cwiseProduct(p - centre_);
-    Eigen::Vector3d s(q.dot(right_), q.dot(up_), q.dot(toward_eye_));
-    if (perspective_) {
-      // The eye at 2.5 units (the normalised scene is within √3/2 of its centre).
-      constexpr double eye = 2.5;
-      const double factor = eye / (eye - s(2));
-      s(0) *= factor;
-      s(1) *= factor;
-    }
-    return s;
-  }
-  // Pixel coordinates (x right, y down).
-  Eigen::Vector2d pixel(const Eigen::Vector3d& p) const {
-    const Eigen::Vector3d s = screen(p);
-    return {frame_centre_(0) + pixels_per_unit_ * (s(0) - middle_(0)),
-            frame_centre_(1) - pixels_per_unit_ * (s(1) - middle_(1))};
-  }
-  double depth(const Eigen::Vector3d& p) const { return screen(p)(2); }
-  // The unit normal of a triangle in the scaled space (what the eye sees).
-  double facing(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) const {
-    const Eigen::Vector3d qa = scale_.cwiseProduct(a), qb = scale_.cwiseProduct(b),
-                          qc = scale_.cwiseProduct(c);
-    const Eigen::Vector3d normal = (qb - qa).cross(qc - qa);
-    const double norm = normal.norm();
-    return norm > 0 ? std::abs(normal.dot(toward_eye_)) / norm : 0.0;
-  }
-  // Screen directions of the three axes (for the triad).
-  Eigen::Vector2d axis_direction(int k) const {
-    Eigen::Vector3d e = Eigen::Vector3d::Zero();
-    e(k) = 1.0;
-    return {e.dot(right_), e.dot(up_)};
-  }
-
- private:
-  bool perspective_;
-  Eigen::Vector3d centre_;
-  Eigen::Vector3d scale_;
-  Eigen::Vector3d toward_eye_, right_, up_;
-  Eigen::Vector2d middle_;
-  Eigen::Vector2d frame_centre_;
-  double pixels_per_unit_ = 1.0;
-};
 
 // The triangles on the screen, bucketed by a grid of cells, to ask whether a point is covered
 // by a triangle nearer to the eye.
@@ -285,169 +189,53 @@ std::vector<LegendEntry> legend_entries(const PictureScene& scene) {
   return entries;
 }
 
-// A colour bar label. The inner ticks are low + i·(high − low)/4; where the range straddles 0
-// one of them is 0 up to rounding and would print as "-1.216e-05", so an inner tick below a
-// thousandth of the range prints as 0. The end ticks are the data's extremes, printed as they are.
-std::string label_of(double value, double range, bool is_inner) {
-  if (is_inner && std::abs(value) < 1e-3 * range) {
-    value = 0.0;
+constexpr int kTitleHeight = 24;
+constexpr double kTriadRoom = 100.0;  // pixels below the colour bar kept for the triad
+
+// The axes drawn: Automatic is Ticked for continuation views (axes scaled apart) and maps seen
+// from straight above, the triad for geometry.
+PictureAxes axes_of(const PictureScene& scene, const PictureOptions& options) {
+  if (options.axes != PictureAxes::Automatic) {
+    return options.axes;
   }
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
+  const bool is_map = std::abs(options.elevation_degrees) == 90.0;
+  return is_map || has_axes_scaled_apart(scene.positions, options.aspect) ? PictureAxes::Ticked
+                                                                          : PictureAxes::Triad;
 }
 
-void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options) {
-  const bool has_values = scene.triangle_values.size() > 0;
-  const bool has_bar = has_values && options.colour_bar;
-  const bool is_categorical = has_categories(scene);
-  const std::vector<LegendEntry> legend =
-      options.legend ? legend_entries(scene) : std::vector<LegendEntry>();
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, 12.0);
-  // The right panel: the colour bar, or the legend of a categorical scene in its place.
-  const bool has_side_legend = is_categorical && !legend.empty();
-  const double panel_width =
-      has_bar ? kColourBarWidth
-      : has_side_legend
-          ? std::min(0.4 * options.width, picture_detail::legend_width(cr, legend) + 12.0)
-          : 0.0;
-  const double frame_width = options.width - panel_width;
-  const double top = options.title.empty() ? 0.0 : kTitleHeight;
-  const Camera camera(scene, options, 0.0, top, frame_width, options.height - top);
-
-  cairo_set_source_rgb(cr, options.background_rgb[0], options.background_rgb[1],
-                       options.background_rgb[2]);
-  cairo_paint(cr);
-
-  double low = 0.0, high = 1.0;
-  if (has_values) {
-    low = INFINITY;
-    high = -INFINITY;
-    for (Eigen::Index t = 0; t < scene.triangle_values.size(); ++t) {
-      const double value = scene.triangle_values(t);
-      if (std::isfinite(value)) {
-        low = std::min(low, value);
-        high = std::max(high, value);
-      }
-    }
-    if (!(low <= high)) {
-      low = 0.0, high = 1.0;
+// The points the camera fits into the frame: the surface, its curves and, with ticked axes, the
+// corners of the bounding box the axes run along.
+Eigen::Matrix3Xd points_to_fit(const PictureScene& scene, bool with_box) {
+  Eigen::Index count = scene.positions.cols() + (with_box ? 8 : 0);
+  for (const auto& curve : scene.curves) {
+    count += curve.points.cols();
+  }
+  Eigen::Matrix3Xd points(3, count);
+  Eigen::Index at = 0;
+  points.leftCols(scene.positions.cols()) = scene.positions;
+  at += scene.positions.cols();
+  for (const auto& curve : scene.curves) {
+    points.middleCols(at, curve.points.cols()) = curve.points;
+    at += curve.points.cols();
+  }
+  if (with_box) {
+    const Eigen::Vector3d lower = scene.positions.rowwise().minCoeff();
+    const Eigen::Vector3d upper = scene.positions.rowwise().maxCoeff();
+    for (int corner = 0; corner < 8; ++corner) {
+      points.col(at++) =
+          Eigen::Vector3d((corner & 1) ? upper(0) : lower(0), (corner & 2) ? upper(1) : lower(1),
+                          (corner & 4) ? upper(2) : lower(2));
     }
   }
-  // The category of corner k of triangle t, or -1 without categories.
-  auto category_of = [&](std::size_t t, int k) -> int {
-    if (!scene.triangle_categories.empty()) {
-      return scene.triangle_categories[t];
-    }
-    if (!scene.vertex_categories.empty()) {
-      return scene.vertex_categories[static_cast<std::size_t>(
-          scene.triangles[t][static_cast<std::size_t>(k)])];
-    }
-    return -1;
-  };
-  auto colour_of = [&](std::size_t t) -> std::array<double, 3> {
-    if (is_categorical) {
-      return scene.categories[static_cast<std::size_t>(category_of(t, 0))].rgb;
-    }
-    if (!has_values) {
-      return options.surface_rgb;
-    }
-    const double value = scene.triangle_values(static_cast<Eigen::Index>(t));
-    if (!std::isfinite(value)) {
-      return {0.5, 0.5, 0.5};
-    }
-    return viridis(high > low ? (value - low) / (high - low) : 0.5);
-  };
+  return points;
+}
 
-  // Painter's algorithm: far triangles first, by the depth of the centroid. Correct where
-  // triangles do not interpenetrate and are small against the distance between sheets, which
-  // holds for the fine meshes of smooth surfaces; cyclic overlaps are not split.
-  std::vector<int> order(scene.triangles.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::vector<double> depth(scene.triangles.size());
-  for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
-    const auto& [a, b, c] = scene.triangles[t];
-    depth[t] = camera.depth((scene.positions.col(a) + scene.positions.col(b) +
-                             scene.positions.col(c)) / 3.0);
-  }
-  std::stable_sort(order.begin(), order.end(), [&](int s, int t) {
-    return depth[static_cast<std::size_t>(s)] < depth[static_cast<std::size_t>(t)];
-  });
-  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  for (const int t : order) {
-    const auto& [a, b, c] = scene.triangles[static_cast<std::size_t>(t)];
-    const Eigen::Vector2d pa = camera.pixel(scene.positions.col(a));
-    const Eigen::Vector2d pb = camera.pixel(scene.positions.col(b));
-    const Eigen::Vector2d pc = camera.pixel(scene.positions.col(c));
-    cairo_move_to(cr, pa(0), pa(1));
-    cairo_line_to(cr, pb(0), pb(1));
-    cairo_line_to(cr, pc(0), pc(1));
-    cairo_close_path(cr);
-    // Lambert shading, two-sided, light at the eye; the ambient part keeps grazing faces visible.
-    const double light = options.flat_shading ? 1.0 : 0.35 + 0.65 * camera.facing(scene.positions.col(a), scene.positions.col(b),
-                                                     scene.positions.col(c));
-    auto rgb = colour_of(static_cast<std::size_t>(t));
-    const int c0 = category_of(static_cast<std::size_t>(t), 0);
-    const int c1 = category_of(static_cast<std::size_t>(t), 1);
-    const int c2 = category_of(static_cast<std::size_t>(t), 2);
-    if (c0 != c1 || c1 != c2) {
-      // Corners of different categories: the part of each corner (the corner, the midpoints of
-      // its two edges, the centroid) in its colour, each stroked thinly in its own colour to
-      // close the seams between parts; the edge below is stroked in the parts' mean shade.
-      cairo_new_path(cr);
-      const Eigen::Vector2d corners[3] = {pa, pb, pc};
-      const Eigen::Vector2d centroid = (pa + pb + pc) / 3.0;
-      std::array<double, 3> mean = {0.0, 0.0, 0.0};
-      for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector2d& corner = corners[k];
-        const Eigen::Vector2d next = 0.5 * (corner + corners[(k + 1) % 3]);
-        const Eigen::Vector2d previous = 0.5 * (corner + corners[(k + 2) % 3]);
-        cairo_move_to(cr, corner(0), corner(1));
-        cairo_line_to(cr, next(0), next(1));
-        cairo_line_to(cr, centroid(0), centroid(1));
-        cairo_line_to(cr, previous(0), previous(1));
-        cairo_close_path(cr);
-        const auto& part =
-            scene.categories[static_cast<std::size_t>(category_of(static_cast<std::size_t>(t), k))]
-                .rgb;
-        cairo_set_source_rgb(cr, light * part[0], light * part[1], light * part[2]);
-        cairo_fill_preserve(cr);
-        cairo_set_line_width(cr, 0.8);
-        cairo_stroke(cr);
-        for (int c = 0; c < 3; ++c) {
-          mean[static_cast<std::size_t>(c)] += part[static_cast<std::size_t>(c)] / 3.0;
-        }
-      }
-      rgb = mean;
-      cairo_move_to(cr, pa(0), pa(1));
-      cairo_line_to(cr, pb(0), pb(1));
-      cairo_line_to(cr, pc(0), pc(1));
-      cairo_close_path(cr);
-      if (!options.edges) {
-        cairo_new_path(cr);
-        continue;
-      }
-    } else {
-      cairo_set_source_rgb(cr, light * rgb[0], light * rgb[1], light * rgb[2]);
-      cairo_fill_preserve(cr);
-    }
-    // Antialiased fills of neighbours leave a faint seam along shared edges; a thin stroke in
-    // the fill colour closes it (or, with edges on, the edge itself in a darker shade). Not
-    // CAIRO_ANTIALIAS_NONE: jagged silhouettes in PNG, and SVG viewers antialias anyway.
-    if (options.edges) {
-      cairo_set_source_rgb(cr, 0.45 * light * rgb[0], 0.45 * light * rgb[1], 0.45 * light * rgb[2]);
-      cairo_set_line_width(cr, 0.5);
-    } else {
-      cairo_set_line_width(cr, 0.8);
-    }
-    cairo_stroke(cr);
-  }
-
+void draw_curves(cairo_t* cr, const PictureScene& scene, const Camera& camera, int width,
+                 int height) {
   // Curves over the surface, drawn last: solid where they are seen, dashed where a triangle
   // nearer to the eye covers them (a curve on the surface is level with its own triangles, so
   // only triangles nearer by more than 1 % of the scene's size count).
-  const ScreenIndex index(scene, camera, options.width, options.height);
+  const ScreenIndex index(scene, camera, width, height);
   for (const PictureCurve& curve : scene.curves) {
     const Eigen::Index m = curve.points.cols();
     const Eigen::Index segments = curve.is_closed ? m : m - 1;
@@ -479,69 +267,208 @@ void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options)
                                     : scene.marker_kinds[static_cast<std::size_t>(i)],
                                 p(0), p(1));
   }
+}
 
+// Where the boxed legend goes: the corner of the frame where it covers the least of the surface
+// (its vertices), the curves and markers (five times as much) and the axes' labels (each as
+// much as 40 vertices); the upper left where they tie.
+Eigen::Vector2d legend_corner(cairo_t* cr, const PictureScene& scene, const Camera& camera,
+                              const std::vector<LegendEntry>& legend, const Rect& frame,
+                              const std::vector<picture_detail::PlacedLabel>& labels) {
+  const double width = picture_detail::legend_width(cr, legend) + 6.0;
+  const double height = picture_detail::legend_height(legend);
+  const Eigen::Vector2d corners[4] = {{frame.x0 + 6.0, frame.y0 + 6.0},
+                                      {frame.x1 - 6.0 - width, frame.y0 + 6.0},
+                                      {frame.x0 + 6.0, frame.y1 - 6.0 - height},
+                                      {frame.x1 - 6.0 - width, frame.y1 - 6.0 - height}};
+  // At most about 2000 points of the surface stand for it.
+  const Eigen::Index stride = std::max<Eigen::Index>(1, scene.positions.cols() / 2000);
+  double best = INFINITY;
+  Eigen::Vector2d chosen = corners[0];
+  for (const Eigen::Vector2d& corner : corners) {
+    const Rect box{corner(0), corner(1), corner(0) + width, corner(1) + height};
+    auto inside = [&](const Eigen::Vector3d& p) {
+      const Eigen::Vector2d q = camera.pixel(p);
+      return q(0) >= box.x0 && q(0) <= box.x1 && q(1) >= box.y0 && q(1) <= box.y1;
+    };
+    double cost = 0.0;
+    for (Eigen::Index v = 0; v < scene.positions.cols(); v += stride) {
+      cost += inside(scene.positions.col(v)) ? static_cast<double>(stride) : 0.0;
+    }
+    for (const PictureCurve& curve : scene.curves) {
+      for (Eigen::Index i = 0; i < curve.points.cols(); ++i) {
+        cost += inside(curve.points.col(i)) ? 5.0 : 0.0;
+      }
+    }
+    for (Eigen::Index i = 0; i < scene.markers.cols(); ++i) {
+      cost += inside(scene.markers.col(i)) ? 50.0 : 0.0;
+    }
+    for (const auto& label : labels) {
+      cost += box.intersects(label.rect) ? 40.0 : 0.0;
+    }
+    if (cost < best - 1e-9) {
+      best = cost;
+      chosen = corner;
+    }
+  }
+  return chosen;
+}
+
+// `options` with the view direction chosen where it asks for it.
+PictureOptions resolved(const PictureScene& scene, const PictureOptions& options) {
+  PictureOptions result = options;
+  if (options.choose_view) {
+    const ViewDirection view = best_view_direction(scene, options.aspect);
+    result.azimuth_degrees = view.azimuth_degrees;
+    result.elevation_degrees = view.elevation_degrees;
+    result.choose_view = false;
+  }
+  return result;
+}
+
+// Everything placed before painting: the camera, the axes, the panel, the labels.
+struct Layout {
+  PictureOptions options;  // the view direction resolved
+  double low = 0.0, high = 1.0;
+  bool is_raster = true;
+  Rect frame;
+  double panel_width = 0.0;
+  PictureAxes axes = PictureAxes::Off;
+  std::optional<Camera> camera;
+  std::optional<picture_detail::BoxAxes> box_axes;
+  Eigen::Vector2d triad_origin = Eigen::Vector2d::Zero();
+  std::vector<picture_detail::PlacedLabel> triad;
+  std::optional<picture_detail::ColourBar> colour_bar;
+  std::vector<LegendEntry> legend;
+  bool has_side_legend = false;
+  Eigen::Vector2d legend_corner = Eigen::Vector2d::Zero();
+  double edge_strength = 0.0;
+};
+
+Layout lay_out(cairo_t* cr, const PictureScene& scene, const PictureOptions& given) {
+  Layout layout;
+  layout.options = resolved(scene, given);
+  const PictureOptions& options = layout.options;
+  const bool has_values = scene.triangle_values.size() > 0 || scene.vertex_values.size() > 0;
+  const bool has_bar = has_values && options.colour_bar;
+  layout.is_raster = cairo_surface_get_type(cairo_get_target(cr)) == CAIRO_SURFACE_TYPE_IMAGE;
+  layout.legend = options.legend ? legend_entries(scene) : std::vector<LegendEntry>();
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, 12.0);
+  const auto range = picture_detail::value_range(scene);
+  layout.low = range[0];
+  layout.high = range[1];
+  // The right panel: the colour bar, or the legend of a categorical scene in its place.
+  layout.has_side_legend = has_categories(scene) && !layout.legend.empty();
+  layout.panel_width =
+      has_bar ? std::min(0.35 * options.width, picture_detail::colour_bar_width(
+                                                   cr, layout.low, layout.high, scene.value_label))
+      : layout.has_side_legend
+          ? std::min(0.4 * options.width, picture_detail::legend_width(cr, layout.legend) + 12.0)
+          : 0.0;
+  const double top = options.title.empty() ? 0.0 : kTitleHeight;
+  const Rect bounds{2.0, 2.0, options.width - 2.0, options.height - 2.0};
+  layout.frame = {0.0, top, options.width - layout.panel_width,
+                  static_cast<double>(options.height)};
+  const Rect& frame = layout.frame;
+  layout.axes = axes_of(scene, options);
+  const bool is_ticked = layout.axes == PictureAxes::Ticked;
+  layout.camera.emplace(scene.positions, options.aspect, options.azimuth_degrees,
+                        options.elevation_degrees, options.perspective);
+  Camera& camera = *layout.camera;
+  const Eigen::Matrix3Xd fitted = points_to_fit(scene, is_ticked);
+  if (is_ticked) {
+    // Fit the box into the frame, then shrink the box's frame by what its labels need beyond
+    // it, until every label lies inside the frame (labels keep their size as the box shrinks,
+    // so a few rounds settle it).
+    const Rect labels_frame{frame.x0 + 4.0, frame.y0 + 4.0, frame.x1 - 4.0, frame.y1 - 4.0};
+    Rect box_frame = labels_frame;
+    for (int round = 0; round < 4; ++round) {
+      camera.fit(fitted, box_frame, options.zoom, 1.0);
+      layout.box_axes.emplace(cr, camera, scene.axis_names, bounds);
+      const Rect extent = layout.box_axes->extent();
+      if (options.zoom > 1.0 || labels_frame.contains(extent)) {
+        break;
+      }
+      const Rect next{box_frame.x0 + std::max(0.0, labels_frame.x0 - extent.x0),
+                      box_frame.y0 + std::max(0.0, labels_frame.y0 - extent.y0),
+                      box_frame.x1 - std::max(0.0, extent.x1 - labels_frame.x1),
+                      box_frame.y1 - std::max(0.0, extent.y1 - labels_frame.y1)};
+      if (next.width() < 16.0 || next.height() < 16.0) {
+        break;  // a picture too small for its labels: the last layout
+      }
+      box_frame = next;
+    }
+  } else {
+    camera.fit(fitted, frame, options.zoom);
+  }
+  if (layout.axes == PictureAxes::Triad) {
+    // Beneath the colour bar where there is one (the surface fills the frame), else at the
+    // lower left.
+    layout.triad_origin =
+        Eigen::Vector2d(layout.panel_width > 0 ? options.width - layout.panel_width / 2.0 : 45.0,
+                        options.height - 38.0);
+    layout.triad =
+        picture_detail::triad_labels(cr, camera, scene.axis_names, layout.triad_origin, bounds);
+  }
+  if (has_bar) {
+    const double bottom = options.height - (layout.axes == PictureAxes::Triad ? kTriadRoom : 30.0);
+    layout.colour_bar = picture_detail::colour_bar_layout(
+        cr, {frame.x1, top, static_cast<double>(options.width), bottom}, layout.low, layout.high,
+        scene.value_label);
+  }
+  if (!layout.legend.empty() && !layout.has_side_legend) {
+    layout.legend_corner = legend_corner(
+        cr, scene, camera, layout.legend, frame,
+        layout.box_axes ? layout.box_axes->labels() : std::vector<picture_detail::PlacedLabel>());
+  }
+  layout.edge_strength = picture_detail::edge_strength(scene, camera, options.edges);
+  return layout;
+}
+
+void paint(cairo_t* cr, const PictureScene& scene, const Layout& layout) {
+  const PictureOptions& options = layout.options;
+  const Camera& camera = *layout.camera;
+  cairo_set_source_rgb(cr, options.background_rgb[0], options.background_rgb[1],
+                       options.background_rgb[2]);
+  cairo_paint(cr);
+  if (layout.box_axes) {
+    layout.box_axes->draw_panes(cr);
+  }
+  picture_detail::draw_surface(cr, scene, camera, options, layout.low, layout.high,
+                               layout.edge_strength, layout.is_raster);
+  draw_curves(cr, scene, camera, options.width, options.height);
+  if (layout.box_axes) {
+    layout.box_axes->draw(cr);
+  }
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  cairo_set_font_size(cr, 12.0);
   if (!options.title.empty()) {
     cairo_move_to(cr, 8.0, 17.0);
     cairo_show_text(cr, options.title.c_str());
   }
-  if (options.axes) {
-    // A triad at the lower left: each axis's screen direction, 28 pixels long, named.
-    // Beneath the colour bar where there is one (the surface fills the frame), else at the
-    // lower left.
-    const Eigen::Vector2d origin(panel_width > 0 ? options.width - panel_width / 2.0 : 45.0,
-                                 options.height - 45.0);
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d direction = camera.axis_direction(k);
-      const Eigen::Vector2d end(origin(0) + 28.0 * direction(0), origin(1) - 28.0 * direction(1));
-      cairo_move_to(cr, origin(0), origin(1));
-      cairo_line_to(cr, end(0), end(1));
-      cairo_set_line_width(cr, 1.2);
-      cairo_stroke(cr);
-      // The name beyond the axis's end, so that the three names stay apart, moved left where
-      // it would leave the frame (long names such as "lambda" under the colour bar).
-      const char* name = scene.axis_names[static_cast<std::size_t>(k)].c_str();
-      cairo_text_extents_t extents;
-      cairo_text_extents(cr, name, &extents);
-      const double x = std::clamp(origin(0) + 36.0 * direction(0) - 4.0, 2.0,
-                                  std::max(2.0, options.width - 3.0 - extents.x_advance));
-      cairo_move_to(cr, x, origin(1) - 36.0 * direction(1) + 4.0);
-      cairo_show_text(cr, name);
-    }
+  if (layout.axes == PictureAxes::Triad) {
+    picture_detail::draw_triad(cr, camera, layout.triad_origin, layout.triad);
   }
-  if (has_bar) {
-    // The colour bar: 64 bands from the smallest value (bottom) to the largest.
-    const double x0 = options.width - kColourBarWidth + 16.0;
-    const double y0 = top + 30.0;
-    const double bar_height = options.height - top - (options.axes ? 130.0 : 60.0);
-    constexpr int bands = 64;
-    for (int i = 0; i < bands; ++i) {
-      const auto rgb = viridis((i + 0.5) / bands);
-      cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
-      cairo_rectangle(cr, x0, y0 + bar_height * (1.0 - (i + 1.0) / bands), 18.0,
-                      bar_height / bands + 0.5);
-      cairo_fill(cr);
-    }
-    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    for (int i = 0; i <= 4; ++i) {
-      const double y = y0 + bar_height * (1.0 - i / 4.0);
-      cairo_move_to(cr, x0 + 22.0, y + 4.0);
-      const double value = i == 4 ? high : low + (high - low) * i / 4.0;
-      cairo_show_text(cr, label_of(value, high - low, i > 0 && i < 4).c_str());
-    }
-    cairo_move_to(cr, x0 - 8.0, y0 - 12.0);
-    cairo_show_text(cr, scene.value_label.c_str());
+  if (layout.colour_bar) {
+    picture_detail::draw_colour_bar(cr, *layout.colour_bar);
   }
-  if (has_side_legend) {
+  if (layout.has_side_legend) {
+    const double top = layout.frame.y0;
     if (!scene.value_label.empty()) {
       cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-      cairo_move_to(cr, frame_width + 6.0, top + 18.0);
+      cairo_move_to(cr, layout.frame.x1 + 6.0, top + 18.0);
       cairo_show_text(cr, scene.value_label.c_str());
     }
-    picture_detail::draw_legend(cr, legend, frame_width, top + 26.0, false);
-  } else if (!legend.empty()) {
-    picture_detail::draw_legend(cr, legend, 6.0, top + 6.0, true);
+    picture_detail::draw_legend(cr, layout.legend, layout.frame.x1, top + 26.0, false);
+  } else if (!layout.legend.empty()) {
+    picture_detail::draw_legend(cr, layout.legend, layout.legend_corner(0), layout.legend_corner(1),
+                                true);
   }
+}
+
+void draw(cairo_t* cr, const PictureScene& scene, const PictureOptions& options) {
+  paint(cr, scene, lay_out(cr, scene, options));
 }
 
 }  // namespace
@@ -569,6 +496,52 @@ PictureImage render_picture(const PictureScene& scene, const PictureOptions& opt
                                       [&](cairo_t* cr) { draw(cr, scene, options); });
 }
 
+namespace {
+
+// The SVG's description: the axes' names and what the colours show.
+std::vector<std::string> description_of(const PictureScene& scene, const PictureOptions& options) {
+  std::vector<std::string> lines;
+  if (options.axes != PictureAxes::Off) {
+    lines.push_back("axes: " + scene.axis_names[0] + ", " + scene.axis_names[1] + ", " +
+                    scene.axis_names[2]);
+  }
+  const bool has_values = scene.triangle_values.size() > 0 || scene.vertex_values.size() > 0;
+  if (has_values && !scene.value_label.empty()) {
+    lines.push_back("colour: " + scene.value_label);
+  }
+  return lines;
+}
+
+}  // namespace
+
+PictureLayout picture_layout(const PictureScene& scene, const PictureOptions& options) {
+  check_scene(scene, options);
+  // Text extents need a context: a 1×1 image has the output's font metrics (positions do not
+  // depend on the surface's size).
+  picture_detail::Surface surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1));
+  picture_detail::Context cr(cairo_create(surface.get()));
+  const Layout layout = lay_out(cr.get(), scene, options);
+  PictureLayout result;
+  result.azimuth_degrees = layout.options.azimuth_degrees;
+  result.elevation_degrees = layout.options.elevation_degrees;
+  result.axes = layout.axes;
+  result.edge_strength = layout.edge_strength;
+  auto add = [&](const std::vector<picture_detail::PlacedLabel>& labels) {
+    for (const auto& label : labels) {
+      result.labels.push_back(
+          {label.text, label.rect.x0, label.rect.y0, label.rect.x1, label.rect.y1});
+    }
+  };
+  if (layout.box_axes) {
+    add(layout.box_axes->labels());
+  }
+  add(layout.triad);
+  if (layout.colour_bar) {
+    add(layout.colour_bar->labels);
+  }
+  return result;
+}
+
 bool is_picture_file(const std::string& path) {
   const std::string extension = lowercase_extension(path);
   return extension == ".png" || extension == ".svg";
@@ -583,7 +556,8 @@ void write_picture(const std::string& path, const PictureScene& scene,
   check_scene(scene, options);
   picture_detail::write_drawing(
       path, options.width, options.height, [&](cairo_t* cr) { draw(cr, scene, options); },
-      options.title, options.legend ? legend_entries(scene) : std::vector<LegendEntry>());
+      options.title, options.legend ? legend_entries(scene) : std::vector<LegendEntry>(),
+      description_of(scene, options));
 }
 
 PictureCurve styled_curve(Eigen::Matrix3Xd points, bool is_closed, const CurveStyle& style) {
@@ -608,6 +582,7 @@ void colour_by_stability(PictureScene& scene, const std::vector<double>& unstabl
   }
   scene.triangle_categories.clear();
   scene.triangle_values.resize(0);
+  scene.vertex_values.resize(0);
 }
 
 std::vector<PictureCurve> boundary_curves(const TriangleMesh& mesh_in_scene) {

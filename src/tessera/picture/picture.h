@@ -30,14 +30,19 @@ struct PictureCurve {
 /// A curve styled as its kind: points, rgb, width, dash and label of `style`.
 PictureCurve styled_curve(Eigen::Matrix3Xd points, bool is_closed, const CurveStyle& style);
 
-/// What is drawn: triangles in R³ (the three coordinates of a view), optionally one value per
-/// triangle (viridis and a colour bar) or a category per vertex or triangle (its colour and a
-/// legend), curves and marked points.
+/// What is drawn: triangles in R³ (the three coordinates of a view), optionally values (viridis
+/// and a colour bar), one per vertex or one per triangle, or a category per vertex or triangle
+/// (its colour and a legend), curves and marked points.
 struct PictureScene {
   Eigen::Matrix3Xd positions;  ///< 3×V vertex positions
   std::vector<Triangle> triangles;
-  Eigen::VectorXd triangle_values;  ///< one per triangle, or empty: one colour for all
-  std::string value_label;          ///< the colour bar's title, e.g. "min angle (degrees)"
+  /// One value per vertex, or empty. A PNG interpolates the colours of the corners across each
+  /// triangle (Gouraud shading, through cairo's mesh patterns); an SVG fills each triangle with
+  /// the mean of its corners' colours (SVG has no such gradients that viewers draw alike, and
+  /// cairo would embed them as a raster). A triangle with a NaN corner is grey.
+  Eigen::VectorXd vertex_values;
+  Eigen::VectorXd triangle_values;  ///< one per triangle, or empty (not with vertex_values)
+  std::string value_label;          ///< the colour bar's title, e.g. "min angle (deg)"
   /// Categorical colouring (instead of values): the categories' colours and legend labels, and
   /// either one category (index into `categories`) per vertex or one per triangle.
   std::vector<PictureCategory> categories;
@@ -53,6 +58,7 @@ struct PictureScene {
   std::vector<PictureCurve> curves;
   Eigen::Matrix3Xd markers;             ///< 3×k marked points (e.g. cusps); may be 3×0
   std::vector<PointKind> marker_kinds;  ///< k shapes, or empty: every marker Generic (a dot)
+  /// The names of the three coordinates: the axes' labels, e.g. {"lambda", "epsilon", "max_u"}.
   std::array<std::string, 3> axis_names = {"x", "y", "z"};
 };
 
@@ -72,6 +78,29 @@ enum class PictureAspect {
   Box,    ///< each axis scaled to the same length: the bounding box becomes a cube
 };
 
+/// Which edges of the triangles are drawn.
+enum class PictureEdges {
+  /// Where the triangles are large enough on the screen to show them: none while the median
+  /// edge is shorter than 6 pixels (a dense mesh would only be darkened by its edges), faint
+  /// from there, full at 14 pixels and above.
+  Automatic,
+  On,   ///< every edge, in a darker shade of its face
+  Off,  ///< none
+};
+
+/// What tells the reader the scale and the names of the axes.
+enum class PictureAxes {
+  /// Ticked where the axes have units to read (a continuation view, whose axes are scaled
+  /// apart: see PictureAspect; a map seen from straight above), else the triad.
+  Automatic,
+  /// Axes along three edges of the bounding box with ticks at round values (1, 2 or 5 × 10^k),
+  /// their labels and the axes' names, over light back panes with grid lines, as matplotlib's
+  /// 3-D axes; the camera is fitted so that every label lies inside the picture.
+  Ticked,
+  Triad,  ///< a small triad naming the axes, at the lower left or beneath the colour bar
+  Off,
+};
+
 struct PictureOptions {
   int width = 800;   ///< pixels (SVG: points)
   int height = 600;
@@ -79,15 +108,19 @@ struct PictureOptions {
   /// a = azimuth about the third axis, e = elevation above the plane of the first two.
   double azimuth_degrees = -60.0;
   double elevation_degrees = 30.0;
-  double zoom = 1.0;          ///< 1: the surface fills the frame with a small margin
-  bool perspective = false;   ///< else orthographic
-  bool edges = true;          ///< draw the triangles' edges
-  bool colour_bar = true;     ///< when the scene has values
+  /// Look from best_view_direction (view_direction.h) instead of the two angles above: the
+  /// direction that shows most of a folded surface (callers set it for continuation views when
+  /// no angles were asked for).
+  bool choose_view = false;
+  double zoom = 1.0;         ///< 1: the surface fills the frame with a small margin
+  bool perspective = false;  ///< else orthographic
+  PictureEdges edges = PictureEdges::Automatic;
+  bool colour_bar = true;  ///< when the scene has values
   /// The legend: at the right (in the colour bar's place) for a categorical scene, listing the
   /// categories, the labelled curves and the kinds of markers; else, when there are labelled
   /// curves or markers of a kind, in a box at the upper left.
   bool legend = true;
-  bool axes = true;           ///< a small triad naming the axes
+  PictureAxes axes = PictureAxes::Automatic;
   /// No shading: every triangle in its colour as it is (maps of data seen from above, where
   /// light would only darken steep triangles).
   bool flat_shading = false;
@@ -110,10 +143,32 @@ struct PictureImage {
 
 /// The scene drawn into an image (what write_picture writes as PNG).
 /// \throw InvalidArgument for a scene with no triangles, indices out of range, values or
-///        categories of the wrong count or out of range (or values and categories together),
+///        categories of the wrong count or out of range (or values per vertex and per triangle,
+///        or values and categories together),
 ///        marker kinds of the wrong count, non-finite positions (of vertices, curves or
 ///        markers), or options out of range (the message names them).
 PictureImage render_picture(const PictureScene& scene, const PictureOptions& options);
+
+/// A line of text as a picture places it: its words and its rectangle in pixels (y down).
+struct PictureLabel {
+  std::string text;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+/// How render_picture lays out a picture: what a caller or a test needs to know about it.
+struct PictureLayout {
+  double azimuth_degrees = 0;  ///< the camera's direction: given, or chosen (choose_view)
+  double elevation_degrees = 0;
+  PictureAxes axes = PictureAxes::Off;  ///< Ticked, Triad or Off (Automatic resolved)
+  double edge_strength = 0;             ///< 0: no edges … 1: edges at full strength
+  /// The axes' names and tick labels, the triad's names and the colour bar's labels and title,
+  /// measured in the picture's font; none overlaps another or leaves the picture.
+  std::vector<PictureLabel> labels;
+};
+
+/// The layout of the picture render_picture draws for these inputs.
+/// \throw InvalidArgument as render_picture.
+PictureLayout picture_layout(const PictureScene& scene, const PictureOptions& options);
 
 /// Writes the picture to `path`: .png (raster) or .svg (vector; the same drawing), by extension
 /// (case-insensitive); the file is replaced atomically. An SVG holds the title as `<title>` and
@@ -125,6 +180,12 @@ void write_picture(const std::string& path, const PictureScene& scene,
 
 /// True if write_picture knows the extension of `path`.
 bool is_picture_file(const std::string& path);
+
+/// True if `aspect` scales each axis of `positions` (3×V) to its own extent: Box, or Automatic
+/// where the largest extent exceeds the smallest nonzero one more than 10 times. Such are the
+/// views of continuation problems (λ, ε, max u), whose axes have unrelated units; the picture
+/// gives them ticked axes (PictureAxes::Automatic).
+bool has_axes_scaled_apart(const Eigen::Matrix3Xd& positions, PictureAspect aspect);
 
 /// The colour of `t` in [0, 1] in the viridis colour map (clamped), components in [0, 1].
 std::array<double, 3> viridis(double t);

@@ -11,6 +11,7 @@
 #include "tessera/io/detail/file_buffer.h"
 #include "tessera/io/file_names.h"
 #include "tessera/io/text_file.h"
+#include "tessera/picture/detail/svg_compaction.h"
 
 namespace tessera::picture_detail {
 
@@ -72,7 +73,8 @@ PictureImage render_image(int width, int height, const Drawing& draw) {
 }
 
 void write_drawing(const std::string& path, int width, int height, const Drawing& draw,
-                   const std::string& title, const std::vector<LegendEntry>& legend) {
+                   const std::string& title, const std::vector<LegendEntry>& legend,
+                   const std::vector<std::string>& description) {
   const std::string extension = lowercase_extension(path);
   std::string bytes;
   if (extension == ".png") {
@@ -94,16 +96,26 @@ void write_drawing(const std::string& path, int width, int height, const Drawing
       check_status(cairo_status(cr.get()), "picture '" + path + "'");
       cairo_surface_finish(surface.get());  // the SVG's last bytes go to `bytes` here
     }
+    bytes = compact_svg(bytes);
     std::string text;
     if (!title.empty()) {
       text += "<title>" + xml_escaped(title) + "</title>\n";
     }
-    if (!legend.empty()) {
-      text += "<desc>legend:";
-      for (std::size_t i = 0; i < legend.size(); ++i) {
-        text += (i == 0 ? " " : "; ") + xml_escaped(legend[i].label);
+    std::string lines;
+    for (const std::string& line : description) {
+      if (!lines.empty()) {
+        lines += '\n';
       }
-      text += "</desc>\n";
+      lines += xml_escaped(line);
+    }
+    if (!legend.empty()) {
+      lines += lines.empty() ? "legend:" : "\nlegend:";
+      for (std::size_t i = 0; i < legend.size(); ++i) {
+        lines += (i == 0 ? " " : "; ") + xml_escaped(legend[i].label);
+      }
+    }
+    if (!lines.empty()) {
+      text += "<desc>" + lines + "</desc>\n";
     }
     const std::size_t root = bytes.find("<svg");
     const std::size_t end = root == std::string::npos ? root : bytes.find('>', root);
@@ -179,12 +191,16 @@ double legend_width(cairo_t* cr, const std::vector<LegendEntry>& entries) {
   return kLegendSample + 8.0 + longest + 8.0;
 }
 
+double legend_height(const std::vector<LegendEntry>& entries) {
+  return entries.empty() ? 0.0 : kLegendRow * static_cast<double>(entries.size()) + 8.0;
+}
+
 double draw_legend(cairo_t* cr, const std::vector<LegendEntry>& entries, double x, double y,
                    bool boxed) {
   if (entries.empty()) {
     return 0.0;
   }
-  const double height = kLegendRow * static_cast<double>(entries.size()) + 8.0;
+  const double height = legend_height(entries);
   if (boxed) {
     cairo_rectangle(cr, x, y, legend_width(cr, entries) + 6.0, height);
     cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);

@@ -47,11 +47,13 @@ struct LegendEntry {
 };
 
 /// Writes the drawing to `path`, .png or .svg by extension (checked by the caller), replacing
-/// the file atomically. An SVG gets `<title>` (`title`, when not empty) and `<desc>` naming the
-/// legend's entries, as text that readers, screen readers and searches find (cairo writes text
-/// as glyph outlines).
+/// the file atomically. An SVG, made small by compact_svg, gets `<title>` (`title`, when not
+/// empty) and `<desc>` with the lines of `description` (e.g. "axes: lambda, epsilon, max_u")
+/// and a last line naming the legend's entries ("legend: fold; cusp"), as text that readers,
+/// screen readers and searches find (cairo writes text as glyph outlines).
 void write_drawing(const std::string& path, int width, int height, const Drawing& draw,
-                   const std::string& title, const std::vector<LegendEntry>& legend);
+                   const std::string& title, const std::vector<LegendEntry>& legend,
+                   const std::vector<std::string>& description = {});
 
 /// Sets the dash of the next stroke for a line of `width` pixels (and round caps for dots).
 void set_dash(cairo_t* cr, CurveDash dash, double width);
@@ -61,6 +63,9 @@ void draw_marker(cairo_t* cr, PointKind kind, double x, double y);
 
 /// The width in pixels the legend needs (samples and the longest label).
 double legend_width(cairo_t* cr, const std::vector<LegendEntry>& entries);
+
+/// The height in pixels draw_legend uses for `entries`.
+double legend_height(const std::vector<LegendEntry>& entries);
 
 /// Draws the legend's entries from the top left corner (x, y) down, 18 pixels apart, on a
 /// white box with a thin frame when `boxed`. \return the height used.
