@@ -39,8 +39,8 @@ def explain(error: ImportError, built_for: Optional[Mapping[str, str]]) -> Optio
     if built_for is None or _is_same_interpreter(built_for):
         if getattr(error, "name", None) == "numpy" and sys.prefix != sys.base_prefix:
             return (f"tessera needs NumPy, which this virtual environment ({sys.prefix}) does not "
-                    f"see: make it with `python3 -m venv --system-site-packages` to use Debian's "
-                    f"python3-numpy, or install numpy into it ({error})")
+                    f"have ({error}): install numpy into it, or make it with `/usr/bin/python3 -m "
+                    f"venv --system-site-packages` to see Debian's python3-numpy")
         return None
     built = _describe(built_for.get("executable", "?"), built_for.get("version", "?"))
     return (f"tessera's compiled module was built for {built}; this is {this}, which cannot "
