@@ -80,7 +80,8 @@ fi
 apt_options=(-y -qq)
 $minimal && apt_options+=(--no-install-recommends)
 $sudo apt-get update -qq
-total=$(apt-get install -s "${apt_options[@]}" "${missing[@]}" 2>/dev/null | grep -c '^Inst' || true)
+total=$(apt-get install -s "${apt_options[@]}" "${missing[@]}" 2>/dev/null |
+        grep -c '^Inst' || true)
 echo "tessera: installing ${#missing[@]} missing package(s), ${total} with their dependencies" \
      "(${missing[*]})…"
 DEBIAN_FRONTEND=noninteractive $sudo apt-get install "${apt_options[@]}" "${missing[@]}" >/dev/null
