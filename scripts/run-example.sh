@@ -20,7 +20,7 @@ fi
 # Measured on a 2-core machine with an empty ccache (README, "Two commands"). The terminal shows
 # Ninja's progress only; the compiler's output goes to a log (GCC 12 warns falsely about some
 # std::string code, GCC bug 105651, which would be a first user's only sight of the build).
-echo "tessera: building the command-line tool build/tessera (the first time about 4 minutes on" \
+echo "tessera: building the command-line tool build/tessera (the first time about 7 minutes on" \
      "2 cores, then seconds)…"
 log=build/run-example-build.log
 if ! cmake --build build --target tessera_cli --parallel "$(nproc)" 2>&1 | tee "$log" |
