@@ -6,7 +6,7 @@
 #
 # --minimal: only what the command-line tool needs (scripts/run-example.sh): on a fresh Debian 12
 #            about 175 packages with their dependencies, 140 MB to download (the full set below
-#            is about 500 and 300 MB). Without it: everything, for the library, the CLI, the
+#            is about 500 and 460 MB). Without it: everything, for the library, the CLI, the
 #            Python module, the PETSc backend, the tests and the benchmarks (scripts/build.sh,
 #            scripts/run-tests.sh).
 # PACKAGE:   more packages that a script needs besides (scripts/run-fuzzers.sh: clang and its
