@@ -24,6 +24,8 @@ import os
 import warnings
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
 
+# First: under another interpreter, says which one the compiled module was built for.
+from . import _interpreter_check  # noqa: F401
 import numpy as np
 
 from . import _tessera
