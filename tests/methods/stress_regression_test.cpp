@@ -77,7 +77,12 @@ INSTANTIATE_TEST_SUITE_P(
         StressCase{"seed2026_case65_cstr_bezier_fold_outvoted", "cstr", "bezier",
                    0.036629770183323473, 0.018754408517000058,
                    {0.12175489755588756, 0.099284320641779777, 0.090145511765373831,
-                    4.9965115717577158}}),
+                    4.9965115717577158}},
+        // A degenerate ear (area 3e-18) of three vertices on the straight line M ∩ {x = 1.5}
+        // left by a front collision: the partial mesh was written INVALID.
+        StressCase{"seed2026_case1049_pleat_bezier_degenerate_boundary_ear", "whitney_pleat",
+                   "bezier", 0.033986398610485552, 0.0051090232736647825,
+                   {0.10583720440591016, 0.10124087236423875, 0.099069994800693228}}),
     [](const ::testing::TestParamInfo<StressCase>& info) { return info.param.name; });
 
 }  // namespace

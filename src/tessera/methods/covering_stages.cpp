@@ -14,6 +14,7 @@
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
 #include "tessera/geometry/bezier_patch.h"
+#include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/geometry/pinched_vertices.h"
 #include "tessera/methods/common/boundary_notches.h"
@@ -128,6 +129,85 @@ std::string describe_triangle(const TriangleMesh& mesh, int t) {
   return "near " + describe_point(centroid, mesh.space());
 }
 
+// Removes degenerate triangles (area <= options.degenerate_area_ratio·(longest edge)², as
+// validate judges them) that lie on the boundary and cover nothing: three vertices of a straight
+// piece of ∂(M ∩ S) (whitney_pleat's M ∩ {x = 1.5} is a line; a bezier front closing along it
+// left the ear (corner, p, q) with area 3e-18, stress seed 2026 case 1049). Such a triangle is
+// removed when that keeps every vertex manifold: an ear (two boundary edges) leaves its tip
+// unreferenced; one boundary edge (the long one) makes its apex a boundary vertex, allowed only
+// if the apex was interior. Repeats, since one removal can expose the next collinear ear.
+// \return the number removed.
+int remove_degenerate_boundary_triangles(CoveringResult& result, const ValidationOptions& options) {
+  TriangleMesh& mesh = result.mesh;
+  int removed = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    const MeshTopology topology(mesh.vertex_count(), mesh.triangles());
+    std::vector<bool> is_boundary_vertex(mesh.vertex_count(), false);
+    for (int e = 0; e < topology.edge_count(); ++e) {
+      if (topology.is_boundary_edge(e)) {
+        for (int v : topology.edge(e)) {
+          is_boundary_vertex[v] = true;
+        }
+      }
+    }
+    std::vector<bool> keep(mesh.triangle_count(), true);
+    std::vector<bool> touched(mesh.vertex_count(), false);
+    for (int t = 0; t < mesh.triangle_count(); ++t) {
+      const Triangle& tri = mesh.triangle(t);
+      // The area as base × height over the longest edge (no cancellation for thin triangles).
+      int base = 0;
+      double longest_squared = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const double squared = (mesh.point(tri[(k + 1) % 3]) - mesh.point(tri[k])).squaredNorm();
+        if (squared > longest_squared) {
+          longest_squared = squared;
+          base = k;
+        }
+      }
+      const Eigen::VectorXd along = mesh.point(tri[(base + 1) % 3]) - mesh.point(tri[base]);
+      Eigen::VectorXd apex_offset = mesh.point(tri[(base + 2) % 3]) - mesh.point(tri[base]);
+      if (longest_squared > 0.0) {
+        apex_offset -= (apex_offset.dot(along) / longest_squared) * along;
+      }
+      const double area = 0.5 * std::sqrt(longest_squared) * apex_offset.norm();
+      if (!(area <= options.degenerate_area_ratio * longest_squared) ||
+          touched[tri[0]] || touched[tri[1]] || touched[tri[2]]) {
+        continue;
+      }
+      int boundary_edges = 0;
+      int apex = -1;  // the vertex opposite the one boundary edge
+      for (int k = 0; k < 3; ++k) {
+        const int e = topology.find_edge(tri[k], tri[(k + 1) % 3]);
+        if (e >= 0 && topology.is_boundary_edge(e)) {
+          ++boundary_edges;
+          apex = tri[(k + 2) % 3];
+        }
+      }
+      if (boundary_edges == 0 || (boundary_edges == 1 && is_boundary_vertex[apex])) {
+        continue;
+      }
+      keep[t] = false;
+      touched[tri[0]] = touched[tri[1]] = touched[tri[2]] = true;  // one per fan per pass
+      changed = true;
+      ++removed;
+    }
+    if (changed) {
+      if (static_cast<int>(result.patches.size()) == mesh.triangle_count()) {
+        std::vector<CubicBezierPatch> patches;
+        for (int t = 0; t < mesh.triangle_count(); ++t) {
+          if (keep[t]) {
+            patches.push_back(result.patches[t]);
+          }
+        }
+        result.patches = std::move(patches);
+      }
+      mesh.keep_triangles(keep);
+    }
+  }
+  return removed;
+}
+
 // The geometric validation of stage::validate_and_repair (its contract in covering_stages.h).
 // \return the number of new triangles (the last ones of the mesh) made by a repair.
 int validate_and_repair_mesh(const ImplicitProblem& problem, const Domain& domain,
@@ -137,7 +217,19 @@ int validate_and_repair_mesh(const ImplicitProblem& problem, const Domain& domai
   if (mesh.triangle_count() == 0) {
     return 0;
   }
-  const MeshValidation validation = validate(mesh, problem, domain);
+  MeshValidation validation = validate(mesh, problem, domain);
+  if (validation.degenerate_triangle_count > 0) {
+    if (const int removed = remove_degenerate_boundary_triangles(result, ValidationOptions());
+        removed > 0) {
+      result.summary.removed_triangles += removed;
+      result.summary.notes.push_back(
+          "the final check found " + std::to_string(validation.degenerate_triangle_count) +
+          " degenerate triangle(s); " + std::to_string(removed) +
+          " of them, on the boundary and of zero area (three vertices on a straight piece of "
+          "the boundary), were removed");
+      validation = validate(mesh, problem, domain);
+    }
+  }
   if (validation.is_valid()) {
     result.validation = validation;
     return 0;
