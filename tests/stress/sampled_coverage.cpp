@@ -147,7 +147,7 @@ bool same_sheet(const ImplicitProblem& problem, const Eigen::VectorXd& m, const 
 
 SampledCoverage sample_coverage(const TriangleMesh& mesh, const ImplicitProblem& problem,
                                 const Domain& domain, double gap, int random_points,
-                                std::uint64_t seed) {
+                                std::uint64_t seed, const ExactDistance& exact_distance) {
   SampledCoverage found;
   const int count = mesh.triangle_count();
   if (count == 0) {
@@ -192,7 +192,8 @@ SampledCoverage sample_coverage(const TriangleMesh& mesh, const ImplicitProblem&
       if (!project_onto_manifold(problem, m, workspace) || !workspace.is_factored()) {
         continue;
       }
-      found.max_distance = std::max(found.max_distance, (m - x).norm());
+      found.max_distance =
+          std::max(found.max_distance, exact_distance ? exact_distance(x) : (m - x).norm());
       if (j >= 7) {
         continue;  // on an edge: both its triangles cover it
       }

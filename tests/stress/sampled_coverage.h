@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "tessera/core/domain.h"
@@ -34,11 +35,17 @@ struct SampledCoverage {
   std::string example;     ///< the first finding, with coordinates
 };
 
+/// The exact distance from a point to M, for surfaces that have one in closed form; where a
+/// singular curve lies on M (two sheets crossing) Gauss–Newton from a point near the crossing
+/// can land on the farther sheet, and |P(x) − x| is then only an upper bound.
+using ExactDistance = std::function<double(const Eigen::VectorXd&)>;
+
 /// \param gap  a point of M ∩ S farther than this from the mesh is uncovered (the tolerance, or
 ///             for a run without one a tenth of its step); 0 skips the random samples.
 /// \param random_points  how many random points to draw near the mesh and project onto M.
+/// \param exact_distance  if given, max_distance uses it instead of the projection's length.
 SampledCoverage sample_coverage(const TriangleMesh& mesh, const ImplicitProblem& problem,
                                 const Domain& domain, double gap, int random_points,
-                                std::uint64_t seed);
+                                std::uint64_t seed, const ExactDistance& exact_distance = {});
 
 }  // namespace tessera::testing
