@@ -63,6 +63,8 @@ CLI::App* add_improve_command(CLI::App& app, ImproveCommand& command) {
 int run_improve(const ImproveCommand& command) {
   check_mesh_output(command.output);
   check_output_folder(command.summary);
+  check_replaces_same_kind("-o", command.output, TesseraFileKind::Mesh);
+  check_replaces_same_kind("--summary", command.summary, TesseraFileKind::ImproveSummary);
   const ProblemSetup setup = resolve_problem(command.problem);
   TriangleMesh mesh = read_mesh(command.mesh);
   TESSERA_CHECK(mesh.ambient_dimension() == setup.problem->ambient_dimension(),

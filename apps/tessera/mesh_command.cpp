@@ -449,6 +449,16 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
                           {"--level-output", level_file},
                           {"--picture", command.picture},
                           {"--diagram", command.diagram}});
+  // A file of another kind (an earlier run's summary where the patches go) is not replaced.
+  check_replaces_same_kind("-o", command.output, TesseraFileKind::Mesh);
+  check_replaces_same_kind("--summary", command.summary, TesseraFileKind::MeshSummary);
+  check_replaces_same_kind("--patches", command.patches, TesseraFileKind::BezierPatches);
+  check_replaces_same_kind("--folds-output", fold_file, TesseraFileKind::Curves);
+  check_replaces_same_kind("--hopf-output", hopf_file, TesseraFileKind::Curves);
+  check_replaces_same_kind("--hopf-output (its neutral saddles)",
+                           hopf_file.empty() ? "" : neutral_saddle_file_beside(hopf_file),
+                           TesseraFileKind::Curves);
+  check_replaces_same_kind("--level-output", level_file, TesseraFileKind::Curves);
   MeshFileOptions file_options;
   MethodSettings settings = command.settings;
   const bool show_progress = !quiet && isatty(STDERR_FILENO);
