@@ -117,6 +117,52 @@ TEST(Polylines, ReadsTheVtkFilesOfEarlierVersions) {
   }
 }
 
+// Issue 34: "[json.exception.out_of_range.406] number overflow parsing '1e999'" reached the user
+// of `render --curves`; and a summary given for curves (the docs once named both bvp.json) is
+// named for what it is.
+TEST(Polylines, JsonErrorsNameTheFileNotNlohmann) {
+  const std::string dir = testing::temporary_directory("polylines_json_errors");
+  const std::string overflow = dir + "/overflow.json";
+  std::ofstream(overflow) << R"({"polylines": [{"points": [[1e999, 2, 3]]}]})";
+  const std::string summary = dir + "/bvp.json";
+  std::ofstream(summary) << R"({"ambient_dimension": 22, "problem": "bvp:points=20"})";
+  for (const auto& [path, expected] : std::vector<std::pair<std::string, std::string>>{
+           {overflow, "a number is out of the range of a double"},
+           {summary, "found the JSON summary of a `tessera mesh` run"}}) {
+    try {
+      read_polylines(path);
+      ADD_FAILURE() << "accepted " << path;
+    } catch (const InvalidArgument& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find("polylines file '" + path + "'"), std::string::npos) << message;
+      EXPECT_NE(message.find(expected), std::string::npos) << message;
+      EXPECT_EQ(message.find("json.exception"), std::string::npos) << message;
+    }
+  }
+}
+
+// A count in a PLY header that is no number ("tessera: failed: stol") or more than the file can
+// hold (std::bad_alloc) is refused naming the file and the line.
+TEST(Polylines, PlyCountsAreCheckedBeforeUse) {
+  const std::string dir = testing::temporary_directory("polylines_ply_counts");
+  for (const std::string count : {"abc", "99999999999999999999", "999999999999", "-1"}) {
+    const std::string path = dir + "/bad.ply";
+    std::ofstream(path) << "ply\nformat ascii 1.0\ncomment coordinate names: a b c\n"
+                           "element vertex " +
+                               count +
+                               "\nproperty double x\nproperty double y\n"
+                               "property double z\nproperty uchar cusp\nelement edge 0\n"
+                               "property int vertex1\nproperty int vertex2\nend_header\n";
+    try {
+      read_polylines(path);
+      ADD_FAILURE() << "accepted " << count;
+    } catch (const InvalidArgument& error) {
+      EXPECT_NE(std::string(error.what()).find("'element vertex " + count + "'"), std::string::npos)
+          << error.what();
+    }
+  }
+}
+
 TEST(Polylines, AMeshFileIsNotTakenForCurves) {
   const std::string dir = testing::temporary_directory("polylines_not_curves");
   const std::string path = dir + "/mesh.ply";

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "tessera/core/error.h"
 #include "tessera/io/detail/file_buffer.h"
 #include "tessera/io/file_names.h"
+#include "tessera/io/output_checks.h"
 
 namespace tessera {
 
@@ -34,14 +36,23 @@ PolylineFile read_json(const std::string& path, const std::string& text) {
     // what a user needs to find the fault.
     refuse(path, "not valid JSON (the syntax breaks at byte " + std::to_string(error.byte) +
                      "); expected the JSON polylines of `tessera mesh --folds-output`");
+  } catch (const nlohmann::json::exception&) {
+    // out_of_range.406, "number overflow parsing '1e999'": not a double.
+    refuse(path,
+           "a number is out of the range of a double (such as 1e999); the coordinates "
+           "must be finite");
   }
   PolylineFile file;
   if (!document.is_object() || !document.contains("polylines")) {
+    // Another file of tessera (a summary, where the docs once named the curves the same) is
+    // named for what it is.
+    const TesseraFileKind kind = tessera_file_kind(path);
     refuse(path,
            "expected an object with \"polylines\" (the JSON of `tessera mesh "
-           "--folds-output`), found " +
-               (document.is_object() ? std::string("an object without it")
-                                     : "a JSON " + type_of(document)));
+           "--folds-output`, --hopf-output or --level-output), found " +
+               (kind != TesseraFileKind::None ? describe(kind)
+                : document.is_object()        ? std::string("an object without it")
+                                              : "a JSON " + type_of(document)));
   }
   auto text_field = [&](const char* key, std::string& out) {
     if (!document.contains(key)) {
@@ -569,6 +580,24 @@ PolylineFile read_vtu_polylines(const std::string& path, const std::string& text
   return file;
 }
 
+// The count of an `element` line from `at` on: a non-negative integer that a file of `size`
+// bytes can hold (every item takes at least two characters), checked before anything of that
+// size is allocated.
+long header_count(const std::string& path, const std::string& line, std::size_t at,
+                  std::size_t size) {
+  const std::string text = line.substr(at);
+  long value = -1;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || value < 0) {
+    refuse(path, "'" + line + "': the count is not a non-negative integer");
+  }
+  if (static_cast<double>(value) > static_cast<double>(size) / 2) {
+    refuse(path,
+           "'" + line + "': more than the file of " + std::to_string(size) + " bytes can hold");
+  }
+  return value;
+}
+
 // ASCII PLY as write_ply writes it: the columns' names in a comment, vertices (x, y, z, the
 // further columns, the marks), edges between consecutive points of a polyline.
 PolylineFile read_ply_polylines(const std::string& path, const std::string& text) {
@@ -588,10 +617,10 @@ PolylineFile read_ply_polylines(const std::string& path, const std::string& text
         file.options.names.push_back(name);
       }
     } else if (line.rfind("element vertex ", 0) == 0) {
-      count = std::stol(line.substr(15));
+      count = header_count(path, line, 15, text.size());
       in_vertex = true;
     } else if (line.rfind("element edge ", 0) == 0) {
-      edge_count = std::stol(line.substr(13));
+      edge_count = header_count(path, line, 13, text.size());
       in_vertex = false;
     } else if (line.rfind("property ", 0) == 0 && in_vertex) {
       ++property_count;
