@@ -3,6 +3,8 @@
 // malformed files give an error naming the file and line, never a crash or a huge allocation.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "io/io_test_support.h"
 #include "tessera/io/detail/mesh_parsers.h"
 #include "tessera/io/mesh_io.h"
@@ -238,11 +240,34 @@ TEST(VtkReader, EveryTruncationAndByteChangeIsReadOrRefusedCleanly) {
   Eigen::MatrixXd points(4, 4);
   points << 0, 1, 0, 0.5, 0, 0, 1, 0.5, 0, 0, 0, 1, 7, 8, 9, 1e-300;
   const TriangleMesh mesh(points, {{0, 1, 2}, {0, 1, 3}});
-  for (const std::string name : {"fuzz.vtk", "fuzz.vtu", "fuzz_ascii.ply", "fuzz.ply"}) {
+  // Besides what write_mesh writes: a legacy file of version 5.1 (meshio's) and one of POLYDATA
+  // (tessera's before issue 34).
+  const std::string points_text = "POINTS 4 double\n0 0 0 1 0 0 0 1 0 0.5 0.5 1\n";
+  const std::map<std::string, std::string> others = {
+      {"fuzz51.vtk", "# vtk DataFile Version 5.1\nmeshio\nASCII\nDATASET UNSTRUCTURED_GRID\n" +
+                         points_text +
+                         "CELLS 3 6\nOFFSETS vtktypeint64\n0\n3\n6\nCONNECTIVITY "
+                         "vtktypeint64\n0\n1\n2\n0\n1\n3\nCELL_TYPES 2\n5\n5\n"
+                         "POINT_DATA 4\nFIELD FieldData 1\nr 1 4 double\n1 2 3 4\n"},
+      {"fuzz_polydata.vtk",
+       "# vtk DataFile Version 4.2\ntessera triangle mesh in R^3\nASCII\n"
+       "DATASET POLYDATA\n" +
+           points_text +
+           "POLYGONS 2 8\n3 0 1 2\n3 0 1 3\nPOINT_DATA 4\n"
+           "SCALARS x double 1\nLOOKUP_TABLE default\n0 1 0 0.5\n"
+           "SCALARS y double 1\nLOOKUP_TABLE default\n0 0 1 0.5\n"
+           "SCALARS z double 1\nLOOKUP_TABLE default\n0 0 0 1\n"}};
+  for (const std::string name :
+       {"fuzz.vtk", "fuzz.vtu", "fuzz_ascii.ply", "fuzz.ply", "fuzz51.vtk", "fuzz_polydata.vtk"}) {
     const auto written_path = test_path(name);
-    write_mesh(written_path, mesh,
-               {.binary = name == "fuzz.ply", .vertex_scalars = {{"r", {1, 2, 3, 4}}}});
+    if (others.count(name) != 0) {
+      write_text(written_path, others.at(name));
+    } else {
+      write_mesh(written_path, mesh,
+                 {.binary = name == "fuzz.ply", .vertex_scalars = {{"r", {1, 2, 3, 4}}}});
+    }
     const auto good = file_text(written_path);
+    ASSERT_NO_THROW(read_mesh(written_path)) << name;
     const auto path = test_path("mutated_" + name);
     int refused = 0;
     int read_count = 0;
