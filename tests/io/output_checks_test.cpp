@@ -55,8 +55,8 @@ TEST(OutputChecks, TellsTheKindOfEveryFileTesseraWrites) {
   write_text(test_path("kind_other.json"), R"({"name": "mine"})");
   write_text(test_path("kind_broken.json"), "{\"problem\": ");
   write_text(test_path("kind_other.ply"), "ply\nformat ascii 1.0\nelement vertex 0\nend_header\n");
-  for (const std::string name : {"kind_other.json", "kind_broken.json", "kind_other.ply",
-                                 "kind_no_such_file.json"}) {
+  for (const std::string name :
+       {"kind_other.json", "kind_broken.json", "kind_other.ply", "kind_no_such_file.json"}) {
     EXPECT_EQ(tessera_file_kind(test_path(name)), TesseraFileKind::None) << name;
   }
 }
@@ -78,8 +78,8 @@ TEST(OutputChecks, RefusesToReplaceATesseraFileOfAnotherKindOnly) {
       {"holds a mesh of tessera", "replace_mesh.curves.ply"});
   // Files of other tools, and no file, are no concern of this check.
   write_text(test_path("mine.json"), R"({"name": "mine"})");
-  EXPECT_NO_THROW(
-      check_replaces_same_kind("--patches", test_path("mine.json"), TesseraFileKind::BezierPatches));
+  EXPECT_NO_THROW(check_replaces_same_kind("--patches", test_path("mine.json"),
+                                           TesseraFileKind::BezierPatches));
   EXPECT_NO_THROW(check_replaces_same_kind("--patches", "", TesseraFileKind::BezierPatches));
 }
 

@@ -37,14 +37,14 @@ TEST(ProblemRecord, CatalogueProblemIsRecordedAsGivenAndFoundAgain) {
 
 TEST(ProblemRecord, CommandLinesOfEarlierFilesNameTheProblem) {
   // A specification with commas, before ", method".
-  auto recorded = find_recorded_problem({"written by tessera: triangle mesh in R^3",
-                                         "tessera mesh torus:R=2,r=0.5, method front"});
+  auto recorded = find_recorded_problem(
+      {"written by tessera: triangle mesh in R^3", "tessera mesh torus:R=2,r=0.5, method front"});
   ASSERT_TRUE(recorded.has_value());
   EXPECT_EQ(recorded->specification, "torus:R=2,r=0.5");
   // improve, in PLY and in VTU, whose comments hold "- -" for "--".
   for (const std::string dashes : {"--", "- -"}) {
-    recorded = find_recorded_problem({"tessera improve cap.ply " + dashes + "problem sphere_cut " +
-                                      dashes + "criterion angle"});
+    recorded = find_recorded_problem(
+        {"tessera improve cap.ply " + dashes + "problem sphere_cut " + dashes + "criterion angle"});
     ASSERT_TRUE(recorded.has_value()) << dashes;
     EXPECT_EQ(recorded->specification, "sphere_cut");
   }
@@ -56,7 +56,7 @@ TEST(ProblemRecord, ProblemFileIsRecordedByAbsolutePathAndHashAndRefusedWhenChan
   const std::string dir = testing::temporary_directory("problem_record");
   const std::string path = dir + "/ball.tsr";
   std::ofstream(path) << "name ball\nvariables x y z\nparameter r = 1\n"
-                          "equation x^2 + y^2 + z^2 - r^2\nstart 0 0 r\n";
+                         "equation x^2 + y^2 + z^2 - r^2\nstart 0 0 r\n";
   // With a parameter set after ':', which the record keeps.
   const auto comments = problem_record_comments(path + ":r=2");
   ASSERT_EQ(comments.size(), 2u);

@@ -61,7 +61,9 @@ std::string recorded_file_path(const std::string& specification) {
   return trimmed(specification.substr(0, specification.find(':')));
 }
 
-bool names_a_file(const std::string& path) { return path.find_first_of("/.\\") != std::string::npos; }
+bool names_a_file(const std::string& path) {
+  return path.find_first_of("/.\\") != std::string::npos;
+}
 
 // SPEC of "tessera improve MESH --problem SPEC --criterion C" (VTU comments hold "- -" for "--").
 std::optional<std::string> improve_problem(const std::string& comment) {
@@ -72,7 +74,8 @@ std::optional<std::string> improve_problem(const std::string& comment) {
     }
     const auto begin = at + dashes.size() + 9;
     const auto end = comment.find(" " + dashes, begin);
-    return trimmed(comment.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
+    return trimmed(
+        comment.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
   }
   return std::nullopt;
 }
@@ -119,8 +122,8 @@ std::optional<RecordedProblem> find_recorded_problem(const std::vector<std::stri
       recorded = RecordedProblem{trimmed(comment.substr(kProblem.size())), "", comment};
     } else if (comment.rfind(kProblemFileHash, 0) == 0) {
       hash = trimmed(comment.substr(kProblemFileHash.size()));
-      const bool is_hash = hash.size() == 16 && hash.find_first_not_of("0123456789abcdef") ==
-                                                    std::string::npos;
+      const bool is_hash =
+          hash.size() == 16 && hash.find_first_not_of("0123456789abcdef") == std::string::npos;
       hash = is_hash ? hash : "";
     } else if (comment.rfind(kBox, 0) == 0) {
       box = trimmed(comment.substr(kBox.size()));
@@ -170,7 +173,8 @@ ProblemSetup resolve_recorded_problem(const RecordedProblem& recorded,
                   where << ", but the problem file '" << path
                         << "' has changed since the mesh was written (FNV-1a hash "
                         << recorded.file_hash << " then, " << now << " now): the mesh may not "
-                        << "belong to it" << remedy << " (the file as it is now, if that is meant)");
+                        << "belong to it" << remedy
+                        << " (the file as it is now, if that is meant)");
   }
   ProblemSetup setup;
   try {

@@ -33,8 +33,9 @@ struct RecordedProblem {
 };
 
 /// The problem recorded in `comments` (read_mesh_comments, io/mesh_io.h): "problem: SPEC" (with
-/// "problem file fnv1a64: H" and "box: BOX"), else, in the files of earlier versions, the SPEC of "tessera mesh
-/// SPEC, method M" or of "tessera improve MESH --problem SPEC --criterion C" (also with "- -" for
+/// "problem file fnv1a64: H" and "box: BOX"), else, in the files of earlier versions, the SPEC of
+/// "tessera mesh SPEC, method M" or of "tessera improve MESH --problem SPEC --criterion C" (also
+/// with "- -" for
 /// "--", as in VTU comments). nullopt if the comments record none.
 std::optional<RecordedProblem> find_recorded_problem(const std::vector<std::string>& comments);
 
