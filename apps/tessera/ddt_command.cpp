@@ -123,6 +123,7 @@ CLI::App* add_ddt_command(CLI::App& app, DdtCommand& command) {
 int run_ddt(const DdtCommand& command) {
   if (!command.output.empty()) {
     check_mesh_output(command.output);
+    check_replaces_same_kind("-o", command.output, TesseraFileKind::Mesh);
   }
   TESSERA_CHECK(command.function.empty() || command.value_column.empty(),
                 "give either --function or --value-column, not both");

@@ -17,6 +17,7 @@
 #include "tessera/methods/improvement/tangential_smoothing.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/report/improvement_report.h"
+#include "tessera/report/problem_record.h"
 
 namespace tessera::app {
 namespace {
@@ -62,6 +63,8 @@ CLI::App* add_improve_command(CLI::App& app, ImproveCommand& command) {
 int run_improve(const ImproveCommand& command) {
   check_mesh_output(command.output);
   check_output_folder(command.summary);
+  check_replaces_same_kind("-o", command.output, TesseraFileKind::Mesh);
+  check_replaces_same_kind("--summary", command.summary, TesseraFileKind::ImproveSummary);
   const ProblemSetup setup = resolve_problem(command.problem);
   TriangleMesh mesh = read_mesh(command.mesh);
   TESSERA_CHECK(mesh.ambient_dimension() == setup.problem->ambient_dimension(),
@@ -84,6 +87,10 @@ int run_improve(const ImproveCommand& command) {
   MeshFileOptions file_options;
   file_options.comments = {"tessera improve " + command.mesh + " --problem " + command.problem +
                            " --criterion " + command.criterion};
+  // What `tessera check FILE` takes for the problem when it is not given.
+  for (auto& comment : problem_record_comments(command.problem)) {
+    file_options.comments.push_back(std::move(comment));
+  }
   write_mesh(command.output, mesh, file_options);
 
   std::printf("criterion %s: %d swaps in %d sweeps (%s), %d interior edges\n",

@@ -19,6 +19,7 @@
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/view.h"
 #include "tessera/report/mesh_report.h"
+#include "tessera/report/problem_record.h"
 #include "tessera/report/summary_json.h"
 
 namespace {
@@ -45,9 +46,30 @@ int run_problems() {
   return 0;
 }
 
-int run_check(const std::string& mesh_path, const std::string& problem, bool json) {
-  const tessera::ProblemSetup setup = tessera::resolve_problem(problem);
+// The problem of `tessera check`: --problem, else the one the file's comment records (`tessera
+// mesh` and `improve` write it), said on stdout (on stderr with --json, whose stdout is JSON).
+tessera::ProblemSetup check_problem_setup(const std::string& mesh_path, std::string& problem,
+                                          bool json) {
+  if (!problem.empty()) {
+    return tessera::resolve_problem(problem);
+  }
+  const auto recorded = tessera::find_recorded_problem(tessera::read_mesh_comments(mesh_path));
+  TESSERA_CHECK(recorded.has_value(),
+                "check " << mesh_path << ": give the problem with --problem: the file records "
+                         << "none (`tessera mesh` and `tessera improve` name it in a comment of "
+                            ".ply, .vtk and .vtu files; .obj and .npy files and the files of "
+                            "other tools have no place for it)");
+  tessera::ProblemSetup setup = tessera::resolve_recorded_problem(*recorded, mesh_path);
+  problem = recorded->specification;
+  (json ? std::cerr : std::cout) << (json ? "tessera: " : "") << "problem: " << problem
+                                 << (recorded->box.empty() ? "" : ", box " + recorded->box)
+                                 << " (from the file's comment)\n";
+  return setup;
+}
+
+int run_check(const std::string& mesh_path, std::string problem, bool json) {
   const tessera::TriangleMesh mesh = tessera::read_mesh(mesh_path);
+  const tessera::ProblemSetup setup = check_problem_setup(mesh_path, problem, json);
   const int n = setup.problem->ambient_dimension();
   if (mesh.ambient_dimension() != n) {
     // A view (tessera mesh --view, the default for n > 50) has lost the coordinates that
@@ -116,8 +138,9 @@ int main(int argc, char** argv) {
       ->add_option("mesh", check_mesh,
                    "mesh file (.ply, .obj, .vtk or .vtu) or the states of `mesh --states` (.npy)")
       ->required();
-  check_app->add_option("--problem,-p", check_problem, "catalogue name or problem file")
-      ->required();
+  check_app->add_option("--problem,-p", check_problem,
+                        "catalogue name or problem file (default: the problem the file's comment "
+                        "records, as `tessera mesh` and `improve` write it)");
   check_app->add_flag("--json", check_json, "print the report as JSON");
 
   // PETSc's own options (-ksp_type gmres, -log_view, …) are PETSc's to parse (--backend petsc).

@@ -35,6 +35,7 @@
 #include "tessera/report/level_output.h"
 #include "tessera/report/mesh_analyses.h"
 #include "tessera/report/mesh_report.h"
+#include "tessera/report/problem_record.h"
 #include "tessera/report/stability_output.h"
 #include "tessera/report/summary_json.h"
 
@@ -448,6 +449,16 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
                           {"--level-output", level_file},
                           {"--picture", command.picture},
                           {"--diagram", command.diagram}});
+  // A file of another kind (an earlier run's summary where the patches go) is not replaced.
+  check_replaces_same_kind("-o", command.output, TesseraFileKind::Mesh);
+  check_replaces_same_kind("--summary", command.summary, TesseraFileKind::MeshSummary);
+  check_replaces_same_kind("--patches", command.patches, TesseraFileKind::BezierPatches);
+  check_replaces_same_kind("--folds-output", fold_file, TesseraFileKind::Curves);
+  check_replaces_same_kind("--hopf-output", hopf_file, TesseraFileKind::Curves);
+  check_replaces_same_kind("--hopf-output (its neutral saddles)",
+                           hopf_file.empty() ? "" : neutral_saddle_file_beside(hopf_file),
+                           TesseraFileKind::Curves);
+  check_replaces_same_kind("--level-output", level_file, TesseraFileKind::Curves);
   MeshFileOptions file_options;
   MethodSettings settings = command.settings;
   const bool show_progress = !quiet && isatty(STDERR_FILENO);
@@ -485,6 +496,10 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   // Whatever happened, keep the work: write the mesh and the summary before reporting.
   file_options.binary = !command.ascii;
   file_options.comments = {"tessera mesh " + command.problem + ", method " + method.name};
+  // What `tessera check FILE` takes for the problem when it is not given.
+  for (auto& comment : problem_record_comments(command.problem, command.box)) {
+    file_options.comments.push_back(std::move(comment));
+  }
   // An empty mesh (the start failed) is not written: it would replace a good file with nothing.
   const bool has_mesh = result.mesh.triangle_count() > 0;
   // A split mesh (every rank its rows of the points) is written by every rank together: the

@@ -342,6 +342,28 @@ INSTANTIATE_TEST_SUITE_P(
         UsageCase{"unknown_extension", "mesh sphere -o {stl}", {"unknown extension '.stl'"}}),
     [](const ::testing::TestParamInfo<UsageCase>& info) { return info.param.name; });
 
+// Issue 34: the README's `mesh torus --summary torus.json`, then `mesh torus --method bezier
+// --patches torus.json`, silently replaced the summary with the patches.
+TEST(CliOutputs, PatchesDoNotReplaceTheSummaryOfAnEarlierRun) {
+  const std::string summary = work_path("torus_kinds.json");
+  const std::string mesh = work_path("torus_kinds.ply");
+  ASSERT_EQ(run_cli("mesh torus -t 0.02 -q -o " + quoted(mesh) + " --summary " + quoted(summary))
+                .exit_code,
+            0);
+  const std::string before = file_content(summary);
+  const CommandResult patches = run_cli("mesh torus --method bezier --tolerance 0.05 -q -o " +
+                                        quoted(mesh) + " --patches " + quoted(summary));
+  EXPECT_EQ(patches.exit_code, kUsageError) << patches.output;
+  EXPECT_TRUE(contains(patches.output, "holds the JSON summary of a `tessera mesh` run"))
+      << patches.output;
+  EXPECT_TRUE(contains(patches.output, work_path("torus_kinds.patches.json"))) << patches.output;
+  EXPECT_EQ(file_content(summary), before);
+  // A summary over the summary of an earlier run, as usual.
+  EXPECT_EQ(run_cli("mesh torus -t 0.02 -q -o " + quoted(mesh) + " --summary " + quoted(summary))
+                .exit_code,
+            0);
+}
+
 TEST(CliCheck, MissingMeshFileIsNamed) {
   const std::string missing = work_path("no_such_mesh.ply");
   const CommandResult result = run_cli("check " + quoted(missing) + " --problem sphere");

@@ -55,8 +55,11 @@ TEST(FoldsCli, PleatFoldAndCuspAreInTheSummaryAndTheFileOnTheExactCurve) {
     EXPECT_NEAR(mu, -2 * x * x * x, 1e-8);
   }
   const std::string vtk = read_text(dir + "/pleat.folds.vtk");
-  EXPECT_TRUE(contains(vtk, "DATASET POLYDATA")) << vtk.substr(0, 300);
-  EXPECT_TRUE(contains(vtk, "LINES 1 " + std::to_string(points.size() + 1)));
+  // An unstructured grid (meshio reads no POLYDATA) of segments (meshio reads no poly lines).
+  EXPECT_TRUE(contains(vtk, "DATASET UNSTRUCTURED_GRID")) << vtk.substr(0, 300);
+  EXPECT_TRUE(contains(vtk, "CELLS " + std::to_string(points.size() - 1) + " " +
+                                std::to_string(3 * (points.size() - 1))));
+  EXPECT_TRUE(contains(vtk, "CELL_TYPES " + std::to_string(points.size() - 1)));
   EXPECT_TRUE(contains(vtk, "SCALARS cusp int 1"));
 }
 

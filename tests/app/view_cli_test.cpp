@@ -69,7 +69,7 @@ class CliLargeN : public ::testing::Test {
     result_ =
         run_cli("mesh " + kLargeProblem + " --step 3 --tolerance 0.3 -o " +
                 quoted(folder_ + "/bvp.vtu") + " --states " + quoted(folder_ + "/bvp_states.npy") +
-                " --summary " + quoted(folder_ + "/bvp.json"));
+                " --summary " + quoted(folder_ + "/bvp_states.summary.json"));
   }
   static void TearDownTestSuite() { result_.reset(); }
   // The files are the subject here, not the method: a partial mesh (exit 1) is written the same
@@ -88,13 +88,15 @@ TEST_F(CliLargeN, SaysWhichViewItChoseAndWhatItWrote) {
                        "view           lambda, epsilon, max:u (the default for n = 51 > 50; "
                        "--view all writes all 51 coordinates"))
       << result_->output;
-  EXPECT_TRUE(contains(result_->output,
-                       "wrote          " + folder_ + "/bvp.vtu, " + folder_ + "/bvp_states.npy, " +
-                           folder_ + "/bvp_states.triangles.npy and " + folder_ + "/bvp.json"))
+  EXPECT_TRUE(contains(result_->output, "wrote          " + folder_ + "/bvp.vtu, " + folder_ +
+                                            "/bvp_states.npy, " + folder_ +
+                                            "/bvp_states.triangles.npy and " + folder_ +
+                                            "/bvp_states.summary.json"))
       << result_->output;
   // Each file was renamed into place: no temporary is left beside them.
-  EXPECT_EQ(entries(folder_), (std::vector<std::string>{"bvp.json", "bvp.vtu", "bvp_states.npy",
-                                                        "bvp_states.triangles.npy"}));
+  EXPECT_EQ(entries(folder_),
+            (std::vector<std::string>{"bvp.vtu", "bvp_states.npy", "bvp_states.summary.json",
+                                      "bvp_states.triangles.npy"}));
 }
 
 TEST_F(CliLargeN, MeshFileHoldsTheViewOfTheStatesBitForBit) {
@@ -124,7 +126,8 @@ TEST_F(CliLargeN, MeshFileHoldsTheViewOfTheStatesBitForBit) {
 
 TEST_F(CliLargeN, SummaryRecordsTheViewAndTheStateColumns) {
   expect_files_written();
-  const nlohmann::json json = nlohmann::json::parse(std::ifstream(folder_ + "/bvp.json"));
+  const nlohmann::json json =
+      nlohmann::json::parse(std::ifstream(folder_ + "/bvp_states.summary.json"));
   EXPECT_EQ(json["view"]["specification"], "lambda, epsilon, max:u");
   EXPECT_EQ(json["view"]["origin"], "default for large n");
   EXPECT_EQ(json["view"]["columns"], nlohmann::json({"lambda", "epsilon", "max_u"}));
@@ -161,7 +164,8 @@ TEST_F(CliLargeN, NumpyLoadsTheStatesAndTriangles) {
       "u, lam = X[:, c['u']], X[:, c['lambda']]\n"
       "print(X.shape[1], X.dtype, T.shape[1], T.dtype, u.shape[1], lam.shape[1],\n"
       "      X.shape[0] == s['counts']['vertices'], int(T.max()) < X.shape[0])\n",
-      {folder_ + "/bvp_states.npy", folder_ + "/bvp_states.triangles.npy", folder_ + "/bvp.json"});
+      {folder_ + "/bvp_states.npy", folder_ + "/bvp_states.triangles.npy",
+       folder_ + "/bvp_states.summary.json"});
   EXPECT_EQ(status, 0) << output;
   EXPECT_EQ(output, "51 float64 3 int64 49 1 True True\n");
 }
@@ -220,7 +224,8 @@ TEST_F(CliLargeN, CheckReadsTheStatesWithTheirTriangles) {
   }
   EXPECT_TRUE(contains(check.output, "problem        " + kLargeProblem + " (n = 51)"))
       << check.output;
-  const nlohmann::json json = nlohmann::json::parse(std::ifstream(folder_ + "/bvp.json"));
+  const nlohmann::json json =
+      nlohmann::json::parse(std::ifstream(folder_ + "/bvp_states.summary.json"));
   EXPECT_TRUE(contains(
       check.output,
       "mesh           " + std::to_string(json["counts"]["vertices"].get<int>()) + " vertices"))

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
 
 #include "support/test_support.h"
 #include "tessera/core/error.h"
@@ -49,6 +51,75 @@ TEST(BezierPatchesFile, RefusesAFileOfAnotherFormat) {
     FAIL() << "no exception";
   } catch (const InvalidArgument& error) {
     EXPECT_NE(std::string(error.what()).find("format"), std::string::npos) << error.what();
+  }
+}
+
+// Issue 34: a missing or mistyped field gave nlohmann's own message, e.g. "[json.exception.
+// type_error.302] type must be array, but is null". Every field is checked first, and the
+// message names the file and the field.
+TEST(BezierPatchesFile, MalformedFilesNameTheFileAndTheFieldNotNlohmann) {
+  const std::string dir = testing::temporary_directory("bezier_patches_malformed");
+  const std::string good_path = dir + "/good.json";
+  write_bezier_patches(good_path, one_patch_in_r4());
+  const nlohmann::json good = nlohmann::json::parse(std::ifstream(good_path));
+  struct Case {
+    std::string name;
+    std::function<void(nlohmann::json&)> change;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+      {"no_names", [](auto& j) { j.erase("coordinate_names"); },
+       "the field 'coordinate_names' is missing"},
+      {"names_numbers",
+       [](auto& j) {
+         j["coordinate_names"] = {1, 2, 3, 4};
+       },
+       "'coordinate_names' must be an array of 4 names"},
+      {"format_number", [](auto& j) { j["format"] = 5; }, "the field 'format' is 5"},
+      {"version_text", [](auto& j) { j["version"] = "one"; }, "version \"one\" is not supported"},
+      {"no_dimension", [](auto& j) { j.erase("dimension"); }, "'dimension' is missing"},
+      {"no_vertices", [](auto& j) { j.erase("vertices"); }, "'vertices' is missing"},
+      {"triangle_of_four",
+       [](auto& j) {
+         j["triangles"][0] = {0, 1, 2, 0};
+       },
+       "triangles[0] must be an array of 3 vertex indices"},
+      {"triangle_of_reals",
+       [](auto& j) {
+         j["triangles"][0] = {0, 1, 1.5};
+       },
+       "triangles[0] must be an array of 3 vertex indices"},
+      {"vertex_text", [](auto& j) { j["vertices"][1][2] = "z"; }, "vertices[1][2] is not a number"},
+      {"no_control_points", [](auto& j) { j.erase("control_points"); },
+       "'control_points' is missing"},
+      {"an_array", [](auto& j) { j = nlohmann::json::array(); }, "expected a JSON object"},
+  };
+  for (const auto& bad : cases) {
+    SCOPED_TRACE(bad.name);
+    nlohmann::json changed = good;
+    bad.change(changed);
+    const std::string path = dir + "/" + bad.name + ".json";
+    std::ofstream(path) << changed.dump();
+    try {
+      read_bezier_patches(path);
+      ADD_FAILURE() << "no exception";
+    } catch (const InvalidArgument& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find("Bezier patches '" + path + "'"), std::string::npos) << message;
+      EXPECT_NE(message.find(bad.expected), std::string::npos) << message;
+      EXPECT_EQ(message.find("json.exception"), std::string::npos) << message;
+    }
+  }
+  for (const std::string text : {"{\"format\": ", "[1e999]"}) {
+    const std::string path = dir + "/syntax.json";
+    std::ofstream(path) << text;
+    try {
+      read_bezier_patches(path);
+      ADD_FAILURE() << "no exception for " << text;
+    } catch (const InvalidArgument& error) {
+      EXPECT_EQ(std::string(error.what()).find("json.exception"), std::string::npos)
+          << error.what();
+    }
   }
 }
 

@@ -28,6 +28,37 @@ TEST(MeshFile, DispatchesOnTheExtension) {
   EXPECT_NE(file_text(test_path("d.vtu")).find("UnstructuredGrid"), std::string::npos);
 }
 
+// What `tessera check FILE` reads the recorded problem from (issue 34).
+TEST(MeshFile, CommentsReadBackFromEveryFormatThatHasThem) {
+  const auto mesh = random_mesh(3, 20, 20);
+  const std::vector<std::string> comments = {"tessera improve m.ply --problem sphere",
+                                             "problem: torus:R=2,r=0.5"};
+  for (const std::string name : {"c.ply", "c_ascii.ply", "c.vtk", "c.vtu", "c.obj"}) {
+    SCOPED_TRACE(name);
+    write_mesh(test_path(name), mesh, {.binary = name != "c_ascii.ply", .comments = comments});
+    const auto read = read_mesh_comments(test_path(name));
+    std::vector<std::string> expected = comments;
+    if (name == "c.vtu") {
+      expected[0] = "tessera improve m.ply - -problem sphere";  // XML comments hold no "--"
+    }
+    const std::string marker = "written by tessera: triangle mesh in R^3";
+    if (name == "c.obj") {
+      expected.clear();  // OBJ has no place for comments
+    } else if (name == "c.vtk") {
+      expected.insert(expected.begin(), "tessera triangle mesh in R^3");
+    } else {
+      expected.insert(expected.begin(), marker);
+    }
+    EXPECT_EQ(read, expected);
+  }
+  // A legacy title is cut at 255 characters: its last, cut part is not returned.
+  write_mesh(test_path("long.vtk"), mesh,
+             {.comments = {"problem: sphere", "problem file fnv1a64: " + std::string(300, 'a')}});
+  EXPECT_EQ(read_mesh_comments(test_path("long.vtk")),
+            (std::vector<std::string>{"tessera triangle mesh in R^3", "problem: sphere"}));
+  EXPECT_TRUE(read_mesh_comments(test_path("no_such_file.ply")).empty());
+}
+
 TEST(MeshFile, UnknownExtensionListsTheSupportedOnes) {
   const auto mesh = two_triangles();
   expect_invalid_argument([&] { write_mesh(test_path("m.stl"), mesh); },

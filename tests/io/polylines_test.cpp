@@ -24,7 +24,9 @@ std::vector<Polyline> sample_curves(int k) {
   Polyline single;  // a special point on its own
   single.points = Eigen::MatrixXd::Random(k, 1);
   single.marked = {true};
-  return {open, closed, single};
+  Polyline segment;  // after a point on its own, and before a polyline: joined to neither
+  segment.points = Eigen::MatrixXd::Random(k, 2);
+  return {open, closed, single, segment, open};
 }
 
 TEST(Polylines, EveryFormatReadsBackWhatWasWritten) {
@@ -59,6 +61,104 @@ TEST(Polylines, EveryFormatReadsBackWhatWasWritten) {
           EXPECT_EQ(found, expected) << "polyline " << l << ", point " << i;
         }
       }
+    }
+  }
+}
+
+// Curve files of tessera before issue 34: legacy VTK POLYDATA with LINES, and VTU with one
+// VTK_POLY_LINE per curve (meshio reads neither: tessera now writes unstructured segments).
+TEST(Polylines, ReadsTheVtkFilesOfEarlierVersions) {
+  const std::string dir = testing::temporary_directory("polylines_earlier");
+  const std::string vtk = dir + "/old.vtk";
+  {
+    std::ofstream file(vtk);
+    file << "# vtk DataFile Version 3.0\ntessera polylines; kind: fold\nASCII\n"
+            "DATASET POLYDATA\nPOINTS 4 double\n0 0 0\n1 0 0\n2 0 0\n5 5 0\n"
+            "LINES 2 6\n3 0 1 2\n1 3\nPOINT_DATA 4\n"
+            "SCALARS a double 1\nLOOKUP_TABLE default\n0\n1\n2\n5\n"
+            "SCALARS b double 1\nLOOKUP_TABLE default\n0\n0\n0\n5\n"
+            "SCALARS cusp int 1\nLOOKUP_TABLE default\n0\n1\n0\n1\n";
+  }
+  const std::string vtu = dir + "/old.vtu";
+  {
+    std::ofstream file(vtu);
+    file << "<?xml version=\"1.0\"?>\n<!-- kind: fold -->\n"
+            "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+            "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"4\" NumberOfCells=\"2\">\n"
+            "      <PointData>\n"
+            "        <DataArray type=\"Float64\" Name=\"a\" format=\"ascii\">\n0\n1\n2\n5\n"
+            "        </DataArray>\n"
+            "        <DataArray type=\"Float64\" Name=\"b\" format=\"ascii\">\n0\n0\n0\n5\n"
+            "        </DataArray>\n"
+            "        <DataArray type=\"Int32\" Name=\"cusp\" format=\"ascii\">\n0\n1\n0\n1\n"
+            "        </DataArray>\n      </PointData>\n      <Points>\n"
+            "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
+            "0 0 0\n1 0 0\n2 0 0\n5 5 0\n        </DataArray>\n      </Points>\n      <Cells>\n"
+            "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n"
+            "0 1 2 \n3 \n        </DataArray>\n"
+            "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n3\n4\n"
+            "        </DataArray>\n"
+            "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n4\n4\n"
+            "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
+            "</VTKFile>\n";
+  }
+  for (const std::string& path : {vtk, vtu}) {
+    SCOPED_TRACE(path);
+    const PolylineFile read = read_polylines(path);
+    EXPECT_EQ(read.options.names, (std::vector<std::string>{"a", "b"}));
+    EXPECT_EQ(read.options.kind, "fold");
+    ASSERT_EQ(read.polylines.size(), 2u);
+    ASSERT_EQ(read.polylines[0].points.cols(), 3);
+    EXPECT_EQ(read.polylines[0].points(0, 2), 2.0);
+    EXPECT_EQ(read.polylines[0].marked, (std::vector<bool>{false, true, false}));
+    ASSERT_EQ(read.polylines[1].points.cols(), 1);
+    EXPECT_EQ(read.polylines[1].points(1, 0), 5.0);
+    EXPECT_EQ(read.polylines[1].marked, (std::vector<bool>{true}));
+  }
+}
+
+// Issue 34: "[json.exception.out_of_range.406] number overflow parsing '1e999'" reached the user
+// of `render --curves`; and a summary given for curves (the docs once named both bvp.json) is
+// named for what it is.
+TEST(Polylines, JsonErrorsNameTheFileNotNlohmann) {
+  const std::string dir = testing::temporary_directory("polylines_json_errors");
+  const std::string overflow = dir + "/overflow.json";
+  std::ofstream(overflow) << R"({"polylines": [{"points": [[1e999, 2, 3]]}]})";
+  const std::string summary = dir + "/bvp.json";
+  std::ofstream(summary) << R"({"ambient_dimension": 22, "problem": "bvp:points=20"})";
+  for (const auto& [path, expected] : std::vector<std::pair<std::string, std::string>>{
+           {overflow, "a number is out of the range of a double"},
+           {summary, "found the JSON summary of a `tessera mesh` run"}}) {
+    try {
+      read_polylines(path);
+      ADD_FAILURE() << "accepted " << path;
+    } catch (const InvalidArgument& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find("polylines file '" + path + "'"), std::string::npos) << message;
+      EXPECT_NE(message.find(expected), std::string::npos) << message;
+      EXPECT_EQ(message.find("json.exception"), std::string::npos) << message;
+    }
+  }
+}
+
+// A count in a PLY header that is no number ("tessera: failed: stol") or more than the file can
+// hold (std::bad_alloc) is refused naming the file and the line.
+TEST(Polylines, PlyCountsAreCheckedBeforeUse) {
+  const std::string dir = testing::temporary_directory("polylines_ply_counts");
+  for (const std::string count : {"abc", "99999999999999999999", "999999999999", "-1"}) {
+    const std::string path = dir + "/bad.ply";
+    std::ofstream(path) << "ply\nformat ascii 1.0\ncomment coordinate names: a b c\n"
+                           "element vertex " +
+                               count +
+                               "\nproperty double x\nproperty double y\n"
+                               "property double z\nproperty uchar cusp\nelement edge 0\n"
+                               "property int vertex1\nproperty int vertex2\nend_header\n";
+    try {
+      read_polylines(path);
+      ADD_FAILURE() << "accepted " << count;
+    } catch (const InvalidArgument& error) {
+      EXPECT_NE(std::string(error.what()).find("'element vertex " + count + "'"), std::string::npos)
+          << error.what();
     }
   }
 }

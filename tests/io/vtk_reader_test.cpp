@@ -3,6 +3,8 @@
 // malformed files give an error naming the file and line, never a crash or a huge allocation.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "io/io_test_support.h"
 #include "tessera/io/detail/mesh_parsers.h"
 #include "tessera/io/mesh_io.h"
@@ -96,6 +98,56 @@ struct Malformed {
   std::vector<std::string> message;
 };
 
+// Legacy files of other writers: an unstructured grid with quads, lines and vertices (ParaView),
+// and version 5.1 with OFFSETS and CONNECTIVITY (meshio's default).
+TEST(VtkReader, ReadsForeignUnstructuredGridsOfVersions42And51) {
+  const std::string points = "POINTS 5 float\n0 0 0 1 0 0 1 1 0 0 1 0 0.5 0.5 1.5\n";
+  const auto v42 = test_path("foreign_grid.vtk");
+  write_text(v42, "# vtk DataFile Version 4.2\nby hand\nASCII\nDATASET UNSTRUCTURED_GRID\n" +
+                      points +
+                      "CELLS 4 14\n4 0 1 2 3\n2 0 4\n1 4\n3 0 1 4\nCELL_TYPES 4\n9 3 1 5\n"
+                      "CELL_DATA 4\nSCALARS id int\nLOOKUP_TABLE default\n0 1 2 3\n");
+  const auto mesh = read_vtk(v42);
+  EXPECT_EQ(mesh.point(4)(2), 1.5);
+  EXPECT_EQ(mesh.triangles(), (std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}, {0, 1, 4}}));
+
+  const auto v51 = test_path("foreign_grid51.vtk");
+  write_text(v51,
+             "# vtk DataFile Version 5.1\nwritten by meshio v7.0.0\nASCII\n"
+             "DATASET UNSTRUCTURED_GRID\n" +
+                 points +
+                 "CELLS 3 7\nOFFSETS vtktypeint64\n0\n4\n7\n"
+                 "CONNECTIVITY vtktypeint64\n0\n1\n2\n3\n0\n1\n4\n"
+                 "CELL_TYPES 2\n9\n5\n"
+                 "POINT_DATA 5\nFIELD FieldData 1\nt 1 5 double\n1 2 3 4 5\n");
+  const auto from_51 = read_vtk(v51);
+  EXPECT_EQ(from_51.points(), mesh.points());
+  EXPECT_EQ(from_51.triangles(), mesh.triangles());
+
+  const std::vector<Malformed> cases = {
+      {"0\n4\n7\nCONN", "1\n4\n7\nCONN", {"CELLS offset 0 is 1"}},
+      {"0\n4\n7\nCONN", "0\n4\n6\nCONN", {"offsets end at 6 but the connectivity has 7"}},
+      {"0\n1\n4\nCELL_TYPES", "0\n1\n5\nCELL_TYPES", {"vertex index 5", "5 points"}},
+      {"OFFSETS vtktypeint64\n0\n4\n7\nCONNECTIVITY",
+       "OFFSETS vtktypeint64\n0\n4\n7\nINDICES",
+       {"expected CONNECTIVITY"}},
+  };
+  const std::string good = file_text(v51);
+  const auto path = test_path("bad51.vtk");
+  for (const auto& bad : cases) {
+    SCOPED_TRACE(bad.to);
+    write_text(path, replaced(good, bad.from, bad.to));
+    try {
+      read_vtk(path);
+      ADD_FAILURE() << "no error";
+    } catch (const InvalidArgument& error) {
+      for (const auto& part : bad.message) {
+        EXPECT_NE(std::string(error.what()).find(part), std::string::npos) << error.what();
+      }
+    }
+  }
+}
+
 TEST(VtkReader, MalformedLegacyFilesNameTheFileAndLine) {
   Eigen::MatrixXd points(4, 3);
   points << 0, 1, 0, 0, 0, 1, 0, 0, 0, 7, 8, 9;
@@ -105,14 +157,19 @@ TEST(VtkReader, MalformedLegacyFilesNameTheFileAndLine) {
       {"# vtk DataFile Version 4.2", "# vtk", {"line 1", "not a legacy VTK file"}},
       {"ASCII", "BINARY", {"line 3", "binary legacy VTK is not supported"}},
       {"ASCII", "TEXT", {"line 3", "expected 'ASCII'"}},
-      {"POLYDATA", "STRUCTURED_POINTS", {"line 4", "DATASET POLYDATA"}},
+      {"UNSTRUCTURED_GRID", "STRUCTURED_POINTS", {"line 4", "DATASET UNSTRUCTURED_GRID"}},
       {"POINTS 3", "POINTS 300000000", {"line 5", "more than the rest of the file can hold"}},
       {"POINTS 3", "POINTS -3", {"line 5", "the number of points"}},
       {"POINTS 3 double", "POINTS 3 complex", {"line 5", "unknown data type"}},
       {"\n0 0 0\n", "\n0 zero 0\n", {"line 6", "expected a number for POINTS", "'zero'"}},
       {"3 0 1 2", "3 0 1 5", {"line 10", "vertex index 5", "3 points"}},
-      {"3 0 1 2", "2 0 1 2", {"line 10", "at least 3"}},
-      {"POLYGONS 1 4", "POLYGONS 1 5", {"list size of 5"}},
+      {"CELLS 1 4\n3 0 1 2", "CELLS 1 3\n2 0 1", {"line 12", "type 5 and 2 vertices"}},
+      {"CELLS 1 4", "CELLS 1 5", {"list size of 5"}},
+      {"CELL_TYPES 1\n5", "CELL_TYPES 1\n10", {"line 12", "cell 0 has type 10", "skips"}},
+      {"CELL_TYPES 1", "CELL_TYPES 2", {"line 11", "CELL_TYPES 2 does not match the 1 CELLS"}},
+      {"CELL_TYPES 1\n5 \n", "", {"CELLS without CELL_TYPES"}},
+      {"CELLS 1 4\n3 0 1 2\n", "", {"CELL_TYPES before CELLS"}},
+      {"CELLS 1 4", "POLYGONS 1 4", {"line 9", "unsupported section 'POLYGONS'", "CELL_TYPES"}},
       {"POINT_DATA 3", "POINT_DATA 4", {"POINT_DATA 4 does not match the 3 points"}},
       {"SCALARS x0", "TENSORS x0", {"unsupported attribute 'TENSORS'"}},
       {"POINTS", "PIXELS", {"line 5", "unsupported section 'PIXELS'"}},
@@ -183,11 +240,34 @@ TEST(VtkReader, EveryTruncationAndByteChangeIsReadOrRefusedCleanly) {
   Eigen::MatrixXd points(4, 4);
   points << 0, 1, 0, 0.5, 0, 0, 1, 0.5, 0, 0, 0, 1, 7, 8, 9, 1e-300;
   const TriangleMesh mesh(points, {{0, 1, 2}, {0, 1, 3}});
-  for (const std::string name : {"fuzz.vtk", "fuzz.vtu", "fuzz_ascii.ply", "fuzz.ply"}) {
+  // Besides what write_mesh writes: a legacy file of version 5.1 (meshio's) and one of POLYDATA
+  // (tessera's before issue 34).
+  const std::string points_text = "POINTS 4 double\n0 0 0 1 0 0 0 1 0 0.5 0.5 1\n";
+  const std::map<std::string, std::string> others = {
+      {"fuzz51.vtk", "# vtk DataFile Version 5.1\nmeshio\nASCII\nDATASET UNSTRUCTURED_GRID\n" +
+                         points_text +
+                         "CELLS 3 6\nOFFSETS vtktypeint64\n0\n3\n6\nCONNECTIVITY "
+                         "vtktypeint64\n0\n1\n2\n0\n1\n3\nCELL_TYPES 2\n5\n5\n"
+                         "POINT_DATA 4\nFIELD FieldData 1\nr 1 4 double\n1 2 3 4\n"},
+      {"fuzz_polydata.vtk",
+       "# vtk DataFile Version 4.2\ntessera triangle mesh in R^3\nASCII\n"
+       "DATASET POLYDATA\n" +
+           points_text +
+           "POLYGONS 2 8\n3 0 1 2\n3 0 1 3\nPOINT_DATA 4\n"
+           "SCALARS x double 1\nLOOKUP_TABLE default\n0 1 0 0.5\n"
+           "SCALARS y double 1\nLOOKUP_TABLE default\n0 0 1 0.5\n"
+           "SCALARS z double 1\nLOOKUP_TABLE default\n0 0 0 1\n"}};
+  for (const std::string name :
+       {"fuzz.vtk", "fuzz.vtu", "fuzz_ascii.ply", "fuzz.ply", "fuzz51.vtk", "fuzz_polydata.vtk"}) {
     const auto written_path = test_path(name);
-    write_mesh(written_path, mesh,
-               {.binary = name == "fuzz.ply", .vertex_scalars = {{"r", {1, 2, 3, 4}}}});
+    if (others.count(name) != 0) {
+      write_text(written_path, others.at(name));
+    } else {
+      write_mesh(written_path, mesh,
+                 {.binary = name == "fuzz.ply", .vertex_scalars = {{"r", {1, 2, 3, 4}}}});
+    }
     const auto good = file_text(written_path);
+    ASSERT_NO_THROW(read_mesh(written_path)) << name;
     const auto path = test_path("mutated_" + name);
     int refused = 0;
     int read_count = 0;

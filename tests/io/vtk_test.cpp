@@ -31,7 +31,7 @@ TEST(Vtk, LegacyFileHasPointsPolygonsAndOneArrayPerCoordinateAndScalar) {
   std::getline(in, line);
   EXPECT_EQ(line, "ASCII");
   std::getline(in, line);
-  EXPECT_EQ(line, "DATASET POLYDATA");
+  EXPECT_EQ(line, "DATASET UNSTRUCTURED_GRID");  // meshio reads no POLYDATA
   std::string keyword, type;
   int count = 0;
   in >> keyword >> count >> type;
@@ -42,7 +42,7 @@ TEST(Vtk, LegacyFileHasPointsPolygonsAndOneArrayPerCoordinateAndScalar) {
   EXPECT_EQ(xyz[3 * 7 + 2], mesh.point(7)(2));
   int size = 0;
   in >> keyword >> count >> size;
-  EXPECT_EQ(keyword, "POLYGONS");
+  EXPECT_EQ(keyword, "CELLS");
   EXPECT_EQ(count, 17);
   EXPECT_EQ(size, 4 * 17);
   for (int t = 0; t < 17; ++t) {
@@ -51,6 +51,14 @@ TEST(Vtk, LegacyFileHasPointsPolygonsAndOneArrayPerCoordinateAndScalar) {
     in >> corners >> triangle[0] >> triangle[1] >> triangle[2];
     EXPECT_EQ(corners, 3);
     EXPECT_EQ(triangle, mesh.triangle(t));
+  }
+  in >> keyword >> count;
+  EXPECT_EQ(keyword, "CELL_TYPES");
+  EXPECT_EQ(count, 17);
+  for (int t = 0; t < 17; ++t) {
+    int type = 0;
+    in >> type;
+    EXPECT_EQ(type, 5) << "cell " << t << ": VTK_TRIANGLE";
   }
   in >> keyword >> count;
   EXPECT_EQ(keyword, "POINT_DATA");

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/io/bezier_patches.h"
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -79,48 +82,84 @@ void write_bezier_patches(const std::string& path, const BezierSurfaceFile& surf
 BezierSurfaceFile read_bezier_patches(const std::string& path) {
   std::ifstream in(path);
   TESSERA_CHECK(in.good(), "cannot open '" << path << "'");
+  const std::string where = "Bezier patches '" + path + "'";
   nlohmann::json file;
   try {
     in >> file;
-  } catch (const nlohmann::json::exception& error) {
-    TESSERA_CHECK(false, "'" << path << "' is not JSON: " << error.what());
+  } catch (const nlohmann::json::parse_error& error) {
+    // error.what() is nlohmann's wording ("[json.exception.parse_error.101] ..."): the byte is
+    // what a user needs.
+    TESSERA_CHECK(false, where << ": not valid JSON (the syntax breaks at byte " << error.byte
+                               << "); expected the file of `tessera mesh --patches`");
+  } catch (const nlohmann::json::exception&) {
+    TESSERA_CHECK(false, where << ": a number is out of the range of a double");
   }
-  TESSERA_CHECK(file.value("format", "") == kFormat,
-                "'" << path << "' is not a " << kFormat << " file (field 'format')");
-  TESSERA_CHECK(file.value("version", 0) == kVersion,
-                "'" << path << "': version " << file.value("version", 0) << " is not supported");
-  const int n = file.value("dimension", 0);
-  TESSERA_CHECK(n >= 3, "'" << path << "': dimension " << n << " must be >= 3");
-  TESSERA_CHECK(file["multi_indices"] == nlohmann::json(CubicBezierPatch::multi_indices()),
-                "'" << path << "': field 'multi_indices' is not tessera's order");
+  TESSERA_CHECK(file.is_object(),
+                where << ": expected a JSON object (the file of `tessera mesh --patches`), found "
+                      << file.type_name());
+  // Every field is checked before it is converted: nlohmann's own messages
+  // ("[json.exception.type_error.302] type must be array, but is null") never reach a user.
+  const auto field = [&](const char* key) -> const nlohmann::json& {
+    TESSERA_CHECK(file.contains(key), where << ": the field '" << key
+                                            << "' is missing; is it the file of `tessera mesh "
+                                               "--patches`?");
+    return file.at(key);
+  };
+  TESSERA_CHECK(field("format").is_string() && field("format").get<std::string>() == kFormat,
+                where << ": the field 'format' is " << field("format").dump() << ", not \""
+                      << kFormat << "\"");
+  TESSERA_CHECK(field("version").is_number_integer() && field("version").get<int>() == kVersion,
+                where << ": version " << field("version").dump() << " is not supported (this "
+                      << "tessera reads version " << kVersion << ")");
+  TESSERA_CHECK(field("dimension").is_number_integer() && field("dimension").get<int>() >= 3 &&
+                    field("dimension").get<int>() <= (1 << 24),
+                where << ": the field 'dimension' is " << field("dimension").dump()
+                      << "; expected an integer n >= 3");
+  const int n = field("dimension").get<int>();
+  TESSERA_CHECK(field("multi_indices") == nlohmann::json(CubicBezierPatch::multi_indices()),
+                where << ": the field 'multi_indices' is not tessera's order");
+  const auto& names = field("coordinate_names");
+  TESSERA_CHECK(
+      names.is_array() && static_cast<int>(names.size()) == n &&
+          std::all_of(names.begin(), names.end(),
+                      [](const nlohmann::json& name) { return name.is_string(); }),
+      where << ": the field 'coordinate_names' must be an array of " << n << " names (strings)");
   BezierSurfaceFile surface;
-  surface.coordinate_names = file["coordinate_names"].get<std::vector<std::string>>();
+  surface.coordinate_names = names.get<std::vector<std::string>>();
   surface.mesh = TriangleMesh(n);
-  const auto& vertices = file["vertices"];
-  TESSERA_CHECK(vertices.is_array(), "'" << path << "': field 'vertices' must be an array");
+  const auto& vertices = field("vertices");
+  TESSERA_CHECK(vertices.is_array(), where << ": the field 'vertices' must be an array");
   for (std::size_t v = 0; v < vertices.size(); ++v) {
     surface.mesh.add_vertex(
-        vector_from(vertices[v], n, "'" + path + "': vertices[" + std::to_string(v) + "]"));
+        vector_from(vertices[v], n, where + ": vertices[" + std::to_string(v) + "]"));
   }
-  const auto& triangles = file["triangles"];
-  const auto& control_points = file["control_points"];
+  const auto& triangles = field("triangles");
+  const auto& control_points = field("control_points");
   TESSERA_CHECK(triangles.is_array() && control_points.is_array() &&
                     triangles.size() == control_points.size(),
-                "'" << path << "': 'triangles' and 'control_points' must be arrays of equal size");
+                where << ": 'triangles' and 'control_points' must be arrays of equal size");
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const auto tri = triangles[t].get<std::array<int, 3>>();
-    for (int v : tri) {
+    const auto& triangle = triangles[t];
+    TESSERA_CHECK(triangle.is_array() && triangle.size() == 3 &&
+                      std::all_of(triangle.begin(), triangle.end(),
+                                  [](const nlohmann::json& v) { return v.is_number_integer(); }),
+                  where << ": triangles[" << t << "] must be an array of 3 vertex indices, found "
+                        << triangle.dump());
+    std::array<int, 3> tri{};
+    for (int i = 0; i < 3; ++i) {
+      const auto v = triangle[static_cast<std::size_t>(i)].get<std::int64_t>();
       TESSERA_CHECK(v >= 0 && v < surface.mesh.vertex_count(),
-                    "'" << path << "': triangles[" << t << "] has vertex " << v << " out of range");
+                    where << ": triangles[" << t << "] has vertex " << v << " out of range");
+      tri[static_cast<std::size_t>(i)] = static_cast<int>(v);
     }
     surface.mesh.add_triangle(tri[0], tri[1], tri[2]);
     TESSERA_CHECK(control_points[t].is_array() && control_points[t].size() == 10,
-                  "'" << path << "': control_points[" << t << "] must hold 10 points");
+                  where << ": control_points[" << t << "] must hold 10 points");
     Eigen::MatrixXd b(n, 10);
     for (int c = 0; c < 10; ++c) {
       b.col(c) = vector_from(
-          control_points[t][c], n,
-          "'" + path + "': control_points[" + std::to_string(t) + "][" + std::to_string(c) + "]");
+          control_points[t][static_cast<std::size_t>(c)], n,
+          where + ": control_points[" + std::to_string(t) + "][" + std::to_string(c) + "]");
     }
     surface.patches.emplace_back(std::move(b));
   }

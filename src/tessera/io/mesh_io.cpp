@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/io/mesh_io.h"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -108,6 +109,67 @@ std::vector<std::string> vtu_coordinate_names(std::istream& in) {
   return names;
 }
 
+std::string without_spaces_around(const std::string& text) {
+  const auto begin = text.find_first_not_of(" \t\r\n");
+  if (begin == std::string::npos) {
+    return "";
+  }
+  return text.substr(begin, text.find_last_not_of(" \t\r\n") - begin + 1);
+}
+
+std::vector<std::string> ply_comments(std::istream& in) {
+  std::vector<std::string> comments;
+  for (std::string line; std::getline(in, line) && line.size() < kMaxHeaderLine;) {
+    if (line.rfind("end_header", 0) == 0) {
+      break;
+    }
+    if (line.rfind("comment ", 0) == 0) {
+      comments.push_back(without_spaces_around(line.substr(8)));
+    }
+  }
+  return comments;
+}
+
+std::vector<std::string> vtk_comments(std::istream& in) {
+  std::string line;
+  std::getline(in, line);  // "# vtk DataFile Version …"
+  std::string title;
+  std::getline(in, title);
+  std::vector<std::string> comments;
+  for (std::size_t begin = 0; begin <= title.size();) {
+    const std::size_t end = std::min(title.find("; ", begin), title.size());
+    comments.push_back(without_spaces_around(title.substr(begin, end - begin)));
+    begin = end + 2;
+  }
+  // write_vtk cuts a title at 255 characters (the format's limit): the last part may be cut.
+  constexpr std::size_t kMaxTitleLength = 255;
+  if (title.size() >= kMaxTitleLength && comments.size() > 1) {
+    comments.pop_back();
+  }
+  return comments;
+}
+
+std::vector<std::string> vtu_comments(std::istream& in) {
+  // The comments come before <VTKFile>, within the first lines: no need to read a large file.
+  std::string head;
+  for (std::string line; std::getline(in, line) && line.size() < kMaxHeaderLine;) {
+    head += line + "\n";
+    if (line.find("<VTKFile") != std::string::npos) {
+      break;
+    }
+  }
+  const std::size_t stop = head.find("<VTKFile");
+  std::vector<std::string> comments;
+  for (std::size_t at = head.find("<!--"); at < stop; at = head.find("<!--", at + 4)) {
+    const std::size_t end = head.find("-->", at + 4);
+    if (end == std::string::npos) {
+      break;
+    }
+    comments.push_back(without_spaces_around(head.substr(at + 4, end - at - 4)));
+  }
+  return comments;
+}
+
 }  // namespace
 
 void write_mesh(const std::string& path, const TriangleMesh& mesh, const MeshFileOptions& options) {
@@ -194,6 +256,24 @@ std::vector<std::string> read_coordinate_names(const std::string& path, int dime
   const bool is_usable = static_cast<int>(names.size()) == dimension &&
                          distinct.size() == names.size() && !distinct.contains("");
   return is_usable ? names : default_coordinate_names(dimension);
+}
+
+std::vector<std::string> read_mesh_comments(const std::string& path) {
+  const std::string extension = lowercase_extension(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    return {};
+  }
+  if (extension == ".ply") {
+    return ply_comments(in);
+  }
+  if (extension == ".vtk") {
+    return vtk_comments(in);
+  }
+  if (extension == ".vtu") {
+    return vtu_comments(in);
+  }
+  return {};
 }
 
 }  // namespace tessera

@@ -68,4 +68,10 @@ TriangleMesh read_mesh(const std::string& path, std::vector<VertexScalars>& vert
 /// dimension ≥ 1: the names are labels, read_mesh has checked the file.
 std::vector<std::string> read_coordinate_names(const std::string& path, int dimension);
 
+/// The comments tessera wrote into the mesh file `path`, in order: .ply the `comment` lines of
+/// the header (without "comment "), .vtk the parts of the title separated by "; ", .vtu the XML
+/// comments before <VTKFile> (where "--" was written as "- -"). .obj and .npy carry none.
+/// Empty for a file that cannot be read (read_mesh says why). Never throws.
+std::vector<std::string> read_mesh_comments(const std::string& path);
+
 }  // namespace tessera

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "tessera/core/error.h"
 #include "tessera/io/detail/file_buffer.h"
 #include "tessera/io/file_names.h"
+#include "tessera/io/output_checks.h"
 
 namespace tessera {
 
@@ -34,14 +36,23 @@ PolylineFile read_json(const std::string& path, const std::string& text) {
     // what a user needs to find the fault.
     refuse(path, "not valid JSON (the syntax breaks at byte " + std::to_string(error.byte) +
                      "); expected the JSON polylines of `tessera mesh --folds-output`");
+  } catch (const nlohmann::json::exception&) {
+    // out_of_range.406, "number overflow parsing '1e999'": not a double.
+    refuse(path,
+           "a number is out of the range of a double (such as 1e999); the coordinates "
+           "must be finite");
   }
   PolylineFile file;
   if (!document.is_object() || !document.contains("polylines")) {
+    // Another file of tessera (a summary, where the docs once named the curves the same) is
+    // named for what it is.
+    const TesseraFileKind kind = tessera_file_kind(path);
     refuse(path,
            "expected an object with \"polylines\" (the JSON of `tessera mesh "
-           "--folds-output`), found " +
-               (document.is_object() ? std::string("an object without it")
-                                     : "a JSON " + type_of(document)));
+           "--folds-output`, --hopf-output or --level-output), found " +
+               (kind != TesseraFileKind::None ? describe(kind)
+                : document.is_object()        ? std::string("an object without it")
+                                              : "a JSON " + type_of(document)));
   }
   auto text_field = [&](const char* key, std::string& out) {
     if (!document.contains(key)) {
@@ -240,15 +251,61 @@ std::vector<Polyline> assemble_polylines(const Eigen::MatrixXd& points, const st
     }
     polylines.push_back(std::move(line));
   }
+  std::vector<Eigen::Index> firsts;
+  for (const auto& indices : lines) {
+    firsts.push_back(indices.empty() ? points.cols()
+                                     : *std::min_element(indices.begin(), indices.end()));
+  }
   for (Eigen::Index j = 0; j < points.cols(); ++j) {
     if (!used[static_cast<std::size_t>(j)]) {
       Polyline single;
       single.points = points.col(j);
       single.marked = {marks[static_cast<std::size_t>(j)] != 0};
       polylines.push_back(std::move(single));
+      firsts.push_back(j);
     }
   }
-  return polylines;
+  // In file order: write_polylines numbers the points polyline by polyline, so a polyline's
+  // smallest index says where it was (a point on its own among them too, as PLY has no cell for
+  // it).
+  std::vector<std::size_t> order(polylines.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    order[i] = i;
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return firsts[a] < firsts[b]; });
+  std::vector<Polyline> sorted;
+  sorted.reserve(polylines.size());
+  for (const std::size_t i : order) {
+    sorted.push_back(std::move(polylines[i]));
+  }
+  return sorted;
+}
+
+// VTK_LINE, the segments of the curve files (vtkCellType.h).
+constexpr int kVtkLine = 3;
+
+// The point lists of polylines from VTK cells in file order: consecutive segments (VTK_LINE) that
+// share a point are one polyline, as write_polylines writes them (one segment per pair of
+// consecutive points; a closed polyline ends with the segment back to its first point, after
+// which nothing more joins it); any other cell (a vertex, a VTK_POLY_LINE of earlier files) is a
+// polyline of its own.
+std::vector<std::vector<int>> join_segments(const std::vector<int>& types,
+                                            const std::vector<std::vector<int>>& cells) {
+  std::vector<std::vector<int>> lines;
+  bool can_extend = false;  // the last polyline is made of segments and still open
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const auto& cell = cells[c];
+    const bool is_segment = types[c] == kVtkLine && cell.size() == 2;
+    if (is_segment && can_extend && lines.back().back() == cell[0]) {
+      lines.back().push_back(cell[1]);
+    } else {
+      lines.push_back(cell);
+    }
+    can_extend =
+        is_segment && !(lines.back().size() > 2 && lines.back().front() == lines.back().back());
+  }
+  return lines;
 }
 
 // The words of `text` from `at`, whitespace separated, as write_vtk/write_ply write them.
@@ -308,27 +365,40 @@ std::string kind_from(const std::string& text) {
   return text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
 }
 
-// Legacy VTK as write_vtk writes it: POINTS, LINES, then one SCALARS array per column and the
-// marks (the int array).
+// Legacy VTK as write_vtk writes it: POINTS, CELLS and CELL_TYPES (segments and vertices) of an
+// UNSTRUCTURED_GRID, or LINES of the POLYDATA of earlier versions, then one SCALARS array per
+// column and the marks (the int array).
 PolylineFile read_vtk_polylines(const std::string& path, const std::string& text) {
   PolylineFile file;
   Words words(path, text);
-  words.line();  // "# vtk DataFile Version 3.0"
+  words.line();  // "# vtk DataFile Version 4.2"
   file.options.kind = kind_from(words.line());
   words.expect("ASCII", "the format");
   words.expect("DATASET", "the data set");
-  words.expect("POLYDATA", "the data set");
+  const std::string dataset = words.next("the data set");
+  if (dataset != "UNSTRUCTURED_GRID" && dataset != "POLYDATA") {
+    refuse(path,
+           "expected 'DATASET UNSTRUCTURED_GRID' (or 'POLYDATA', as tessera wrote "
+           "curves before), found '" +
+               dataset + "'");
+  }
+  const bool is_unstructured = dataset == "UNSTRUCTURED_GRID";
   words.expect("POINTS", "the points");
   const long count = words.integer("the point count");
   words.next("the point type");
   for (long i = 0; i < 3 * count; ++i) {
     words.number("a point");
   }
-  words.expect("LINES", "the lines");
-  const long line_count = words.integer("the line count");
+  words.expect(is_unstructured ? "CELLS" : "LINES", "the lines");
+  const long cell_count = words.integer("the line count");
   words.integer("the lines' size");
-  std::vector<std::vector<int>> lines(static_cast<std::size_t>(line_count));
-  for (auto& indices : lines) {
+  // Checked against the rest of the text before anything of that size is allocated: every cell
+  // takes at least two characters.
+  if (static_cast<double>(cell_count) > static_cast<double>(text.size()) / 2) {
+    refuse(path, "claims " + std::to_string(cell_count) + " cells, more than the file can hold");
+  }
+  std::vector<std::vector<int>> cells(static_cast<std::size_t>(cell_count));
+  for (auto& indices : cells) {
     const long size = words.integer("a line's length");
     for (long i = 0; i < size; ++i) {
       const long index = words.integer("a point index");
@@ -337,6 +407,18 @@ PolylineFile read_vtk_polylines(const std::string& path, const std::string& text
       }
       indices.push_back(static_cast<int>(index));
     }
+  }
+  std::vector<std::vector<int>> lines = cells;
+  if (is_unstructured) {
+    words.expect("CELL_TYPES", "the cell types");
+    if (words.integer("the cell type count") != cell_count) {
+      refuse(path, "CELL_TYPES does not match the " + std::to_string(cell_count) + " CELLS");
+    }
+    std::vector<int> types;
+    for (long c = 0; c < cell_count; ++c) {
+      types.push_back(static_cast<int>(words.integer("a cell type")));
+    }
+    lines = join_segments(types, cells);
   }
   words.expect("POINT_DATA", "the point data");
   words.integer("the point data's count");
@@ -436,6 +518,7 @@ PolylineFile read_vtu_polylines(const std::string& path, const std::string& text
   const auto arrays = vtu_arrays(path, text, types);
   std::vector<double> connectivity;
   std::vector<double> offsets;
+  std::vector<double> cell_types;
   std::vector<const std::vector<double>*> columns;
   std::vector<int> marks;
   std::size_t point_arrays = 0;
@@ -459,6 +542,8 @@ PolylineFile read_vtu_polylines(const std::string& path, const std::string& text
       connectivity = values;
     } else if (name == "offsets") {
       offsets = values;
+    } else if (name == "types") {
+      cell_types = values;
     }
   }
   const long count = columns.empty() ? 0 : static_cast<long>(columns.front()->size());
@@ -472,7 +557,7 @@ PolylineFile read_vtu_polylines(const std::string& path, const std::string& text
       points(static_cast<Eigen::Index>(c), i) = (*columns[c])[static_cast<std::size_t>(i)];
     }
   }
-  std::vector<std::vector<int>> lines;
+  std::vector<std::vector<int>> cells;
   std::size_t begin = 0;
   for (const double end : offsets) {
     std::vector<int> indices;
@@ -484,10 +569,33 @@ PolylineFile read_vtu_polylines(const std::string& path, const std::string& text
       indices.push_back(static_cast<int>(index));
     }
     begin = static_cast<std::size_t>(end);
-    lines.push_back(std::move(indices));
+    cells.push_back(std::move(indices));
   }
-  file.polylines = assemble_polylines(points, marks, lines);
+  // Segments and vertices (this version), or one VTK_POLY_LINE per polyline (earlier ones).
+  std::vector<int> cell_type(cells.size(), 0);
+  for (std::size_t c = 0; c < cells.size() && c < cell_types.size(); ++c) {
+    cell_type[c] = static_cast<int>(cell_types[c]);
+  }
+  file.polylines = assemble_polylines(points, marks, join_segments(cell_type, cells));
   return file;
+}
+
+// The count of an `element` line from `at` on: a non-negative integer that a file of `size`
+// bytes can hold (every item takes at least two characters), checked before anything of that
+// size is allocated.
+long header_count(const std::string& path, const std::string& line, std::size_t at,
+                  std::size_t size) {
+  const std::string text = line.substr(at);
+  long value = -1;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || value < 0) {
+    refuse(path, "'" + line + "': the count is not a non-negative integer");
+  }
+  if (static_cast<double>(value) > static_cast<double>(size) / 2) {
+    refuse(path,
+           "'" + line + "': more than the file of " + std::to_string(size) + " bytes can hold");
+  }
+  return value;
 }
 
 // ASCII PLY as write_ply writes it: the columns' names in a comment, vertices (x, y, z, the
@@ -509,10 +617,10 @@ PolylineFile read_ply_polylines(const std::string& path, const std::string& text
         file.options.names.push_back(name);
       }
     } else if (line.rfind("element vertex ", 0) == 0) {
-      count = std::stol(line.substr(15));
+      count = header_count(path, line, 15, text.size());
       in_vertex = true;
     } else if (line.rfind("element edge ", 0) == 0) {
-      edge_count = std::stol(line.substr(13));
+      edge_count = header_count(path, line, 13, text.size());
       in_vertex = false;
     } else if (line.rfind("property ", 0) == 0 && in_vertex) {
       ++property_count;

@@ -49,6 +49,29 @@ std::vector<std::vector<int>> line_indices(const std::vector<Polyline>& polyline
   return lines;
 }
 
+// The VTK cells of the polylines: one line segment (VTK_LINE, 3) per pair of consecutive points,
+// in order, and a vertex (VTK_VERTEX, 1) for a polyline of one point. Segments rather than one
+// VTK_POLY_LINE per polyline: meshio reads no poly lines. read_polylines joins the segments again.
+struct VtkCell {
+  int type;
+  std::vector<int> points;
+};
+
+std::vector<VtkCell> vtk_cells(const std::vector<Polyline>& polylines) {
+  constexpr int kVtkVertex = 1;
+  constexpr int kVtkLine = 3;
+  std::vector<VtkCell> cells;
+  for (const auto& indices : line_indices(polylines)) {
+    if (indices.size() == 1) {
+      cells.push_back({kVtkVertex, indices});
+    }
+    for (std::size_t i = 1; i < indices.size(); ++i) {
+      cells.push_back({kVtkLine, {indices[i - 1], indices[i]}});
+    }
+  }
+  return cells;
+}
+
 // Calls f(line, i) for every point in file order.
 template <class Function>
 void for_each_point(const std::vector<Polyline>& polylines, Function f) {
@@ -88,9 +111,10 @@ void write_vtk(const std::string& path, const std::vector<Polyline>& polylines,
     title += "; " + comment;
   }
   title = title.substr(0, 255);  // the legacy format's limit
-  file.text("# vtk DataFile Version 3.0\n");
+  file.text("# vtk DataFile Version 4.2\n");
   file.text(title);
-  file.text("\nASCII\nDATASET POLYDATA\nPOINTS ");
+  // UNSTRUCTURED_GRID: the only legacy dataset meshio reads (tessera wrote POLYDATA before).
+  file.text("\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS ");
   const int total = point_total(polylines);
   file.integer(total);
   file.text(" double\n");
@@ -98,22 +122,29 @@ void write_vtk(const std::string& path, const std::vector<Polyline>& polylines,
     write_xyz(file, line, i, ' ');
     file.character('\n');
   });
-  const auto lines = line_indices(polylines);
-  long size = 0;
-  for (const auto& indices : lines) {
-    size += static_cast<long>(indices.size()) + 1;
+  const auto cells = vtk_cells(polylines);
+  std::int64_t size = 0;
+  for (const auto& cell : cells) {
+    size += static_cast<std::int64_t>(cell.points.size()) + 1;
   }
-  file.text("LINES ");
-  file.integer(static_cast<std::int64_t>(lines.size()));
+  file.text("CELLS ");
+  file.integer(static_cast<std::int64_t>(cells.size()));
   file.character(' ');
   file.integer(size);
   file.character('\n');
-  for (const auto& indices : lines) {
-    file.integer(static_cast<std::int64_t>(indices.size()));
-    for (const int index : indices) {
+  for (const auto& cell : cells) {
+    file.integer(static_cast<std::int64_t>(cell.points.size()));
+    for (const int index : cell.points) {
       file.character(' ');
       file.integer(index);
     }
+    file.character('\n');
+  }
+  file.text("CELL_TYPES ");
+  file.integer(static_cast<std::int64_t>(cells.size()));
+  file.character('\n');
+  for (const auto& cell : cells) {
+    file.integer(cell.type);
     file.character('\n');
   }
   file.text("POINT_DATA ");
@@ -133,9 +164,8 @@ void write_vtk(const std::string& path, const std::vector<Polyline>& polylines,
 
 void write_vtu(const std::string& path, const std::vector<Polyline>& polylines,
                const PolylineFileOptions& options) {
-  constexpr int kVtkPolyLine = 4;
   io_detail::OutputFile file("VTU", path);
-  const auto lines = line_indices(polylines);
+  const auto cells = vtk_cells(polylines);
   file.text("<?xml version=\"1.0\"?>\n");
   if (!options.kind.empty()) {
     file.text("<!-- kind: " + options.kind + " -->\n");
@@ -147,7 +177,7 @@ void write_vtu(const std::string& path, const std::vector<Polyline>& polylines,
             "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"");
   file.integer(point_total(polylines));
   file.text("\" NumberOfCells=\"");
-  file.integer(static_cast<std::int64_t>(lines.size()));
+  file.integer(static_cast<std::int64_t>(cells.size()));
   file.text("\">\n      <PointData>\n");
   for (std::size_t c = 0; c < options.names.size(); ++c) {
     file.text("        <DataArray type=\"Float64\" Name=\"" + xml_escaped(options.names[c]) +
@@ -169,8 +199,8 @@ void write_vtu(const std::string& path, const std::vector<Polyline>& polylines,
   });
   file.text("        </DataArray>\n      </Points>\n      <Cells>\n"
             "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-  for (const auto& indices : lines) {
-    for (const int index : indices) {
+  for (const auto& cell : cells) {
+    for (const int index : cell.points) {
       file.integer(index);
       file.character(' ');
     }
@@ -179,15 +209,15 @@ void write_vtu(const std::string& path, const std::vector<Polyline>& polylines,
   file.text("        </DataArray>\n"
             "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
   std::int64_t offset = 0;
-  for (const auto& indices : lines) {
-    offset += static_cast<std::int64_t>(indices.size());
+  for (const auto& cell : cells) {
+    offset += static_cast<std::int64_t>(cell.points.size());
     file.integer(offset);
     file.character('\n');
   }
   file.text("        </DataArray>\n"
             "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-  for (std::size_t l = 0; l < lines.size(); ++l) {
-    file.integer(kVtkPolyLine);
+  for (const auto& cell : cells) {
+    file.integer(cell.type);
     file.character('\n');
   }
   file.text("        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"

@@ -31,9 +31,12 @@ struct PolylineFileOptions {
 };
 
 /// Writes `polylines` to `path` by its extension (case-insensitive), replacing it atomically:
-///   .vtk  legacy ASCII POLYDATA: POINTS, LINES (a closed polyline repeats its first index), one
-///         POINT_DATA array per coordinate and the marks;
-///   .vtu  UnstructuredGrid with one VTK_POLY_LINE cell per polyline, the same arrays;
+///   .vtk  legacy ASCII UNSTRUCTURED_GRID: POINTS, CELLS of type VTK_LINE (3), one segment per
+///         pair of consecutive points (a closed polyline has one back to its first point), and
+///         VTK_VERTEX (1) for a polyline of one point; one POINT_DATA array per coordinate and
+///         the marks;
+///   .vtu  UnstructuredGrid with the same cells and arrays (segments rather than VTK_POLY_LINE,
+///         which meshio does not read);
 ///   .ply  ASCII: element vertex (x, y, z, the further coordinates, the marks) and element edge
 ///         (vertex1, vertex2), one edge per segment;
 ///   .json {"columns": […], "marker": m, "kind": k, "polylines": [{"closed": b, "points": [[…], …],
@@ -61,8 +64,10 @@ struct PolylineFile {
 
 /// Reads a polylines file written by write_polylines (or by hand, docs/pictures.md) by its
 /// extension: .json, .csv, and the .vtk, .vtu and ASCII .ply files write_polylines writes (their
-/// columns from the arrays' names, or the PLY's `comment coordinate names:` line; a point in no
-/// line, such as a fold–Hopf point, is a polyline of one point). Every point has the same count
+/// columns from the arrays' names, or the PLY's `comment coordinate names:` line; consecutive
+/// segments that share a point are one polyline; a point in no line, such as a fold–Hopf point,
+/// is a polyline of one point). Also the files of earlier versions: .vtk with DATASET POLYDATA
+/// and LINES, .vtu with one VTK_POLY_LINE per polyline. Every point has the same count
 /// k >= 2 of finite coordinates; JSON "columns", when present, names them (k names).
 /// \throw InvalidArgument naming the file (and the line of a CSV file, the polyline and point of
 ///        a JSON file) if it cannot be read, is not valid JSON, or breaks the layout; another

@@ -91,19 +91,29 @@ void write_vtk(const std::string& path, const TriangleMesh& mesh, const VtkOptio
   io_detail::OutputFile file("VTK", path);
   file.text("# vtk DataFile Version 4.2\n");
   file.text(title);
-  file.text("\nASCII\nDATASET POLYDATA\nPOINTS ");
+  // UNSTRUCTURED_GRID rather than POLYDATA: meshio reads only unstructured grids from legacy
+  // files, and VTK and ParaView read both alike.
+  file.text("\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS ");
   file.integer(mesh.vertex_count());
   file.text(" double\n");
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     write_point_xyz(file, mesh, v);
     file.character('\n');
   }
-  file.text("POLYGONS ");
+  file.text("CELLS ");
   file.integer(mesh.triangle_count());
   file.character(' ');
   file.integer(4 * static_cast<std::int64_t>(mesh.triangle_count()));
   file.character('\n');
   write_triangle_lines(file, mesh.triangles());
+  file.text("CELL_TYPES ");
+  file.integer(mesh.triangle_count());
+  file.character('\n');
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    file.integer(kVtkTriangle);
+    file.character((t + 1) % 30 == 0 ? '\n' : ' ');
+  }
+  file.character('\n');
   file.text("POINT_DATA ");
   file.integer(mesh.vertex_count());
   file.character('\n');

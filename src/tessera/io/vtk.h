@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// VTK files for ParaView and VisIt: legacy ASCII .vtk (POLYDATA) and XML .vtu
+// VTK files for ParaView, VisIt and meshio: legacy ASCII .vtk (UNSTRUCTURED_GRID) and XML .vtu
 // (UnstructuredGrid, ASCII), written and read back with all n coordinates.
 #pragma once
 
@@ -24,10 +24,12 @@ struct VtkOptions {
   std::vector<std::string> comments{};
 };
 
-/// Writes a legacy ASCII VTK file (version 4.2) with DATASET POLYDATA.
+/// Writes a legacy ASCII VTK file (version 4.2) with DATASET UNSTRUCTURED_GRID.
 ///
 /// POINTS holds the first three coordinates of each vertex (0 for the missing ones if n < 3),
-/// POLYGONS the triangles. POINT_DATA holds all n coordinates, one SCALARS array (double) per
+/// CELLS the triangles and CELL_TYPES their type, VTK_TRIANGLE (5). (Files of tessera before
+/// issue 34 hold DATASET POLYDATA with POLYGONS, which meshio refuses; read_vtk reads both.)
+/// POINT_DATA holds all n coordinates, one SCALARS array (double) per
 /// coordinate named by the coordinate names, so that a view can colour by any coordinate of
 /// R^n, followed by one SCALARS array per scalar field. read_vtk reads it back whole. The file
 /// is replaced atomically (see io_detail::OutputFile).
@@ -43,15 +45,19 @@ void write_vtk(const std::string& path, const TriangleMesh& mesh, const VtkOptio
 /// \throw as write_vtk.
 void write_vtu(const std::string& path, const TriangleMesh& mesh, const VtkOptions& options = {});
 
-/// Reads a legacy ASCII VTK file with DATASET POLYDATA, as write_vtk writes it.
+/// Reads a legacy ASCII VTK file with DATASET UNSTRUCTURED_GRID, as write_vtk writes it, or
+/// DATASET POLYDATA, as tessera wrote it before.
 ///
 /// The mesh is in R^n for the n of the title "tessera triangle mesh in R^n ..." (written by
 /// write_vtk); its coordinates are the first n POINT_DATA arrays, whose first three must equal
 /// the POINTS bit for bit. Without that title: the arrays x0, x1, ... if the point data starts
 /// with at least three of them, or the arrays named after "coordinates:" in the title (files of
-/// earlier tessera versions), else the POINTS (n = 3). POLYGONS become triangles (a polygon
-/// with k > 3 vertices becomes a fan, keeping its orientation); VERTICES, LINES and
-/// TRIANGLE_STRIPS are skipped, as are CELL_DATA, VECTORS and NORMALS.
+/// earlier tessera versions), else the POINTS (n = 3). Unstructured grid: the CELLS of type
+/// triangle (5), quad (9) and polygon (7) become triangles (a cell with k > 3 vertices becomes a
+/// fan, keeping its orientation), vertices and lines (types 1 to 4) are skipped, other types
+/// (volumes) are refused; CELLS may also be given as OFFSETS and CONNECTIVITY (version 5.1, as
+/// meshio writes). Polygonal data: POLYGONS become triangles in the same way; VERTICES, LINES and
+/// TRIANGLE_STRIPS are skipped. CELL_DATA, VECTORS and NORMALS are skipped.
 ///
 /// \throw InvalidArgument naming the file and line if it cannot be read, is binary, or is
 ///        malformed or inconsistent (counts, indices out of range, coordinates that disagree).

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// read_vtk: the ASCII legacy files (DATASET POLYDATA) that write_vtk produces, read back with all
-// n coordinates (from the point-data arrays) and the triangles.
+// read_vtk: the ASCII legacy files (DATASET UNSTRUCTURED_GRID) that write_vtk produces, and the
+// DATASET POLYDATA files of earlier tessera versions, read back with all n coordinates (from the
+// point-data arrays) and the triangles.
 //
 // Every count in the file is a claim to check, never a size to allocate: arrays grow only with
 // values actually present, and every index is checked before use, so a malformed or hostile file
@@ -43,6 +44,13 @@ bool starts_with_ignoring_case(std::string_view text, std::string_view prefix) {
 
 constexpr std::string_view kVtk = "VTK";
 
+// VTK cell types (vtkCellType.h).
+constexpr std::int64_t kVtkVertex = 1;
+constexpr std::int64_t kVtkPolyLine = 4;
+constexpr std::int64_t kVtkTriangle = 5;
+constexpr std::int64_t kVtkPolygon = 7;
+constexpr std::int64_t kVtkQuad = 9;
+
 class LegacyReader {
  public:
   LegacyReader(std::string_view data, std::size_t first_line, const std::string& path)
@@ -53,6 +61,15 @@ class LegacyReader {
   }
 
   std::string_view token() { return cursor_.next_token(); }
+
+  // The token after the next `skip` tokens, without consuming any.
+  std::string_view peek_token(int skip) const {
+    io_detail::TextCursor copy = cursor_;
+    for (int i = 0; i < skip; ++i) {
+      copy.next_token();
+    }
+    return copy.next_token();
+  }
 
   std::string_view required_token(const std::string& what) {
     const std::string_view token = cursor_.next_token();
@@ -114,8 +131,11 @@ class LegacyReader {
 
   void expect_data_type(std::string_view type) {
     static constexpr std::string_view kTypes[] = {
-        "bit",          "char", "unsigned_char", "short", "unsigned_short", "int",
-        "unsigned_int", "long", "unsigned_long", "float", "double",         "vtkIdType"};
+        "bit", "char", "unsigned_char", "short", "unsigned_short", "int", "unsigned_int", "long",
+        "unsigned_long", "float", "double", "vtkIdType",
+        // version 5.1 (the OFFSETS and CONNECTIVITY of meshio's files)
+        "vtktypeint8", "vtktypeuint8", "vtktypeint16", "vtktypeuint16", "vtktypeint32",
+        "vtktypeuint32", "vtktypeint64", "vtktypeuint64"};
     for (const auto known : kTypes) {
       if (equals_ignoring_case(type, known)) {
         return;
@@ -244,10 +264,12 @@ TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string&
   LegacyReader reader(std::string_view(content).substr(position), 4, path);
   const std::string_view dataset = reader.required_token("DATASET");
   const std::string_view kind = reader.required_token("the dataset type");
-  if (!equals_ignoring_case(dataset, "DATASET") || !equals_ignoring_case(kind, "POLYDATA")) {
-    reader.fail("expected 'DATASET POLYDATA', found " +
+  const bool is_unstructured = equals_ignoring_case(kind, "UNSTRUCTURED_GRID");
+  if (!equals_ignoring_case(dataset, "DATASET") ||
+      !(is_unstructured || equals_ignoring_case(kind, "POLYDATA"))) {
+    reader.fail("expected 'DATASET UNSTRUCTURED_GRID' or 'DATASET POLYDATA', found " +
                 io_detail::quoted_excerpt(std::string(dataset) + " " + std::string(kind)) +
-                "; tessera writes and reads polygonal data");
+                "; tessera writes and reads surface meshes");
   }
 
   std::optional<std::vector<double>> xyz;
@@ -255,6 +277,17 @@ TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string&
   std::vector<PointArray> arrays;
   std::int64_t vertex_count = -1;
   std::int64_t cell_count = 0;
+  // The CELLS of an unstructured grid wait for their CELL_TYPES: cell c is
+  // cell_vertices[cell_offsets[c] .. cell_offsets[c + 1]).
+  std::optional<std::vector<std::int64_t>> cell_offsets;
+  std::vector<std::int64_t> cell_vertices;
+  bool has_cell_types = false;
+  auto check_index = [&](std::int64_t v, const std::string& name, std::int64_t c) {
+    if (v < 0 || v >= vertex_count) {
+      reader.fail(name + " cell " + std::to_string(c) + " has vertex index " + std::to_string(v) +
+                  "; the file has " + std::to_string(vertex_count) + " points");
+    }
+  };
   enum class Section { Geometry, PointData, CellData } section = Section::Geometry;
   for (std::string_view keyword = reader.token(); !keyword.empty(); keyword = reader.token()) {
     if (equals_ignoring_case(keyword, "POINTS")) {
@@ -266,14 +299,71 @@ TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string&
       xyz.emplace();
       xyz->reserve(static_cast<std::size_t>(3 * vertex_count));
       read_values(reader, 3 * vertex_count, "POINTS", *xyz);
-    } else if (equals_ignoring_case(keyword, "POLYGONS") ||
-               equals_ignoring_case(keyword, "VERTICES") ||
-               equals_ignoring_case(keyword, "LINES") ||
-               equals_ignoring_case(keyword, "TRIANGLE_STRIPS")) {
+    } else if (is_unstructured && equals_ignoring_case(keyword, "CELLS") &&
+               equals_ignoring_case(reader.peek_token(2), "OFFSETS")) {
+      // Version 5.1 (meshio's default): CELLS <offsets> <connectivity size>, OFFSETS, CONNECTIVITY.
+      if (!xyz) {
+        reader.fail("CELLS before POINTS");
+      }
+      if (cell_offsets) {
+        reader.fail("a second CELLS section");
+      }
+      const std::int64_t offset_count = reader.count("the number of CELLS offsets");
+      const std::int64_t size = reader.count("the size of the CELLS connectivity");
+      reader.required_token("OFFSETS");
+      reader.expect_data_type(reader.required_token("the OFFSETS data type"));
+      cell_offsets.emplace();
+      for (std::int64_t c = 0; c < offset_count; ++c) {
+        const std::int64_t offset =
+            reader.integer_of([&] { return "CELLS offset " + std::to_string(c); });
+        const std::int64_t previous = c == 0 ? 0 : cell_offsets->back();
+        if (offset < previous || offset > size || (c == 0 && offset != 0)) {
+          reader.fail("CELLS offset " + std::to_string(c) + " is " + std::to_string(offset) +
+                      "; offsets start at 0 and do not decrease up to the connectivity size " +
+                      std::to_string(size));
+        }
+        cell_offsets->push_back(offset);
+      }
+      if (cell_offsets->empty()) {
+        cell_offsets->push_back(0);
+      }
+      if (cell_offsets->back() != size) {
+        reader.fail("the CELLS offsets end at " + std::to_string(cell_offsets->back()) +
+                    " but the connectivity has " + std::to_string(size) + " entries");
+      }
+      const std::string_view connectivity = reader.required_token("CONNECTIVITY");
+      if (!equals_ignoring_case(connectivity, "CONNECTIVITY")) {
+        reader.fail("expected CONNECTIVITY after the CELLS offsets, found " +
+                    io_detail::quoted_excerpt(connectivity));
+      }
+      reader.expect_data_type(reader.required_token("the CONNECTIVITY data type"));
+      std::int64_t cell = 0;
+      for (std::int64_t i = 0; i < size; ++i) {
+        while ((*cell_offsets)[static_cast<std::size_t>(cell + 1)] <= i) {
+          ++cell;
+        }
+        const std::int64_t v =
+            reader.integer_of([&] { return "CELLS cell " + std::to_string(cell); });
+        check_index(v, "CELLS", cell);
+        cell_vertices.push_back(v);
+      }
+      cell_count += static_cast<std::int64_t>(cell_offsets->size()) - 1;
+    } else if ((is_unstructured && equals_ignoring_case(keyword, "CELLS")) ||
+               (!is_unstructured && (equals_ignoring_case(keyword, "POLYGONS") ||
+                                     equals_ignoring_case(keyword, "VERTICES") ||
+                                     equals_ignoring_case(keyword, "LINES") ||
+                                     equals_ignoring_case(keyword, "TRIANGLE_STRIPS")))) {
       const std::string name(keyword);
       const bool is_polygons = equals_ignoring_case(keyword, "POLYGONS");
+      const bool is_cells = equals_ignoring_case(keyword, "CELLS");
       if (!xyz) {
         reader.fail(name + " before POINTS");
+      }
+      if (is_cells && cell_offsets) {
+        reader.fail("a second CELLS section");
+      }
+      if (is_cells) {
+        cell_offsets.emplace(1, 0);
       }
       const std::int64_t cells = reader.count("the number of " + name + " cells", 2);
       const std::int64_t size = reader.count("the size of the " + name + " list");
@@ -296,15 +386,15 @@ TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string&
         for (std::int64_t i = 0; i < k; ++i) {
           const std::int64_t v =
               reader.integer_of([&] { return name + " cell " + std::to_string(c); });
-          if (v < 0 || v >= vertex_count) {
-            reader.fail(name + " cell " + std::to_string(c) + " has vertex index " +
-                        std::to_string(v) + "; the file has " + std::to_string(vertex_count) +
-                        " points");
-          }
+          check_index(v, name, c);
           polygon.push_back(v);
         }
         if (is_polygons) {
           append_fan(polygon, triangles);
+        }
+        if (is_cells) {
+          cell_vertices.insert(cell_vertices.end(), polygon.begin(), polygon.end());
+          cell_offsets->push_back(static_cast<std::int64_t>(cell_vertices.size()));
         }
       }
       if (read != size) {
@@ -312,6 +402,42 @@ TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string&
                     std::to_string(cells) + " cells take " + std::to_string(read));
       }
       cell_count += cells;
+    } else if (is_unstructured && equals_ignoring_case(keyword, "CELL_TYPES")) {
+      if (!cell_offsets) {
+        reader.fail("CELL_TYPES before CELLS");
+      }
+      if (has_cell_types) {
+        reader.fail("a second CELL_TYPES section");
+      }
+      has_cell_types = true;
+      const auto cells = static_cast<std::int64_t>(cell_offsets->size()) - 1;
+      const std::int64_t count = reader.count("the number of CELL_TYPES");
+      if (count != cells) {
+        reader.fail("CELL_TYPES " + std::to_string(count) + " does not match the " +
+                    std::to_string(cells) + " CELLS");
+      }
+      std::vector<std::int64_t> polygon;
+      for (std::int64_t c = 0; c < cells; ++c) {
+        const std::int64_t type =
+            reader.integer_of([&] { return "the type of cell " + std::to_string(c); });
+        const auto begin = cell_vertices.begin() + (*cell_offsets)[static_cast<std::size_t>(c)];
+        const auto end = cell_vertices.begin() + (*cell_offsets)[static_cast<std::size_t>(c) + 1];
+        const auto size = end - begin;
+        if (type >= kVtkVertex && type <= kVtkPolyLine) {
+          continue;  // vertices and lines: not part of the surface
+        }
+        const bool is_surface = (type == kVtkTriangle && size == 3) ||
+                                (type == kVtkQuad && size == 4) ||
+                                (type == kVtkPolygon && size >= 3);
+        if (!is_surface) {
+          reader.fail("cell " + std::to_string(c) + " has type " + std::to_string(type) + " and " +
+                      std::to_string(size) +
+                      " vertices; tessera reads triangles (5), quads (9) and polygons (7), and "
+                      "skips vertices and lines (1 to 4)");
+        }
+        polygon.assign(begin, end);
+        append_fan(polygon, triangles);
+      }
     } else if (equals_ignoring_case(keyword, "POINT_DATA") ||
                equals_ignoring_case(keyword, "CELL_DATA")) {
       const bool is_point_data = equals_ignoring_case(keyword, "POINT_DATA");
@@ -330,11 +456,18 @@ TriangleMesh io_detail::parse_vtk(const std::string& content, const std::string&
                      arrays);
     } else {
       reader.fail("unsupported section " + io_detail::quoted_excerpt(keyword) +
-                  "; tessera reads POINTS, POLYGONS, POINT_DATA and CELL_DATA");
+                  (is_unstructured
+                       ? "; tessera reads POINTS, CELLS, CELL_TYPES, POINT_DATA and CELL_DATA "
+                         "of an unstructured grid"
+                       : "; tessera reads POINTS, POLYGONS, POINT_DATA and CELL_DATA of polygonal "
+                         "data"));
     }
   }
   if (!xyz) {
     io_detail::throw_file_error(kVtk, path, "no POINTS section");
+  }
+  if (cell_offsets && !has_cell_types) {
+    io_detail::throw_file_error(kVtk, path, "CELLS without CELL_TYPES");
   }
   // write_vtk starts the title with "tessera triangle mesh in R^n"; earlier versions did so only
   // without comments, so "coordinates: a b c ..." (the comment of `tessera mesh`) counts too when
