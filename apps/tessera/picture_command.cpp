@@ -261,6 +261,10 @@ void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
       const int rows = std::min(static_cast<int>(line.points.rows()), 3);
       Eigen::Matrix3Xd points = Eigen::Matrix3Xd::Zero(3, line.points.cols());
       points.topRows(rows) = line.points.topRows(rows);
+      TESSERA_CHECK(points.allFinite(),
+                    "--curves: a polyline of kind '" << file.options.kind
+                        << "' has a point whose drawn coordinates (its first three columns) are "
+                           "not numbers");
       for (Eigen::Index i = 0; i < line.points.cols(); ++i) {
         if (!line.marked.empty() && line.marked[static_cast<std::size_t>(i)]) {
           markers.push_back(points.col(i));

@@ -4,7 +4,9 @@
 // writes, `tessera render --curves` and `--diagram` read.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "support/test_support.h"
@@ -62,6 +64,29 @@ TEST(Polylines, EveryFormatReadsBackWhatWasWritten) {
         }
       }
     }
+  }
+}
+
+// A value that was not computed (NaN: l1 at a Bogdanov-Takens point) is written as null
+// (JSON) or nan (CSV) and read back as NaN by every format, so that `render --curves` takes the
+// Hopf curves `mesh --hopf` writes (it refused them: "must be an array of numbers").
+TEST(Polylines, AValueNotComputedReadsBackAsNaN) {
+  const std::string dir = testing::temporary_directory("polylines_nan");
+  PolylineFileOptions options;
+  options.names = {"Da", "B", "omega", "l1"};
+  options.kind = "hopf";
+  Polyline line;
+  line.points = Eigen::MatrixXd::Random(4, 3);
+  line.points(3, 0) = std::numeric_limits<double>::quiet_NaN();
+  line.marked = {true, false, false};
+  for (const std::string extension : {".json", ".csv", ".vtu", ".ply"}) {
+    const std::string path = dir + "/hopf" + extension;
+    write_polylines(path, {line}, options);
+    const PolylineFile read = read_polylines(path);
+    SCOPED_TRACE(path);
+    ASSERT_EQ(read.polylines.size(), 1u);
+    EXPECT_TRUE(std::isnan(read.polylines[0].points(3, 0)));
+    EXPECT_EQ(read.polylines[0].points.rightCols(2), line.points.rightCols(2));
   }
 }
 

@@ -8,6 +8,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -99,9 +100,12 @@ PolylineFile read_json(const std::string& path, const std::string& text) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const auto& point = points[i];
       const std::string at = where + ", point " + std::to_string(i);
-      if (!point.is_array() ||
-          !std::all_of(point.begin(), point.end(), [](const auto& x) { return x.is_number(); })) {
-        refuse(path, at + " must be an array of numbers");
+      // null: a value that was not computed (NaN when written, e.g. the first Lyapunov
+      // coefficient l1 at a Bogdanov-Takens point, where it is not defined).
+      if (!point.is_array() || !std::all_of(point.begin(), point.end(), [](const auto& x) {
+            return x.is_number() || x.is_null();
+          })) {
+        refuse(path, at + " must be an array of numbers (or null for a value not computed)");
       }
       if (k < 0) {
         k = static_cast<int>(point.size());
@@ -115,9 +119,11 @@ PolylineFile read_json(const std::string& path, const std::string& text) {
         line.points.resize(k, static_cast<Eigen::Index>(points.size()));
       }
       for (int c = 0; c < k; ++c) {
-        const double value = point[static_cast<std::size_t>(c)].get<double>();
-        if (!std::isfinite(value)) {
-          refuse(path, at + " has a coordinate that is not finite");
+        const auto& entry = point[static_cast<std::size_t>(c)];
+        const double value =
+            entry.is_null() ? std::numeric_limits<double>::quiet_NaN() : entry.get<double>();
+        if (std::isinf(value)) {
+          refuse(path, at + " has a coordinate that is infinite");
         }
         line.points(c, static_cast<Eigen::Index>(i)) = value;
       }
@@ -215,7 +221,8 @@ PolylineFile read_csv(const std::string& path, const std::string& text) {
       } catch (const std::exception&) {
         used = 0;
       }
-      if (used == 0 || used != field.size() || !std::isfinite(value)) {
+      // nan: a value that was not computed (l1 at a Bogdanov-Takens point); inf is refused.
+      if (used == 0 || used != field.size() || std::isinf(value)) {
         fail("not a finite number in column " + file.options.names[static_cast<std::size_t>(c)] +
              ": '" + field + "'");
       }

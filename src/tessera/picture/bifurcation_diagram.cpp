@@ -305,6 +305,8 @@ void add_to_diagram(BifurcationDiagramScene& scene, const std::vector<Polyline>&
     curve.points.resize(2, line.points.cols());
     curve.points.row(0) = line.points.row(i1);
     curve.points.row(1) = line.points.row(i2);
+    TESSERA_CHECK(curve.points.allFinite(), "a polyline has a point whose " << p1 << " or " << p2
+                                                << " is not a number");
     curve.is_closed = line.is_closed;
     curve.kind = kind;
     curve.kind_name = options.kind;
