@@ -347,6 +347,34 @@ INSTANTIATE_TEST_SUITE_P(
         UsageCase{"unknown_extension", "mesh sphere -o {stl}", {"unknown extension '.stl'"}}),
     [](const ::testing::TestParamInfo<UsageCase>& info) { return info.param.name; });
 
+// Issue 34: a misspelt option or command got CLI11's "The following arguments were not
+// expected"; the message now names the nearest ones, as git does.
+TEST(CliMisspelling, SuggestsTheNearestOptionOrCommand) {
+  const std::string out = quoted(work_path("misspelt.ply"));
+  for (const std::string typo : {"--tolerence 1e-3", "--tolerence=1e-3", "--tolernace 1e-3"}) {
+    const CommandResult result = run_cli("mesh sphere " + typo + " -o " + out);
+    expect_exit(
+        result, kUsageError,
+        {"unknown option '" + typo.substr(0, typo.find_first_of(" =")) + "' for 'tessera mesh'",
+         "did you mean '--tolerance'?"});
+    EXPECT_FALSE(contains(result.output, "were not expected")) << result.output;
+  }
+  expect_exit(run_cli("mesh sphere --stpe 0.1 -o " + out), kUsageError, {"did you mean '--step'?"});
+  expect_exit(run_cli("mesh sphere --tol 1e-3 -o " + out), kUsageError,
+              {"did you mean '--tolerance'?"});  // an abbreviation
+  expect_exit(run_cli("mesg sphere -o " + out), kUsageError,
+              {"unknown command 'mesg'", "did you mean 'mesh'?", "commands: mesh"});
+  expect_exit(run_cli("comapre sphere"), kUsageError, {"did you mean 'compare'?"});
+  // An option of another command says whose it is.
+  expect_exit(run_cli("compare sphere --method front"), kUsageError,
+              {"unknown option '--method' for 'tessera compare'", "'tessera mesh'"});
+  // Nothing near: the option and where to look, no guess.
+  const CommandResult far = run_cli("mesh sphere --frobnicate -o " + out);
+  expect_exit(far, kUsageError, {"unknown option '--frobnicate'", "tessera mesh --help"});
+  EXPECT_FALSE(contains(far.output, "did you mean")) << far.output;
+  EXPECT_FALSE(std::filesystem::exists(work_path("misspelt.ply")));
+}
+
 TEST(CliCheck, MissingMeshFileIsNamed) {
   const std::string missing = work_path("no_such_mesh.ply");
   const CommandResult result = run_cli("check " + quoted(missing) + " --problem sphere");
