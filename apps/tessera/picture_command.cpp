@@ -333,9 +333,11 @@ CLI::App* add_render_command(CLI::App& app, RenderCommand& command) {
   render->add_option("--edges", command.edges,
                      "draw the edges: on, off or auto (on up to 20000 triangles, default)")
       ->check(CLI::IsMember({"on", "off", "auto"}));
-  render->add_option("--aspect", command.aspect,
-                     "auto (equal scales unless the axes' extents differ by more than 4x, "
-                     "default), equal or box (every axis to the same length)")
+  std::ostringstream aspect_help;  // the ratio as the code uses it, not a copy that can drift
+  aspect_help << "auto (equal scales unless the axes' extents differ by more than "
+              << kMaxEqualAspectRatio
+              << "x, default), equal or box (every axis to the same length)";
+  render->add_option("--aspect", command.aspect, aspect_help.str())
       ->check(CLI::IsMember({"auto", "equal", "box"}));
   render->add_option("--size", command.size, "WIDTHxHEIGHT in pixels (default 800x600)");
   render->add_flag("--top", command.top,

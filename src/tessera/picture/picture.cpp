@@ -25,11 +25,6 @@ using picture_detail::LegendEntry;
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kColourBarWidth = 110;  // pixels kept on the right for the bar and its labels
 constexpr int kTitleHeight = 24;
-// PictureAspect::Automatic keeps equal scales up to this ratio of the largest to the smallest
-// axis extent. Geometry stays below it (a torus of R/r = 9 has 10; at 4 a torus of R = 2,
-// r = 0.5 was drawn as a barrel), continuation views lie far above it (bvp:points=100 in
-// (λ, ε, max u): 66; cstr in (x1, x2, Da): 27).
-constexpr double kMaxEqualAspectRatio = 10.0;
 
 void check_scene(const PictureScene& scene, const PictureOptions& options) {
   TESSERA_CHECK(!scene.triangles.empty(), "a picture needs at least one triangle, the mesh has none");
