@@ -401,6 +401,16 @@ TEST(CliAtlas, IsTheDefaultMethodAndTakesATolerance) {
   EXPECT_EQ(validation.euler_characteristic, 2);
 }
 
+// Issue 34: the unit of the "by step" numbers came at the end of a long line.
+TEST(CliAtlas, ByStepNamesItsUnitFirst) {
+  const testing::CommandResult result =
+      testing::run_cli("mesh sphere -o " + quoted(work_path("by_step.ply")));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(contains(result.output, "\n  by step (DF / factorisations per vertex): start "))
+      << result.output;
+  EXPECT_FALSE(contains(result.output, " DF/factorisations per vertex")) << result.output;
+}
+
 TEST(CliCompare, PrintsOneRowPerMethodWithValidityAndTopology) {
   const testing::CommandResult result = testing::run_cli("compare sphere");
   ASSERT_EQ(result.exit_code, 0) << result.output;

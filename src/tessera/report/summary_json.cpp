@@ -423,13 +423,14 @@ std::string to_text(const MeshReport& report) {
     if (r.vertex_count > 0 && !r.work_by_phase.empty()) {
       // Where the work went, per vertex of the result: DF evaluations/factorisations per step.
       const double V = r.vertex_count;
-      out << "  by step      ";
+      // The unit first, so that the numbers after it read as what they are.
+      out << "  by step (DF / factorisations per vertex): ";
       for (std::size_t i = 0; i < r.work_by_phase.size(); ++i) {
         const PhaseWork& p = r.work_by_phase[i];
         out << (i ? ", " : "") << p.phase << " " << p.counts.jacobian_evaluations / V << "/"
             << p.counts.factorisations / V;
       }
-      out << " DF/factorisations per vertex\n";
+      out << "\n";
     }
   }
   if (report.backend && report.backend->name != "serial") {
