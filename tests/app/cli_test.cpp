@@ -401,6 +401,39 @@ TEST(CliAtlas, IsTheDefaultMethodAndTakesATolerance) {
   EXPECT_EQ(validation.euler_characteristic, 2);
 }
 
+// Issue 34: every atlas run printed the same 400 characters on chart radii held below the
+// tolerance's, for the one chart next to the start. The note now comes where such charts are a
+// tenth of the atlas or more (whitney_pleat: a quarter, graded towards the fold); the counts
+// are in every summary.
+TEST(CliAtlas, NotesChartRadiiOnlyWhereTheyChangeTheCost) {
+  struct Case {
+    std::string problem;
+    bool noted;
+  };
+  for (const Case& c : {Case{"sphere", false}, Case{"whitney_pleat", true}}) {
+    const std::string summary = work_path(c.problem + "_radii.json");
+    const testing::CommandResult result = testing::run_cli(
+        "mesh " + c.problem + " -o " + quoted(work_path(c.problem + "_radii.ply")) + " --summary " +
+        quoted(summary));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_EQ(contains(result.output, "have a radius below the tolerance's"), c.noted)
+        << result.output;
+    const nlohmann::json json = nlohmann::json::parse(std::ifstream(summary));
+    const nlohmann::json& caps = json["run"]["atlas"]["radius_caps"];
+    const int charts = json["run"]["atlas"]["charts"].get<int>();
+    ASSERT_TRUE(caps.is_object()) << json["run"].dump(2);
+    EXPECT_EQ(caps["total"].get<int>() >= 0.1 * charts, c.noted) << caps.dump();
+    EXPECT_EQ(caps["total"].get<int>(),
+              caps["curvature"].get<int>() + caps["not_a_graph"].get<int>() +
+                  caps["grading"].get<int>() + caps["reach"].get<int>() + caps["band"].get<int>());
+    bool in_notes = false;
+    for (const auto& note : json["run"]["notes"]) {
+      in_notes = in_notes || contains(note.get<std::string>(), "have a radius below");
+    }
+    EXPECT_EQ(in_notes, c.noted);
+  }
+}
+
 // Issue 34: the unit of the "by step" numbers came at the end of a long line.
 TEST(CliAtlas, ByStepNamesItsUnitFirst) {
   const testing::CommandResult result =

@@ -253,7 +253,15 @@ std::string to_json(const MeshReport& report) {
                            {"singular_crossings", r.singular_crossings},
                            {"sheet_rejections", r.sheet_rejections},
                            {"filled_holes", r.filled_holes},
-                           {"boundary_peak_bytes", r.boundary_peak_bytes}};
+                           {"boundary_peak_bytes", r.boundary_peak_bytes},
+                           {"radius_caps",
+                            {{"total", r.radius_caps.total()},
+                             {"curvature", r.radius_caps.curvature},
+                             {"not_a_graph", r.radius_caps.not_a_graph},
+                             {"grading", r.radius_caps.grading},
+                             {"reach", r.radius_caps.reach},
+                             {"band", r.radius_caps.band},
+                             {"reduced_later", r.radius_caps.reduced_later}}}};
     }
     nlohmann::json phases = nlohmann::json::array();
     for (const PhaseWork& p : r.work_by_phase) {
