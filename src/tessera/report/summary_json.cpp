@@ -9,6 +9,7 @@
 #include "tessera/core/error.h"
 #include "tessera/io/text_file.h"
 #include "tessera/problems/view.h"
+#include "tessera/report/improvement_report.h"
 
 namespace tessera {
 namespace {
@@ -299,6 +300,9 @@ std::string to_json(const MeshReport& report) {
     }
     j["run"]["notes"] = r.notes;
   }
+  if (report.improvement) {
+    j["improvement"] = improvement_json(*report.improvement);
+  }
   if (report.backend) {
     j["backend"] = {{"name", report.backend->name},
                     {"ranks", report.backend->ranks},
@@ -399,6 +403,9 @@ std::string to_text(const MeshReport& report) {
     if (r.removed_triangles > 0) {
       out << "repair         " << r.removed_triangles << " triangle(s) removed by the final check, "
           << r.repaired_holes << " place(s) triangulated again\n";
+    }
+    if (report.improvement) {
+      out << "improve        " << improvement_text(*report.improvement) << "\n";
     }
     for (const std::string& note : r.notes) {
       out << "note           " << note << "\n";
