@@ -503,6 +503,7 @@ py::tuple compare_methods(const std::shared_ptr<ProblemHandle>& problem,
                       {"passes", row.passes()}});
     }
     json = {{"problem", problem->argument},
+            {"tolerance", report.tolerance},
             {"methods", rows},
             {"expected_euler_characteristic",
              report.expected_euler_characteristic

@@ -447,6 +447,11 @@ TEST(CliAtlas, ByStepNamesItsUnitFirst) {
 TEST(CliCompare, PrintsOneRowPerMethodWithValidityAndTopology) {
   const testing::CommandResult result = testing::run_cli("compare sphere");
   ASSERT_EQ(result.exit_code, 0) << result.output;
+  // Issue 34: the atlas ran to a tolerance and the others without one. Every method now runs
+  // to the same one (the default, the sphere's step 0.3 / 50), named above the table, and
+  // every row keeps it.
+  EXPECT_NE(result.output.find("every method to tolerance 0.006"), std::string::npos)
+      << result.output;
   for (const std::string method : {"atlas", "front", "bezier"}) {
     const auto row = result.output.find("\n" + method + " ");
     ASSERT_NE(row, std::string::npos) << result.output;
@@ -454,6 +459,14 @@ TEST(CliCompare, PrintsOneRowPerMethodWithValidityAndTopology) {
         result.output.substr(row + 1, result.output.find('\n', row + 1) - row - 1);
     EXPECT_NE(line.find(" 2 yes"), std::string::npos) << line;  // χ = 2, valid
     EXPECT_NE(line.find("completed"), std::string::npos) << line;
+    std::istringstream fields(line);
+    std::string name;
+    int vertices = 0;
+    int triangles = 0;
+    double seconds = 0.0;
+    double max_distance = 0.0;
+    fields >> name >> vertices >> triangles >> seconds >> max_distance;
+    EXPECT_LE(max_distance, 0.006) << line;
   }
   EXPECT_NE(result.output.find("expected Euler characteristic: 2"), std::string::npos);
 }
