@@ -22,7 +22,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommand& command) {
       ->check(finite_positive());
   compare
       ->add_option("--tolerance,-t", command.settings.tolerance,
-                   "distance bound for the adaptive methods (default: step/50)")
+                   "bound on the distance of every triangle to M, the same for every method "
+                   "(default: step/50, the atlas's default)")
       ->check(finite_positive());
   compare
       ->add_option("--placement", command.settings.atlas_placement,
@@ -30,7 +31,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommand& command) {
                    "vertices, then smoothed; slower)")
       ->check(CLI::IsMember({"disk", "hexagonal"}));
   compare->add_option("--start", command.start, "start point, comma separated");
-  compare->add_option("--box", command.box, "clip to a box: lower,upper for each coordinate, or name=lower:upper,…");
+  compare->add_option("--box", command.box,
+                      "clip to a box: lower,upper for each coordinate, or name=lower:upper,…");
   compare
       ->add_option("--max-vertices", command.settings.max_vertices,
                    "stop each method after this many vertices")
@@ -39,23 +41,29 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommand& command) {
 }
 
 int run_compare(const CompareCommand& command) {
-  std::printf("%-8s %9s %10s %9s %12s %12s %9s %6s %-7s %s\n", "method", "vertices", "triangles",
-              "time [s]", "max dist M", "tolerance", "min angle", "chi", "valid", "run");
   const auto make_setup = [&command] {
     ProblemSetup setup = resolve_problem(command.problem);
     apply_start_and_box(setup, command.start, command.box);
     return setup;
   };
+  // Every method runs to the same tolerance, or their rows would not be comparable (front and
+  // bezier have no bound of their own): it heads the table.
+  MethodSettings settings = command.settings;
+  if (settings.tolerance <= 0) {
+    settings.tolerance = default_tolerance(make_setup());
+  }
+  std::printf("every method to tolerance %g (the distance of every triangle to M%s)\n",
+              settings.tolerance, command.settings.tolerance > 0 ? "" : "; the default, step/50");
+  std::printf("%-8s %9s %10s %9s %12s %9s %6s %-7s %s\n", "method", "vertices", "triangles",
+              "time [s]", "max dist M", "min angle", "chi", "valid", "run");
   const auto print_row = [](const CompareRow& row) {
-    const std::string tolerance =
-        row.run.tolerance > 0 ? std::to_string(row.run.tolerance).substr(0, 8) : "-";
-    std::printf("%-8s %9d %10d %9.3f %12.3g %12s %9.1f %6d %-7s %s\n", row.method.c_str(),
+    std::printf("%-8s %9d %10d %9.3f %12.3g %9.1f %6d %-7s %s\n", row.method.c_str(),
                 row.vertex_count, row.triangle_count, row.run.wall_seconds, row.max_distance,
-                tolerance.c_str(), row.min_angle_degrees, row.euler_characteristic,
-                row.valid ? "yes" : "NO", to_string(row.run.termination));
+                row.min_angle_degrees, row.euler_characteristic, row.valid ? "yes" : "NO",
+                to_string(row.run.termination));
     std::fflush(stdout);
   };
-  const CompareReport report = compare_methods(make_setup, command.settings, print_row);
+  const CompareReport report = compare_methods(make_setup, settings, print_row);
   if (report.expected_euler_characteristic) {
     std::printf("expected Euler characteristic: %d\n", *report.expected_euler_characteristic);
   }

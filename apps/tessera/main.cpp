@@ -148,6 +148,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // A misspelt option or command: name it and the nearest ones, as git does.
+    if (const auto explained = tessera::app::explain_parse_error(app, e)) {
+      std::cerr << "tessera: error: " << *explained << "\n";
+      return kUsageError;
+    }
     const int code = app.exit(e);
     return code == 0 ? 0 : kUsageError;
   }

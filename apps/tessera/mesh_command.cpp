@@ -25,13 +25,13 @@
 #include "tessera/io/output_checks.h"
 #include "tessera/io/split_mesh_output.h"
 #include "tessera/io/view_mesh.h"
-#include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/methods/stability/state_jacobian.h"
 #include "tessera/picture/run_diagram.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/start_and_box.h"
 #include "tessera/problems/view.h"
 #include "tessera/report/fold_output.h"
+#include "tessera/report/improvement_report.h"
 #include "tessera/report/level_output.h"
 #include "tessera/report/mesh_analyses.h"
 #include "tessera/report/mesh_report.h"
@@ -479,10 +479,13 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   if (show_progress) {
     std::fprintf(stderr, "\r%60s\r", "");
   }
+  std::optional<ImprovementReport> improvement;
   if (command.improve && result.summary.is_complete()) {
     // Delaunay-type swaps judged in the tangent planes, 3 passes of tangential smoothing, and
-    // swaps again (docs/algorithms/improvement.md): validity and boundary are kept.
-    improve_mesh(result.mesh, *setup.problem, ImprovementOptions{}, 3);
+    // swaps again (docs/algorithms/improvement.md): validity and boundary are kept. The report
+    // says what they did; the covering's final check saw other triangles, so it is not reused.
+    improvement = improve_covering(result.mesh, *setup.problem);
+    result.validation.reset();
   }
   if (!command.patches.empty() && is_root) {
     write_bezier_patches(command.patches,
@@ -546,6 +549,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
                   result.validation ? &*result.validation : nullptr, report_options);
   if (!command.summary.empty() && is_root) {
     before.run = result.summary;
+    before.improvement = improvement;
     before.view = view_report;
     before.backend = backend_report;
     write_summary_json(command.summary, before);
@@ -563,6 +567,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   MeshReport report =
       make_report(result.mesh, setup, command.problem, &before.validation, report_options);
   report.run = result.summary;
+  report.improvement = improvement;
   report.view = view_report;
   report.backend = backend_report;
   // Folds, stability, Hopf and level curves on the finished mesh, in its view; the root writes

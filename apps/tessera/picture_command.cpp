@@ -341,10 +341,11 @@ CLI::App* add_render_command(CLI::App& app, RenderCommand& command) {
                    "off, or auto (ticks for continuation views and --top maps, else the "
                    "triad; default)")
       ->check(CLI::IsMember({"auto", "ticks", "triad", "off"}));
-  render
-      ->add_option("--aspect", command.aspect,
-                   "auto (equal scales unless the axes' extents differ by more than 10x, "
-                   "default), equal or box (every axis to the same length)")
+  std::ostringstream aspect_help;  // the ratio as the code uses it, not a copy that can drift
+  aspect_help << "auto (equal scales unless the axes' extents differ by more than "
+              << kMaxEqualAspectRatio
+              << "x, default), equal or box (every axis to the same length)";
+  render->add_option("--aspect", command.aspect, aspect_help.str())
       ->check(CLI::IsMember({"auto", "equal", "box"}));
   render->add_option("--size", command.size, "WIDTHxHEIGHT in pixels (default 800x600)");
   render->add_flag("--top", command.top,

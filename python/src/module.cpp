@@ -221,9 +221,10 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
   {
     py::gil_scoped_release release;
     CoveringResult result = cover(setup, method, settings);
+    std::optional<ImprovementReport> improvement;
     if (request.improve && result.summary.is_complete()) {
       // As `tessera mesh --improve`: swaps, 3 passes of tangential smoothing, swaps again.
-      improve_mesh(result.mesh, *setup.problem, ImprovementOptions{}, 3);
+      improvement = improve_covering(result.mesh, *setup.problem);
       result.validation.reset();
     }
     if (request.refine > 0 && result.mesh.triangle_count() > 0) {
@@ -237,6 +238,7 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
         make_report(result.mesh, setup, problem->argument,
                     result.validation ? &*result.validation : nullptr, report_options);
     report.run = result.summary;
+    report.improvement = improvement;
     report.backend = BackendReport{"serial", 1};  // the bindings solve in this process
     report.view = ViewReport{view.specification(),
                              view.is_all_coordinates() ? std::vector<std::string>() : view.names(),
@@ -501,6 +503,7 @@ py::tuple compare_methods(const std::shared_ptr<ProblemHandle>& problem,
                       {"passes", row.passes()}});
     }
     json = {{"problem", problem->argument},
+            {"tolerance", report.tolerance},
             {"methods", rows},
             {"expected_euler_characteristic",
              report.expected_euler_characteristic

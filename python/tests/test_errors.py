@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
 # Errors are Python exceptions with the CLI's messages; failed runs carry their partial mesh.
+import re
 import subprocess
 
 import numpy as np
@@ -40,6 +41,16 @@ def test_wrong_start_length_has_the_cli_message(cli, tmp_path):
 def test_bad_options_raise_value_error(options, match):
     with pytest.raises(ValueError, match=match):
         tessera.mesh("sphere", **options)
+
+
+def test_messages_name_no_source_file(cli, tmp_path):
+    # Issue 34: ValueError said "(start_and_box.cpp:113)"; the place is for TESSERA_DEBUG=1.
+    for options in ({"box": [0, 1]}, {"start": [0, 1]}, {"box": {"w": (0, 1)}}):
+        with pytest.raises(ValueError) as error:
+            tessera.mesh("sphere", **options)
+        assert not re.search(r"\.(cpp|h):\d+", str(error.value)), str(error.value)
+    assert str(error.value) == cli_error(cli, "mesh", "sphere", "--box", "w=0:1", "-o",
+                                         str(tmp_path / "x.ply"))
 
 
 def test_an_exception_in_F_propagates():

@@ -42,6 +42,37 @@ TEST(CliImprove, EveryCriterionWritesAValidMeshAndASummary) {
   }
 }
 
+// Issue 34: `mesh --improve` ran its swaps and smoothing without a trace in the report. The
+// report now says what they did, and the summary holds the same numbers.
+TEST(CliImprove, MeshImproveSaysWhatItDidInTheReportAndTheSummary) {
+  const std::string folder = testing::temporary_directory("mesh_improve");
+  const std::string summary = folder + "/cap.json";
+  const auto result = testing::run_cli("mesh sphere_cut --step 0.3 --improve -o " + folder +
+                                       "/cap.ply --summary " + summary);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(contains(result.output, "improve        edge swaps by the angle criterion: "))
+      << result.output;
+  EXPECT_TRUE(contains(result.output, "smoothing: ")) << result.output;
+  EXPECT_TRUE(contains(result.output, "min angle ")) << result.output;
+  const nlohmann::json json = nlohmann::json::parse(std::ifstream(summary));
+  ASSERT_TRUE(json.contains("improvement")) << json.dump(2);
+  const nlohmann::json& improvement = json["improvement"];
+  EXPECT_EQ(improvement["criterion"], "angle");
+  EXPECT_EQ(improvement["smoothing_passes"], 3);
+  EXPECT_GT(improvement["swaps"].get<int>() + improvement["smoothing_moves"].get<int>(), 0);
+  // The swaps never lower the smallest angle, and the smoothing refuses moves that would.
+  EXPECT_GE(improvement["min_angle_degrees"]["after"].get<double>(),
+            improvement["min_angle_degrees"]["before"].get<double>());
+  EXPECT_TRUE(json["valid"].get<bool>());
+  // Without --improve neither says anything about it.
+  const auto plain = testing::run_cli("mesh sphere_cut --step 0.3 -o " + folder +
+                                      "/plain.ply --summary " + folder + "/plain.json");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_FALSE(contains(plain.output, "improve        ")) << plain.output;
+  EXPECT_FALSE(
+      nlohmann::json::parse(std::ifstream(folder + "/plain.json")).contains("improvement"));
+}
+
 TEST(CliImprove, SmoothingKeepsTheMeshValidAndOnM) {
   const std::string folder = testing::temporary_directory("improve_smooth");
   const std::string input = folder + "/sphere_cut.ply";

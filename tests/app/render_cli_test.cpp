@@ -13,6 +13,7 @@
 #include "support/test_support.h"
 #include "tessera/io/mesh_io.h"
 #include "tessera/io/polylines.h"
+#include "tessera/picture/picture.h"
 
 namespace tessera {
 namespace {
@@ -30,6 +31,17 @@ bool is_png(const std::string& path) {
 
 bool contains(const std::string& text, const std::string& fragment) {
   return text.find(fragment) != std::string::npos;
+}
+
+// Issue 34: `render --help` said the automatic aspect keeps equal scales up to 4x while the code
+// drew with 10; the help now quotes the constant the drawing uses.
+TEST(RenderCli, HelpQuotesTheAspectRatioTheCodeUses) {
+  const auto help = run_cli("render --help");
+  ASSERT_EQ(help.exit_code, 0) << help.output;
+  std::ostringstream ratio;
+  ratio << "differ by more than " << kMaxEqualAspectRatio << "x";
+  EXPECT_TRUE(contains(help.output, ratio.str())) << help.output;
+  EXPECT_FALSE(contains(help.output, "more than 4x")) << help.output;
 }
 
 TEST(RenderCli, DrawsAMeshFileADdtTriangulationAndARunWithItsFolds) {

@@ -63,5 +63,47 @@ TEST(StartAndBox, WrongCountsAndNamesAreUsageErrorsThatSayWhat) {
   EXPECT_NE(message.find("--box is empty"), std::string::npos) << message;
 }
 
+// Every "e.g. '…'" of a message, in order.
+std::vector<std::string> examples_in(const std::string& message) {
+  std::vector<std::string> examples;
+  const std::string marker = "e.g. '";
+  for (auto at = message.find(marker); at != std::string::npos; at = message.find(marker, at)) {
+    at += marker.size();
+    const auto end = message.find('\'', at);
+    examples.push_back(message.substr(at, end - at));
+  }
+  for (auto at = message.find(", or '"); at != std::string::npos; at = message.find(", or '", at)) {
+    at += 6;
+    examples.push_back(message.substr(at, message.find('\'', at) - at));
+  }
+  return examples;
+}
+
+// Issue 34: the hint of a wrong --box showed --start's syntax ("a comma-separated list such as
+// 0,0,1") and named coordinates the problem did not have ("lambda=5:20" for a sphere). Every
+// example a message gives must be a --box that parses, for small n and large.
+TEST(StartAndBox, EveryHintedBoxParses) {
+  for (const std::string problem : {"sphere", "plane", "bvp:points=10"}) {
+    const ProblemSetup original = resolve_problem(problem);
+    const std::string first = original.problem->coordinate_names().front();
+    for (const std::string box : {std::string("lambda"), std::string("1,2"), first + "=1",
+                                  first + "=a:1", first + ":0:1", std::string("w=0")}) {
+      ProblemSetup setup = resolve_problem(problem);
+      const std::string message = message_of([&] { apply_start_and_box(setup, "", box); });
+      ASSERT_FALSE(message.empty()) << problem << " --box " << box;
+      EXPECT_EQ(message.find("0,0,1"), std::string::npos) << message;  // --start's example
+      const std::vector<std::string> examples = examples_in(message);
+      EXPECT_FALSE(examples.empty()) << message;
+      for (const std::string& example : examples) {
+        ProblemSetup hinted = resolve_problem(problem);
+        EXPECT_NO_THROW(apply_start_and_box(hinted, "", example))
+            << problem << ": the hint '" << example << "' of\n  " << message << "\n  "
+            << message_of([&] { apply_start_and_box(hinted, "", example); });
+        EXPECT_FALSE(hinted.domain.is_unbounded()) << example;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tessera

@@ -10,9 +10,22 @@ namespace tessera {
 
 /// A caller passed something that breaks a documented precondition (bad option, bad shape,
 /// malformed file). The message names the value and the rule it breaks.
+///
+/// what() is the message alone: it is what the command line prints after "tessera: error:" and
+/// what Python's ValueError says, and the user needs the rule, not tessera's source file. The
+/// place in the source that found the mistake (TESSERA_CHECK's file:line) is kept in
+/// source_location() for a bug report; with the environment variable TESSERA_DEBUG=1 (any
+/// value but empty and "0") what() ends with it too, e.g. "... must be > 0 (domain.cpp:24)".
 class InvalidArgument : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
+  /// `source_location`: "file.cpp:line" of the check that threw, or empty.
+  InvalidArgument(const std::string& message, std::string source_location);
+  /// "file.cpp:line" of the TESSERA_CHECK that threw; empty for other throws.
+  const std::string& source_location() const { return source_location_; }
+
+ private:
+  std::string source_location_;
 };
 
 /// A computation could not do what was asked (for example a front that meets itself in a way
@@ -27,6 +40,10 @@ class InternalError : public std::logic_error {
  public:
   using std::logic_error::logic_error;
 };
+
+/// True if the environment variable TESSERA_DEBUG is set to something other than "" or "0":
+/// messages of InvalidArgument then end with the source location of the check that threw.
+bool is_debug_messages();
 
 namespace detail {
 [[noreturn]] void throw_invalid_argument(const std::string& message, const char* file, int line);

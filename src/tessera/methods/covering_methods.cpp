@@ -33,7 +33,7 @@ void apply_shared_settings(const MethodSettings& settings, CoveringOptions& opti
 CoveringResult run_atlas(const ProblemSetup& setup, const MethodSettings& settings) {
   AtlasOptions options;
   options.step = settings.step > 0 ? settings.step : 2.0 * setup.suggested_step;
-  options.tolerance = 0.02 * setup.suggested_step;
+  options.tolerance = default_tolerance(setup);
   apply_shared_settings(settings, options);
   options.placement =
       settings.atlas_placement == "hexagonal" ? AtlasPlacement::Hexagonal : AtlasPlacement::Disk;
@@ -71,6 +71,8 @@ CoveringResult run_bezier(const ProblemSetup& setup, const MethodSettings& setti
 }
 
 }  // namespace
+
+double default_tolerance(const ProblemSetup& setup) { return 0.02 * setup.suggested_step; }
 
 const std::vector<CoveringMethod>& covering_methods() {
   static const std::vector<CoveringMethod> methods = {

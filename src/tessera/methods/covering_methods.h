@@ -44,6 +44,11 @@ struct CoveringMethod {
   std::function<CoveringResult(const ProblemSetup&, const MethodSettings&)> run;
 };
 
+/// The distance bound of a run that asks for none (MethodSettings::tolerance 0) where one is
+/// needed: the atlas's, which sizes its charts by it, and `tessera compare`'s for every method,
+/// so that its rows are comparable. A fiftieth of the problem's suggested step.
+double default_tolerance(const ProblemSetup& setup);
+
 /// All methods, the default first.
 const std::vector<CoveringMethod>& covering_methods();
 

@@ -57,6 +57,20 @@ struct CoveringSummary {
   double tolerance = 0.0;       ///< the distance bound asked for (0: none)
   // Atlas method (0 for the others).
   int charts = 0;  ///< charts computed (before clipping to the domain)
+  /// Charts whose radius is below the tolerance's sqrt(2·tolerance/curvature) (at most the
+  /// step), by what held it there (methods/atlas/atlas_builder.h, RadiusCap): such charts cost
+  /// vertices that the tolerance alone would not ask for. Always in the JSON summary; a note
+  /// says so only where they are a noticeable part of the atlas.
+  struct RadiusCaps {
+    int curvature = 0;      ///< M turns within the disk (radius ≤ max_turning_angle/curvature)
+    int not_a_graph = 0;    ///< M is no graph over the larger disk, or the corrector misses it
+    int grading = 0;        ///< next to smaller charts (radius_growth)
+    int reach = 0;          ///< another part of M within the disk
+    int band = 0;           ///< half the width of a band of M ∩ S narrower than two radii
+    int reduced_later = 0;  ///< radii reduced after the chart was made (not in total())
+    int total() const { return curvature + not_a_graph + grading + reach + band; }
+  };
+  RadiusCaps radius_caps;
   double min_chart_radius = 0.0;
   double max_chart_radius = 0.0;
   int singular_crossings = 0;  ///< continuation steps that crossed a singular curve of M

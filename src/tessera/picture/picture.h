@@ -68,11 +68,18 @@ struct PictureScene {
 /// \throw InvalidArgument if unstable_counts.size() != scene.positions.cols() (naming both).
 void colour_by_stability(PictureScene& scene, const std::vector<double>& unstable_counts);
 
+/// PictureAspect::Automatic keeps equal scales up to this ratio of the largest to the smallest
+/// axis extent (`tessera render --help` quotes it). Geometry stays below it (a torus of R/r = 9
+/// has 10; at 4 a torus of R = 2, r = 0.5 was drawn as a barrel), continuation views lie far
+/// above it (bvp:points=100 in (λ, ε, max u): 66; cstr in (x1, x2, Da): 27).
+constexpr double kMaxEqualAspectRatio = 10.0;
+
 /// How the axes of the scene are scaled before the camera looks at it.
 enum class PictureAspect {
-  /// Equal scales where the axes' extents are comparable (within a factor 10: geometry, e.g. a
-  /// torus up to R/r = 9), else each axis scaled to its own extent (continuation views such as
-  /// (λ, ε, max u), whose axes have unrelated units: bvp 66, cstr 27).
+  /// Equal scales where the axes' extents are comparable (within kMaxEqualAspectRatio:
+  /// geometry, e.g. a torus up to R/r = 9), else each axis scaled to its own extent
+  /// (continuation views such as (λ, ε, max u), whose axes have unrelated units: bvp 66, cstr
+  /// 27).
   Automatic,
   Equal,  ///< one scale for all three axes
   Box,    ///< each axis scaled to the same length: the bounding box becomes a cube

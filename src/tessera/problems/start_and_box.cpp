@@ -11,7 +11,8 @@
 
 namespace tessera {
 
-std::vector<double> parse_numbers(const std::string& text, const std::string& option) {
+std::vector<double> parse_numbers(const std::string& text, const std::string& option,
+                                  const std::string& expected) {
   std::vector<double> values;
   std::stringstream stream(text);
   std::string item;
@@ -27,13 +28,33 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
       ++used;
     }
     if (item.empty() || used != item.size()) {
-      throw InvalidArgument(option + ": '" + item +
-                            "' is not a number (expected a "
-                            "comma-separated list such as 0,0,1)");
+      throw InvalidArgument(option + ": '" + item + "' is not a number (expected " +
+                            (expected.empty() ? "a comma-separated list such as 0,0,1" : expected) +
+                            ")");
     }
     values.push_back(value);
   }
   return values;
+}
+
+std::string box_syntax(const ImplicitProblem& problem) {
+  const int n = problem.ambient_dimension();
+  const std::vector<std::string> names = problem.coordinate_names();
+  // Examples the parser below accepts, in the problem's own coordinates (tests/problems/
+  // start_and_box_test.cpp parses them): 2n numbers only where they fit on a line.
+  std::string numbers;
+  for (int i = 0; i < n && n <= 6; ++i) {
+    numbers += (i == 0 ? "" : ",") + std::string("-1,1");
+  }
+  std::string named = names.front() + "=-1:1";
+  if (n > 1) {
+    named += "," + names.back() + "=0:";
+  }
+  return "lower,upper for each of the " + std::to_string(n) + " coordinates" +
+         (numbers.empty() ? "" : ", e.g. '" + numbers + "'") +
+         ", or bounds on named coordinates only, name=lower:upper with either side empty for "
+         "unbounded, e.g. '" +
+         named + "'";
 }
 
 namespace {
@@ -49,10 +70,16 @@ Domain named_bounds(const std::string& text, const ImplicitProblem& problem) {
   while (std::getline(items, item, ',')) {
     const auto equals = item.find('=');
     const auto colon = item.find(':', equals == std::string::npos ? 0 : equals);
+    // The example uses the item's own name where it is one of M's coordinates.
+    const std::string example_name =
+        equals != std::string::npos &&
+                std::find(names.begin(), names.end(), item.substr(0, equals)) != names.end()
+            ? item.substr(0, equals)
+            : names.front();
     TESSERA_CHECK(equals != std::string::npos && colon != std::string::npos,
-                  "--box item '" << item
-                                 << "' is not name=lower:upper (e.g. lambda=5:20; either bound may "
-                                    "be left empty)");
+                  "--box item '" << item << "' is not name=lower:upper (e.g. '" << example_name
+                                 << "=-1:1', or '" << example_name
+                                 << "=0:' with the upper side unbounded)");
     const std::string name = item.substr(0, equals);
     const auto found = std::find(names.begin(), names.end(), name);
     TESSERA_CHECK(found != names.end(), "--box names coordinate '" << name << "', which problem '"
@@ -64,10 +91,18 @@ Domain named_bounds(const std::string& text, const ImplicitProblem& problem) {
       if (part.empty()) {
         return std::nullopt;
       }
-      const auto values = parse_numbers(part, "--box");
-      TESSERA_CHECK(values.size() == 1 && std::isfinite(values[0]),
-                    "--box bound '" << part << "' of " << name << " is not one finite number");
-      return values[0];
+      std::size_t used = 0;
+      double value = 0.0;
+      try {
+        value = std::stod(part, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      TESSERA_CHECK(used == part.size() && std::isfinite(value),
+                    "--box bound '" << part << "' of " << name
+                                    << " is not one finite number (e.g. '" << name << "=-1:1', or '"
+                                    << name << "=0:' with the upper side unbounded)");
+      return value;
     };
     const std::optional<double> lower = parse_side(item.substr(equals + 1, colon - equals - 1));
     const std::optional<double> upper = parse_side(item.substr(colon + 1));
@@ -109,10 +144,10 @@ void apply_start_and_box(ProblemSetup& setup, const std::string& start, const st
     setup.expected_euler_characteristic.reset();
     setup.exact_area.reset();
   } else if (!box.empty()) {
-    const auto values = parse_numbers(box, "--box");
+    const auto values = parse_numbers(box, "--box", box_syntax(*setup.problem));
     TESSERA_CHECK(static_cast<int>(values.size()) == 2 * n,
-                  "--box has " << values.size() << " values, expected " << 2 * n
-                               << " (lower,upper for each of the " << n << " coordinates)");
+                  "--box has " << values.size() << " values, expected " << 2 * n << " ("
+                               << box_syntax(*setup.problem) << ")");
     Eigen::VectorXd lower(n);
     Eigen::VectorXd upper(n);
     for (int i = 0; i < n; ++i) {

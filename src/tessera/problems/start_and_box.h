@@ -10,8 +10,15 @@
 
 namespace tessera {
 
-/// Parses "0,0,1". \throw InvalidArgument naming `option` and the item that is not a number.
-std::vector<double> parse_numbers(const std::string& text, const std::string& option);
+/// Parses "0,0,1". \throw InvalidArgument naming `option`, the item that is not a number and
+/// `expected`, what the option takes (empty: "a comma-separated list such as 0,0,1").
+std::vector<double> parse_numbers(const std::string& text, const std::string& option,
+                                  const std::string& expected = "");
+
+/// What `--box` takes, for messages: "lower,upper for each of the 3 coordinates, e.g.
+/// '-1,1,-1,1,-1,1', or bounds on named coordinates only, … e.g. 'x=-1:1,z=0:'", with examples
+/// in `problem`'s coordinate names that apply_start_and_box accepts.
+std::string box_syntax(const ImplicitProblem& problem);
 
 /// Sets setup.start from "--start" text and intersects setup.domain with "--box" text (either
 /// may be empty): lower,upper for each coordinate, or name=lower:upper,… on named coordinates

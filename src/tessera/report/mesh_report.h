@@ -16,6 +16,7 @@
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/geometry/triangle_mesh.h"
 #include "tessera/methods/covering_result.h"
+#include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/problems/problem_setup.h"
 
 namespace tessera {
@@ -163,6 +164,16 @@ struct HopfReport {
   double seconds = 0.0;
 };
 
+/// What `tessera mesh --improve` (the bindings' improve=True) did to the covering's mesh
+/// (report/improvement_report.h, improve_covering).
+struct ImprovementReport {
+  std::string criterion;     ///< to_string(ImprovementCriterion): "angle"
+  int smoothing_passes = 0;  ///< passes asked for
+  /// The swaps (both rounds; min angle and angles below 30° before the first round and after
+  /// the last, in R^n as measure_shape) and the smoothing between them.
+  MeshImprovement result;
+};
+
 /// What one report is made of; `run` is absent for `tessera check` of an existing mesh.
 struct MeshReport {
   std::string problem;
@@ -175,6 +186,7 @@ struct MeshReport {
   std::optional<StabilityReport> stability;  ///< present when stability was asked for
   std::optional<HopfReport> hopf;            ///< present when Hopf curves were asked for
   std::optional<CoveringSummary> run;
+  std::optional<ImprovementReport> improvement;  ///< present after `mesh --improve`
   MeshValidation validation;
   MeshQuality quality;
   std::optional<int> expected_euler_characteristic;

@@ -22,10 +22,15 @@ CompareReport compare_methods(const std::function<ProblemSetup()>& make_setup,
                               const MethodSettings& settings,
                               const std::function<void(const CompareRow&)>& on_row) {
   CompareReport report;
+  MethodSettings shared = settings;
   for (const CoveringMethod& method : covering_methods()) {
     const ProblemSetup setup = make_setup();
     report.expected_euler_characteristic = setup.expected_euler_characteristic;
-    const CoveringResult result = cover(setup, method, settings);
+    if (shared.tolerance <= 0) {
+      shared.tolerance = default_tolerance(setup);
+    }
+    report.tolerance = shared.tolerance;
+    const CoveringResult result = cover(setup, method, shared);
     const MeshValidation validation = validate(result.mesh, *setup.problem, setup.domain);
     const MeshQuality quality = measure_quality(result.mesh, *setup.problem);
     CompareRow row;

@@ -30,12 +30,17 @@ struct CompareRow {
 
 struct CompareReport {
   std::vector<CompareRow> rows;  ///< covering_methods()'s order, the default first
+  /// The distance bound every method ran to: the settings' tolerance, or default_tolerance of
+  /// the problem where they give none (front and bezier have no bound of their own, so that
+  /// their rows would not be comparable with the atlas's).
+  double tolerance = 0.0;
   std::optional<int> expected_euler_characteristic;
   bool passes() const;  ///< every row passes (the CLI's exit status 0)
 };
 
 /// Runs every covering method on a fresh make_setup() each (`tessera compare` and the
-/// bindings' tessera.compare); `on_row` (optional) sees each row as soon as it is measured.
+/// bindings' tessera.compare), all to the same tolerance (CompareReport::tolerance); `on_row`
+/// (optional) sees each row as soon as it is measured.
 CompareReport compare_methods(const std::function<ProblemSetup()>& make_setup,
                               const MethodSettings& settings,
                               const std::function<void(const CompareRow&)>& on_row = {});

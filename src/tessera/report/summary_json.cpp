@@ -9,6 +9,7 @@
 #include "tessera/core/error.h"
 #include "tessera/io/text_file.h"
 #include "tessera/problems/view.h"
+#include "tessera/report/improvement_report.h"
 
 namespace tessera {
 namespace {
@@ -253,7 +254,15 @@ std::string to_json(const MeshReport& report) {
                            {"singular_crossings", r.singular_crossings},
                            {"sheet_rejections", r.sheet_rejections},
                            {"filled_holes", r.filled_holes},
-                           {"boundary_peak_bytes", r.boundary_peak_bytes}};
+                           {"boundary_peak_bytes", r.boundary_peak_bytes},
+                           {"radius_caps",
+                            {{"total", r.radius_caps.total()},
+                             {"curvature", r.radius_caps.curvature},
+                             {"not_a_graph", r.radius_caps.not_a_graph},
+                             {"grading", r.radius_caps.grading},
+                             {"reach", r.radius_caps.reach},
+                             {"band", r.radius_caps.band},
+                             {"reduced_later", r.radius_caps.reduced_later}}}};
     }
     nlohmann::json phases = nlohmann::json::array();
     for (const PhaseWork& p : r.work_by_phase) {
@@ -290,6 +299,9 @@ std::string to_json(const MeshReport& report) {
       }
     }
     j["run"]["notes"] = r.notes;
+  }
+  if (report.improvement) {
+    j["improvement"] = improvement_json(*report.improvement);
   }
   if (report.backend) {
     j["backend"] = {{"name", report.backend->name},
@@ -392,6 +404,9 @@ std::string to_text(const MeshReport& report) {
       out << "repair         " << r.removed_triangles << " triangle(s) removed by the final check, "
           << r.repaired_holes << " place(s) triangulated again\n";
     }
+    if (report.improvement) {
+      out << "improve        " << improvement_text(*report.improvement) << "\n";
+    }
     for (const std::string& note : r.notes) {
       out << "note           " << note << "\n";
     }
@@ -423,13 +438,14 @@ std::string to_text(const MeshReport& report) {
     if (r.vertex_count > 0 && !r.work_by_phase.empty()) {
       // Where the work went, per vertex of the result: DF evaluations/factorisations per step.
       const double V = r.vertex_count;
-      out << "  by step      ";
+      // The unit first, so that the numbers after it read as what they are.
+      out << "  by step (DF / factorisations per vertex): ";
       for (std::size_t i = 0; i < r.work_by_phase.size(); ++i) {
         const PhaseWork& p = r.work_by_phase[i];
         out << (i ? ", " : "") << p.phase << " " << p.counts.jacobian_evaluations / V << "/"
             << p.counts.factorisations / V;
       }
-      out << " DF/factorisations per vertex\n";
+      out << "\n";
     }
   }
   if (report.backend && report.backend->name != "serial") {

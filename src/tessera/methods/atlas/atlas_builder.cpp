@@ -39,6 +39,9 @@ constexpr int kMaxRepeatedTargets = 3;
 // Every so many charts the resident memory is sampled and, from kReleaseHeapDimension on, the
 // heap's free pages go back to the system (release_free_heap).
 constexpr int kReleaseHeapCharts = 64;
+// The note on charts held below the tolerance's radius is made from this fraction of the charts
+// on: below it they barely change the cost of the run (measured in the commit that made it).
+constexpr double kRadiusCapNoteFraction = 0.1;
 
 }  // namespace
 
@@ -625,24 +628,45 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
   summary.boundary_peak_bytes = boundary_peak_bytes_;
   summary.singular_crossings = singular_crossings_;
   summary.sheet_rejections = sheet_rejections_;
-  const int capped = capped_[1] + capped_[2] + capped_[3] + capped_[4] + capped_[5];
-  if (capped > 0) {
+  CoveringSummary::RadiusCaps& caps = summary.radius_caps;
+  caps.curvature = capped_[static_cast<int>(RadiusCap::Curvature)];
+  caps.not_a_graph = capped_[static_cast<int>(RadiusCap::NotAGraph)];
+  caps.grading = capped_[static_cast<int>(RadiusCap::Grading)];
+  caps.reach = capped_[static_cast<int>(RadiusCap::Reach)];
+  caps.band = capped_[static_cast<int>(RadiusCap::Band)];
+  caps.reduced_later = shrunk_charts_;
+  const int capped = caps.total();
+  // The counts are always in the summary (run.atlas.radius_caps). The note is for the few runs
+  // where they change the cost: a few charts held small (a grading step, a corner) are in every
+  // atlas and say nothing; issue 34 found the same 400 characters printed by every run.
+  if (capped > 0 && capped >= kRadiusCapNoteFraction * chart_count()) {
+    // The causes that held charts, those that did not left out.
+    std::vector<std::string> causes;
+    const auto cause = [&causes](int count, const std::string& why) {
+      if (count > 0) {
+        causes.push_back(std::to_string(count) + " " + why);
+      }
+    };
+    std::ostringstream turning;
+    turning << "capped by the curvature (radius <= " << options_.max_turning_angle
+            << "/curvature: M turns within the disk)";
+    cause(caps.curvature, turning.str());
+    cause(caps.not_a_graph,
+          "where M is no graph over the larger disk or the corrector does not reach it (a thin "
+          "part or a turn of M nearby)");
+    std::ostringstream grading;
+    grading << "next to smaller charts (radii grow by at most " << options_.radius_growth - 1.0
+            << " per unit length)";
+    cause(caps.grading, grading.str());
+    cause(caps.reach, "by the reach (another part of M within the disk)");
+    cause(caps.band, "to half the width of a band of M ∩ S narrower than two radii");
     std::ostringstream note;
-    note << capped << " of " << chart_count()
-         << " charts have a radius below the tolerance's sqrt(2*tolerance/curvature): "
-         << capped_[static_cast<int>(RadiusCap::Curvature)]
-         << " capped by the curvature (radius <= " << options_.max_turning_angle
-         << "/curvature: M turns within the disk), "
-         << capped_[static_cast<int>(RadiusCap::NotAGraph)]
-         << " where M is no graph over the larger disk or the corrector does not reach it "
-            "(a thin part or a turn of M nearby), "
-         << capped_[static_cast<int>(RadiusCap::Grading)]
-         << " next to smaller charts (radii grow by at most " << options_.radius_growth - 1.0
-         << " per unit length), " << capped_[static_cast<int>(RadiusCap::Reach)]
-         << " by the reach (another part of M within the disk)";
-    if (capped_[static_cast<int>(RadiusCap::Band)] > 0) {
-      note << ", " << capped_[static_cast<int>(RadiusCap::Band)]
-           << " to half the width of a band of M ∩ S narrower than two radii";
+    note << capped << " of " << chart_count() << " charts ("
+         << std::lround(100.0 * capped / chart_count())
+         << "%) have a radius below the tolerance's sqrt(2*tolerance/curvature), so the mesh "
+            "is finer than the tolerance asks: ";
+    for (std::size_t i = 0; i < causes.size(); ++i) {
+      note << (i == 0 ? "" : ", ") << causes[i];
     }
     if (shrunk_charts_ > 0) {
       note << "; " << shrunk_charts_

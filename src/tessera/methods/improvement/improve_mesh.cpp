@@ -15,6 +15,13 @@ MeshImprovement improve_mesh(TriangleMesh& mesh, const ImplicitProblem& problem,
     result.swaps.swaps += again.swaps;
     result.swaps.sweeps += again.sweeps;
     result.swaps.converged = again.converged;
+    result.swaps.interrupted = result.swaps.interrupted || again.interrupted;
+    result.swaps.rejected_non_convex += again.rejected_non_convex;
+    result.swaps.rejected_existing_edge += again.rejected_existing_edge;
+    result.swaps.rejected_projection_failed += again.rejected_projection_failed;
+    // Before the first round, after the last: the whole improvement's effect.
+    result.swaps.min_angle_degrees_after = again.min_angle_degrees_after;
+    result.swaps.fraction_angles_below_30_after = again.fraction_angles_below_30_after;
   }
   return result;
 }

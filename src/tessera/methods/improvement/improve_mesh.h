@@ -8,7 +8,9 @@
 namespace tessera {
 
 struct MeshImprovement {
-  ImprovementSummary swaps;     ///< both rounds of swaps, added up
+  /// Both rounds of swaps, added up; its before/after measures are the mesh's before the first
+  /// round and after the last.
+  ImprovementSummary swaps;
   SmoothingSummary smoothing;   ///< empty when no smoothing passes were asked for
 };
 

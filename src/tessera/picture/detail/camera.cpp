@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/picture/detail/camera.h"
 
+#include "tessera/picture/picture.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -10,11 +12,6 @@ namespace tessera::picture_detail {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// PictureAspect::Automatic keeps equal scales up to this ratio of the largest to the smallest
-// axis extent. Geometry stays below it (a torus of R/r = 9 has 10; at 4 a torus of R = 2,
-// r = 0.5 was drawn as a barrel), continuation views lie far above it (bvp:points=100 in
-// (λ, ε, max u): 66; cstr in (x1, x2, Da): 27).
-constexpr double kMaxEqualAspectRatio = 10.0;
 
 struct Extents {
   Eigen::Vector3d lower, upper, extent;
@@ -47,7 +44,7 @@ bool has_axes_scaled_apart(const Eigen::Matrix3Xd& positions, PictureAspect aspe
     return aspect == PictureAspect::Box;
   }
   const picture_detail::Extents e = picture_detail::extents_of(positions);
-  return e.largest > picture_detail::kMaxEqualAspectRatio * e.smallest;
+  return e.largest > tessera::kMaxEqualAspectRatio * e.smallest;
 }
 
 }  // namespace tessera
