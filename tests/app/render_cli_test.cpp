@@ -110,7 +110,7 @@ TEST(RenderCli, BadOptionsAreRefusedBeforeDrawing) {
                 "not a polylines file of tessera"},
            Case{"render " + dir + "/missing.ply -o " + dir + "/s.png", "missing.ply"},
            Case{"render " + dir + "/empty.ply -o " + dir + "/s.png", "no triangles"},
-           Case{"render " + mesh + " --curves " + dir + "/nan.csv", "line 3: not a finite number"},
+           Case{"render " + mesh + " --curves " + dir + "/nan.csv", "drawn coordinates (its first three columns) are not numbers"},
            Case{"render " + mesh + " --aspect squashed", "--aspect"},
            Case{"render " + mesh + " --axes boxed", "--axes"},
            Case{"render " + mesh + " --edges some", "--edges"},
