@@ -869,8 +869,8 @@ def compare(
 ) -> Dict[str, Any]:
     """Every covering method on one problem, side by side: ``tessera compare``.
 
-    The options are compare's (and mean what they mean for `mesh`): step, tolerance (default:
-    each method's own, e.g. atlas step/50), placement (atlas: "disk" or "hexagonal"), start,
+    The options are compare's (and mean what they mean for `mesh`): step, tolerance (one for
+    every method, so that the rows compare; default the atlas's step/50), placement (atlas: "disk" or "hexagonal"), start,
     box, max_vertices. Returns the CLI's table as a dict::
 
         {"problem": "torus", "expected_euler_characteristic": 0, "passes": True,
@@ -881,8 +881,8 @@ def compare(
                       "passes": True}, ...]}
 
     one entry per method in `methods()`'s order. "max_distance" is the larger of the centroid
-    and edge-midpoint distances to M, measured independently of the method; "tolerance" is 0
-    where no bound was asked; "passes" is False where the CLI's exit status would be 1 (a
+    and edge-midpoint distances to M, measured independently of the method; "tolerance" (also
+    at the top level) is the bound every method was run to; "passes" is False where the CLI's exit status would be 1 (a
     method stopped early or its mesh is not valid): a failing method is a row, not an
     exception. Raises ValueError for bad input and `Interrupted` (``.report`` holds the table,
     the rows after Ctrl-C say "interrupted") on Ctrl-C.
