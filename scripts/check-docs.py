@@ -25,6 +25,7 @@ import argparse
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -147,8 +148,17 @@ def run_block(block: Block, directory: Path, env: dict, timeout: float) -> subpr
         command = ["bash", "-e", "-o", "pipefail", "-c", block.text]
     else:
         command = ["/usr/bin/python3", "-c", block.text]
-    return subprocess.run(command, cwd=directory, env=env, timeout=timeout, text=True,
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    # Its own process group, so that a block over the time limit (or Ctrl-C here) ends with
+    # everything it started (mpiexec's ranks, a tessera run in a pipeline), not only its shell.
+    with subprocess.Popen(command, cwd=directory, env=env, text=True, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, start_new_session=True) as process:
+        try:
+            output, _ = process.communicate(timeout=timeout)
+        except BaseException:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+            raise
+        return subprocess.CompletedProcess(command, process.returncode, output)
 
 
 def main() -> int:
