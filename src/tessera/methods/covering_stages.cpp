@@ -129,6 +129,21 @@ std::string describe_triangle(const TriangleMesh& mesh, int t) {
   return "near " + describe_point(centroid, mesh.space());
 }
 
+// Keeps the patches of the kept triangles, when the patches still match the triangles one to
+// one (nothing reshaped the mesh since the build; otherwise they are rebuilt at the end anyway).
+void keep_patches(CoveringResult& result, const std::vector<bool>& keep) {
+  if (result.patches.size() != keep.size()) {
+    return;
+  }
+  std::vector<CubicBezierPatch> patches;
+  for (std::size_t t = 0; t < keep.size(); ++t) {
+    if (keep[t]) {
+      patches.push_back(result.patches[t]);
+    }
+  }
+  result.patches = std::move(patches);
+}
+
 // Removes degenerate triangles (area <= options.degenerate_area_ratio·(longest edge)², as
 // validate judges them) that lie on the boundary and cover nothing: three vertices of a straight
 // piece of ∂(M ∩ S) (whitney_pleat's M ∩ {x = 1.5} is a line; a bezier front closing along it
@@ -193,15 +208,7 @@ int remove_degenerate_boundary_triangles(CoveringResult& result, const Validatio
       ++removed;
     }
     if (changed) {
-      if (static_cast<int>(result.patches.size()) == mesh.triangle_count()) {
-        std::vector<CubicBezierPatch> patches;
-        for (int t = 0; t < mesh.triangle_count(); ++t) {
-          if (keep[t]) {
-            patches.push_back(result.patches[t]);
-          }
-        }
-        result.patches = std::move(patches);
-      }
+      keep_patches(result, keep);
       mesh.keep_triangles(keep);
     }
   }
@@ -323,17 +330,7 @@ int validate_and_repair_mesh(const ImplicitProblem& problem, const Domain& domai
   for (std::size_t k = 0; k < kept_index.size(); ++k) {
     keep[kept_index[k]] = kept_fans[k];
   }
-  // Patches still match the triangles only if nothing reshaped the mesh since the build;
-  // otherwise they are rebuilt at the end anyway.
-  if (static_cast<int>(result.patches.size()) == before) {
-    std::vector<CubicBezierPatch> patches;
-    for (int t = 0; t < before; ++t) {
-      if (keep[t]) {
-        patches.push_back(result.patches[t]);
-      }
-    }
-    result.patches = std::move(patches);
-  }
+  keep_patches(result, keep);
   mesh.keep_triangles(keep);
   // A drop can pinch a vertex again; keep_largest_fans repeats until none is left, so one
   // more pass over the kept triangles only confirms.
