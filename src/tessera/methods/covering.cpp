@@ -217,6 +217,7 @@ class StageRunner {
   /// Stages in a row of the same step are accounted together.
   /// \return what the stage returned: whether it did its work.
   bool run(std::string_view step, detail::CoveringStage stage, detail::CoveringStage after_stop) {
+    report_progress(step);
     if (!open_step_.empty() && open_step_ != step) {
       close_step(open_step_);
       open_step_ = {};
@@ -301,6 +302,23 @@ class StageRunner {
   const Clock::time_point clock_start_ = Clock::now();
   Clock::time_point step_start_ = clock_start_;
   std::string_view open_step_;  ///< the step of the stages last run, not yet accounted
+  std::string_view reported_step_;  ///< the step whose start the progress callback last heard
+
+  // The start of each step after the build, with the mesh's counts then: the build reports
+  // itself (ProgressSchedule), and the clipping, refinement and validation at large n take
+  // minutes of their own.
+  void report_progress(std::string_view step) {
+    const ProgressCallback& progress = run_.options.progress;
+    if (!progress || step == reported_step_ || step == "start" || step == "build") {
+      return;
+    }
+    reported_step_ = step;
+    CoveringProgress report;
+    report.vertex_count = run_.result.mesh.vertex_count();
+    report.triangle_count = run_.result.mesh.triangle_count();
+    report.stage = step;
+    progress(report);
+  }
   WorkCounts counted_so_far_;
   std::vector<PhaseWork> steps_;
 };
