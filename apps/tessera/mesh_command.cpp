@@ -464,8 +464,14 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   const bool show_progress = !quiet && isatty(STDERR_FILENO);
   if (show_progress) {
     settings.progress = [](const CoveringProgress& p) {
-      std::fprintf(stderr, "\r  %d vertices, %d triangles, front %d   ", p.vertex_count,
-                   p.triangle_count, p.front_size);
+      const std::string stage(p.stage);
+      if (p.stage == "build") {
+        std::fprintf(stderr, "\r  %d vertices, %d triangles, front %d   ", p.vertex_count,
+                     p.triangle_count, p.front_size);
+      } else {
+        std::fprintf(stderr, "\r  %s: %d vertices, %d triangles          ", stage.c_str(),
+                     p.vertex_count, p.triangle_count);
+      }
     };
   }
   // Ctrl-C or a kill (SIGTERM, e.g. a batch system's time limit) stops the method at its next

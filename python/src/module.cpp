@@ -25,6 +25,7 @@
 #include "ddt.h"
 #include "handles.h"
 #include "interrupt_handler.h"
+#include "progress.h"
 #include "python_problem.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/bezier_surface.h"
@@ -191,28 +192,14 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
   }
 
   MethodSettings settings = request.settings;
-  // A progress callback that raises stops the run; its exception is raised afterwards.
-  std::optional<py::error_already_set> progress_error;
-  if (!progress.is_none()) {
-    settings.progress = [&progress, &progress_error](const CoveringProgress& p) {
-      py::gil_scoped_acquire gil;
-      if (progress_error) {
-        return;
-      }
-      try {
-        progress(py::dict(py::arg("vertex_count") = p.vertex_count,
-                          py::arg("triangle_count") = p.triangle_count,
-                          py::arg("front_size") = p.front_size));
-      } catch (py::error_already_set& error) {
-        progress_error.emplace(std::move(error));
-      }
-    };
-  }
+  // A progress callable that raises stops the run; its exception is raised afterwards.
+  ProgressReporter reporter(progress);
+  settings.progress = reporter.callback();
   const InterruptHandler interrupt(handle_interrupt);
-  // The methods call progress and stop_requested from the run's thread, so progress_error is
-  // only ever touched by that thread (with the GIL in progress, without it here).
-  settings.stop_requested = [&interrupt, &progress_error] {
-    return interrupt.is_requested() || progress_error.has_value();
+  // The methods call progress and stop_requested from the run's thread, so the reporter's error
+  // is only ever touched by that thread (with the GIL in progress, without it here).
+  settings.stop_requested = [&interrupt, &reporter] {
+    return interrupt.is_requested() || reporter.has_error();
   };
 
   auto handle = std::make_shared<MeshHandle>();
@@ -231,6 +218,18 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
       result.mesh = refine_bezier_surface(result.mesh, result.patches, request.refine);
       result.validation.reset();
     }
+    // The report measures the mesh against M (a projection per sample; with a Python F, often
+    // longer than the covering) and the analyses follow: two more stages for the progress.
+    const auto report_stage = [&](std::string_view stage) {
+      if (settings.progress) {
+        CoveringProgress record;
+        record.vertex_count = result.mesh.vertex_count();
+        record.triangle_count = result.mesh.triangle_count();
+        record.stage = stage;
+        settings.progress(record);
+      }
+    };
+    report_stage("report");
     ReportOptions report_options;
     report_options.samples = request.report_samples;
     report_options.run_seconds = result.summary.wall_seconds;
@@ -254,6 +253,9 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
     }
     analysis.hopf = wants_hopf;
     analysis.level = level_set;
+    if (fold_plane || wants_stability || level_set) {
+      report_stage("analyses");
+    }
     MeshAnalyses analyses = analyse_mesh(setup, result.mesh, view, analysis, report);
     if (analyses.hopf && !request.diagram.empty()) {
       handle->note = write_run_diagram(request.diagram, problem->argument, report,
@@ -275,11 +277,10 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
     handle->mesh = std::move(result.mesh);
     handle->patches = std::move(result.patches);
   }
+  reporter.finish();
   handle->interrupted = interrupt.is_requested();
   handle->interrupt_count = interrupt.count();
-  if (progress_error) {
-    throw std::move(*progress_error);
-  }
+  reporter.raise_error();
   return handle;
 }
 

@@ -636,6 +636,18 @@ def _set_box(request, box) -> None:
         request.box = _numbers(box)
 
 
+def _progress(progress: Any) -> Any:
+    """mesh(progress=...) as the compiled module takes it: a callable, "auto", "always" or None."""
+    if progress is None:
+        return "auto"
+    if isinstance(progress, bool):
+        return "always" if progress else None
+    if not callable(progress):
+        raise TypeError(f"progress must be a callable, True, False or None, not "
+                        f"{type(progress).__name__}")
+    return progress
+
+
 def mesh(
     problem: ProblemLike,
     *,
@@ -663,7 +675,7 @@ def mesh(
     edge_length_factor: Optional[float] = None,
     min_tangent_cosine: Optional[float] = None,
     refine: Optional[int] = None,
-    progress: Optional[Callable[[Dict[str, int]], None]] = None,
+    progress: Union[None, bool, Callable[[Dict[str, Any]], None]] = None,
     allow_partial: bool = False,
     handle_interrupt: bool = True,
 ) -> Mesh:
@@ -703,8 +715,15 @@ def mesh(
         vertex (default 7), "gap" or "fifo".
     max_step, edge_length_factor, min_tangent_cosine, refine: bezier method's options (refine K:
         the cubic surface on a K×K subdivision of every triangle; `Mesh.write_patches`).
-    progress: called about every 1000 vertices with {"vertex_count", "triangle_count",
-        "front_size"}; an exception it raises stops the run and is raised.
+    progress: None (default): progress on sys.stderr as ``tessera mesh`` shows it, a status
+        line when stderr is a terminal; elsewhere (a notebook, a log) a line per stage and one
+        every 10 s once the run has lasted 5 s, so short runs print nothing. True: the same
+        from the start; False: nothing. A callable instead receives each record, a dict
+        {"stage": "build" | "clip" | "refine" | "validate" | "patches" | "report" | "analyses",
+        "vertex_count", "triangle_count", "front_size", "seconds"}: during the build every
+        1000 vertices (atlas: charts) or every second, whichever comes first, then once as each
+        later stage begins (docs/python.md, "Progress"); an exception it raises stops the run
+        and is raised.
     allow_partial: return the mesh of a run that stopped early instead of raising.
     handle_interrupt: Ctrl-C stops the run (from the main thread, while Python's SIGINT handler
         is the default one) and raises `Interrupted` carrying the valid partial mesh.
@@ -743,7 +762,7 @@ def mesh(
     request.edge_length_factor = _in_range("edge_length_factor", edge_length_factor, 0.1, 3.0)
     request.min_tangent_cosine = _in_range("min_tangent_cosine", min_tangent_cosine, 0.01, 0.999)
     request.refine = _in_range("refine", refine, 1, 64, int)
-    core = _tessera.mesh(chosen._core, request, progress, bool(handle_interrupt))
+    core = _tessera.mesh(chosen._core, request, _progress(progress), bool(handle_interrupt))
     result = Mesh._wrap(core)
     if core.interrupted:
         _raise_interrupted(

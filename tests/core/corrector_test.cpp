@@ -16,6 +16,7 @@
 #include "tessera/core/face_projection.h"
 #include "tessera/core/linearization.h"
 #include "tessera/problems/catalogue.h"
+#include "tessera/problems/examples.h"
 
 namespace {
 
@@ -410,6 +411,61 @@ TEST(FaceProjection, KeepsItsFactorisationWhileItContractsOnSparseProblems) {
   }
   EXPECT_GE(counts[0], 3);
   EXPECT_LT(counts[1], counts[0]);
+}
+
+// Issue 34: bounds on the twin coordinates u3, u4 of bvp:points=6 (whose states are symmetric,
+// u3 = u4) coincide on M; a point on M ∩ {u3 = 20} also lies on {u4 = 20}. Projecting onto both,
+// or onto both and a third face (the corner where they meet λ = 0.5), is projecting onto one:
+// the bordered system with both is singular, and failed. Bounds that are parallel on M but
+// apart (u3 = 20, u4 = 19) still have no common point.
+TEST(FaceProjection, FacesThatCoincideOnMAreOneConstraint) {
+  const tessera::ProblemSetup bvp = tessera::make_catalogue_problem("bvp:points=6");
+  const int n = bvp.problem->ambient_dimension();
+  tessera::Domain domain(n);
+  const auto add_bound = [&](int coordinate, double bound, double sign, const char* label) {
+    Eigen::VectorXd normal = Eigen::VectorXd::Zero(n);
+    Eigen::VectorXd point = Eigen::VectorXd::Zero(n);
+    normal(coordinate) = sign;
+    point(coordinate) = bound;
+    domain.add_half_space(normal, point, label);
+  };
+  add_bound(2, 20.0, -1.0, "u3 <= 20");     // face 0
+  add_bound(3, 20.0, -1.0, "u4 <= 20");     // face 1
+  add_bound(6, 0.5, 1.0, "lambda >= 0.5");  // face 2
+  add_bound(3, 19.0, -1.0, "u4 <= 19");     // face 3
+  tessera::CorrectorOptions options;
+  // Near the corner of u3 = 20 and λ = 0.5 (ε ≈ 0.113); u3 is the middle point, the maximum.
+  const auto& problem = dynamic_cast<const tessera::ArrheniusBratu&>(*bvp.problem);
+  Eigen::VectorXd on_u3 = problem.point_with_amplitude(20.0, 0.12);
+  ASSERT_TRUE(tessera::project_onto_faces(*bvp.problem, domain, {0}, on_u3, 1.0, options));
+  ASSERT_EQ(on_u3(2), 20.0);
+  EXPECT_NEAR(on_u3(3), 20.0, 1e-12);  // the twin, by symmetry, to rounding
+  Eigen::VectorXd F(n - 2);
+  for (const std::vector<int>& faces : {std::vector<int>{0, 1}, std::vector<int>{1, 0}}) {
+    Eigen::VectorXd x = on_u3;
+    ASSERT_TRUE(tessera::project_onto_faces(*bvp.problem, domain, faces, x, 1.0, options));
+    EXPECT_EQ(x(2), 20.0);  // exactly on both faces
+    EXPECT_EQ(x(3), 20.0);
+    bvp.problem->evaluate(x, F);
+    EXPECT_LE(F.norm(), options.residual_tolerance);
+    EXPECT_LE((x - on_u3).norm(), 1e-9);  // already there
+  }
+  // The corner of the three faces, from a point on the first two near it.
+  Eigen::VectorXd corner = on_u3;
+  ASSERT_TRUE(tessera::project_onto_faces(*bvp.problem, domain, {0, 1, 2}, corner, 1.0, options));
+  EXPECT_EQ(corner(2), 20.0);
+  EXPECT_EQ(corner(3), 20.0);
+  EXPECT_EQ(corner(6), 0.5);
+  bvp.problem->evaluate(corner, F);
+  EXPECT_LE(F.norm(), options.residual_tolerance);
+  // Parallel on M but apart: no point on both, as before.
+  Eigen::VectorXd apart = on_u3;
+  EXPECT_FALSE(tessera::project_onto_faces(*bvp.problem, domain, {0, 3}, apart, 1.0, options));
+  // Three faces of which only one holds at the start: refused before any factorisation.
+  tessera::CountedProblem counted(*bvp.problem);
+  Eigen::VectorXd start = bvp.start;
+  EXPECT_FALSE(tessera::project_onto_faces(counted, domain, {0, 2, 3}, start, 1.0, options));
+  EXPECT_EQ(counted.factorisations(), 0);
 }
 
 // A factorisation kept for its solves holds no more than memory_bytes() says: the atlas counts

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "geometry/mesh_examples.h"
 #include "tessera/core/counted_problem.h"
@@ -75,6 +76,36 @@ TEST(Covering, WithoutToleranceNoBoundIsClaimed) {
   EXPECT_EQ(result.summary.tolerance, 0.0);
   EXPECT_EQ(result.summary.max_sampled_distance, -1.0);
   EXPECT_EQ(result.summary.refined_edges, 0);
+}
+
+// Progress: every method reports its build (every 1000 vertices or charts, or every second),
+// then the skeleton reports each later stage once, as it begins, with the mesh's counts then.
+TEST(Covering, ProgressReportsTheBuildThenEachLaterStageOnce) {
+  const ProblemSetup setup = make_catalogue_problem("sphere_cut");
+  for (const CoveringMethod& method : covering_methods()) {
+    SCOPED_TRACE(method.name);
+    std::vector<CoveringProgress> records;
+    MethodSettings settings;
+    settings.step = 0.05;  // a few thousand vertices each
+    settings.bezier_max_step = 0.05;
+    settings.progress = [&records](const CoveringProgress& progress) {
+      records.push_back(progress);
+    };
+    const CoveringResult result = cover(setup, method, settings);
+    ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
+    ASSERT_FALSE(records.empty());
+    std::vector<std::string> stages;
+    for (const CoveringProgress& record : records) {
+      if (stages.empty() || stages.back() != record.stage) {
+        stages.emplace_back(record.stage);
+      }
+    }
+    EXPECT_EQ(stages.front(), "build");
+    const std::vector<std::string> later(stages.begin() + 1, stages.end());
+    EXPECT_EQ(later, (std::vector<std::string>{"clip", "refine", "validate", "patches"}));
+    EXPECT_GT(records.front().front_size, 0);
+    EXPECT_EQ(records.back().vertex_count, result.mesh.vertex_count());  // nothing after it
+  }
 }
 
 // A start that cannot be projected is an outcome with a summary, for every method.

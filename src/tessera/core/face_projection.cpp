@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "tessera/core/ambient_space.h"
 #include "tessera/core/linearization.h"
@@ -76,6 +77,13 @@ void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::
 
 namespace {
 
+// Rows of BᵀT whose sines of angle are below this are parallel (the faces coincide on M to
+// first order); rows of twin coordinates of a symmetric solution differ by rounding only.
+constexpr double kParallelRows = 1e-8;
+// A row this much shorter than another is a face nearly tangent to M, not a coincident one:
+// it is kept (and the step fails as for any tangent face).
+constexpr double kMinCoincidentRowRatio = 1e-3;
+
 // SlowChord: the chord still contracted, but by less than options' max_contraction per step;
 // x is left at the last iterate, nearer M ∩ faces than where it started.
 enum class FaceProjection { Converged, FirstStepTooFar, SlowChord, Failed };
@@ -102,9 +110,40 @@ FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& 
   if (first_contraction != nullptr) {
     *first_contraction = 0.0;
   }
-  if (c > 2) {
-    // More faces than the surface has dimensions: no such point in general.
-    return FaceProjection::Failed;
+  // b·(x − p) of each face, and ‖x‖ last (one reduction on a split point).
+  const auto offsets_and_norm = [&](const Eigen::VectorXd& at) {
+    std::vector<double> parts(static_cast<std::size_t>(c) + 1);
+    for (int f = 0; f < c; ++f) {
+      const HalfSpace& h = domain.half_spaces()[faces[f]];
+      parts[f] = h.normal.dot(at - h.point);
+    }
+    parts[c] = at.squaredNorm();
+    if (split) {
+      space.sum(parts.data(), c + 1);
+    }
+    parts[c] = std::sqrt(parts[c]);
+    return parts;
+  };
+  const auto is_on_face = [](double offset, double norm) {
+    return std::abs(offset) <= kOnFaceTolerance * (1.0 + norm);
+  };
+  // Only a face that x lies on from the start may be left out of the steps: a coincident face
+  // the iteration reaches on its way (a chart centre snapped towards an edge of S where two
+  // faces meet M in a curve) stays in, and the projection fails as it did before coincident
+  // faces were recognised.
+  std::vector<bool> is_on_at_start(static_cast<std::size_t>(c), false);
+  if (c > 1) {
+    const std::vector<double> at_start = offsets_and_norm(x);
+    int on = 0;
+    for (int f = 0; f < c; ++f) {
+      is_on_at_start[f] = is_on_face(at_start[f], at_start[c]);
+      on += is_on_at_start[f] ? 1 : 0;
+    }
+    if (c > 2 && on < c - 2) {
+      // More faces than the surface has dimensions: no such point in general, unless all but
+      // two are faces that x already lies on.
+      return FaceProjection::Failed;
+    }
   }
   const Eigen::VectorXd start = x;
   Eigen::VectorXd F(space.local_equations());
@@ -124,42 +163,64 @@ FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& 
     ++factorisations;
     return own.factor(problem, x, reference.size() ? &reference : nullptr);
   };
+  // The faces the last step left out: x lies on them, and must still at the end.
+  std::vector<int> left_out;
   // The step from x: J⁺(−F), completed by the tangential part that reaches the faces.
   const auto step = [&] {
     linearization.solve_minimum_norm(-F, dx);
     const Eigen::MatrixXd& T = linearization.tangent_basis();
     Eigen::MatrixXd BT(c, 2);
-    Eigen::VectorXd rhs(c);
-    std::array<double, 2> offset{};  // b·(x − p) of each face
-    std::array<double, 2> along{};   // b·dx
+    // Per face: BᵀT's row, b·(x − p), b·dx; then ‖x‖ (one reduction on a split point).
+    std::vector<double> parts(4 * static_cast<std::size_t>(c) + 1);
     for (int f = 0; f < c; ++f) {
       const HalfSpace& h = domain.half_spaces()[faces[f]];
-      BT.row(f) = h.normal.transpose() * T;
-      offset[f] = h.normal.dot(x - h.point);
-      along[f] = h.normal.dot(dx);
+      const Eigen::RowVector2d row = h.normal.transpose() * T;
+      parts[4 * f] = row(0);
+      parts[4 * f + 1] = row(1);
+      parts[4 * f + 2] = h.normal.dot(x - h.point);
+      parts[4 * f + 3] = h.normal.dot(dx);
     }
-    if (split && c > 0) {
-      // The ranks' parts of BᵀT, Bᵀ(x − p) and Bᵀdx, summed at once.
-      std::array<double, 8> parts{};
-      for (int f = 0; f < c; ++f) {
-        parts[4 * f] = BT(f, 0);
-        parts[4 * f + 1] = BT(f, 1);
-        parts[4 * f + 2] = offset[f];
-        parts[4 * f + 3] = along[f];
-      }
-      space.sum(parts.data(), 4 * c);
-      for (int f = 0; f < c; ++f) {
-        BT(f, 0) = parts[4 * f];
-        BT(f, 1) = parts[4 * f + 1];
-        offset[f] = parts[4 * f + 2];
-        along[f] = parts[4 * f + 3];
-      }
+    parts[4 * c] = x.squaredNorm();
+    if (split) {
+      space.sum(parts.data(), 4 * c + 1);
     }
+    const double norm = std::sqrt(parts[4 * c]);
+    // The faces that constrain the step: a face whose row is a nonzero multiple of a kept
+    // face's row, or comes after two kept rows (which span the tangent plane), coincides with
+    // them on M to first order; where x lies on it, it is left out (with it the system would be
+    // singular, or have more rows than the plane has dimensions).
+    std::vector<int> kept;
+    left_out.clear();
     for (int f = 0; f < c; ++f) {
-      rhs(f) = -offset[f] - along[f];
+      BT(f, 0) = parts[4 * f];
+      BT(f, 1) = parts[4 * f + 1];
+      bool is_dependent = kept.size() == 2;
+      if (kept.size() == 1) {
+        const Eigen::RowVector2d other = BT.row(kept[0]);
+        const double size = BT.row(f).norm();
+        const double cross = other(0) * BT(f, 1) - other(1) * BT(f, 0);
+        is_dependent = size >= kMinCoincidentRowRatio * other.norm() &&
+                       std::abs(cross) <= kParallelRows * size * other.norm();
+      }
+      if (is_dependent && is_on_at_start[f] && is_on_face(parts[4 * f + 2], norm)) {
+        left_out.push_back(f);
+      } else {
+        kept.push_back(f);
+      }
+    }
+    const int rows = static_cast<int>(kept.size());
+    if (rows > 2) {
+      return false;  // three independent faces: no point of the surface on all of them
+    }
+    Eigen::MatrixXd BT_kept(rows, 2);
+    Eigen::VectorXd rhs(rows);
+    for (int r = 0; r < rows; ++r) {
+      const int f = kept[r];
+      BT_kept.row(r) = BT.row(f);
+      rhs(r) = -parts[4 * f + 2] - parts[4 * f + 3];
     }
     Eigen::VectorXd z(2);
-    if (!solve_minimum_norm_dense(BT, rhs, z)) {
+    if (!solve_minimum_norm_dense(BT_kept, rhs, z)) {
       return false;  // a face tangent to M: the point is not isolated
     }
     dx += T * z;
@@ -221,6 +282,16 @@ FaceProjection iterate_onto_faces(const ImplicitProblem& problem, const Domain& 
     }
     previous = norm;
     if (small) {
+      if (!left_out.empty()) {
+        // A face left out of the steps must still hold where they ended (coincident with a
+        // kept one on M, not merely parallel to it there).
+        const std::vector<double> at_end = offsets_and_norm(x);
+        for (int f : left_out) {
+          if (!is_on_face(at_end[f], at_end[c])) {
+            return FaceProjection::Failed;
+          }
+        }
+      }
       // The iteration leaves b·(x − p) at the size of the last step; a boundary vertex must lie
       // on its faces exactly (never outside S), so the last rounding-sized move puts it there.
       place_on_faces(domain, faces, x, space);

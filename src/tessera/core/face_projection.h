@@ -25,10 +25,24 @@ void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::
 void place_on_faces(const Domain& domain, const std::vector<int>& faces, Eigen::VectorXd& x,
                     const AmbientSpace& space);
 
-/// Projects x onto M ∩ {the bounding hyperplanes of `faces`} (at most two of them, as M is a
-/// surface) by minimum-norm Gauss–Newton on F(x) = 0, b_f·(x − p_f) = 0. Each step factors DF
-/// alone (dense or sparse, through Linearization), so it costs what an unconstrained step
-/// costs and never forms a dense n×n matrix.
+/// A point within this distance of a bounding hyperplane, relative to 1 + ‖x‖, lies on it: the
+/// clipping counts such vertices as on the face (not across it), and project_onto_faces leaves
+/// out of its steps a face that x already lies on to this tolerance where that face coincides
+/// with another on M.
+inline constexpr double kOnFaceTolerance = 1e-9;
+
+/// Projects x onto M ∩ {the bounding hyperplanes of `faces`} (at most two independent ones, as
+/// M is a surface) by minimum-norm Gauss–Newton on F(x) = 0, b_f·(x − p_f) = 0. Each step
+/// factors DF alone (dense or sparse, through Linearization), so it costs what an unconstrained
+/// step costs and never forms a dense n×n matrix.
+///
+/// Faces that coincide on M near x are one constraint: where a face's row of BᵀT (B the
+/// faces' normals, T M's tangent basis) is a multiple of another face's row, or two faces'
+/// rows already span the tangent plane, and x lies on that face to kOnFaceTolerance from the
+/// start, the steps leave the face out, and the point reached must still lie on it to that
+/// tolerance. Bounds on twin coordinates of a symmetric solution do this (u25 ≤ 20 and
+/// u26 ≤ 20 of an even grid, whose states have u25 = u26): the bordered system with both is
+/// singular. A face reached only on the way stays in (and the projection fails as before).
 ///
 /// \param x  n-vector (a distributed problem's local rows, with a domain distributed alike),
 ///        moved in place (unspecified on failure).

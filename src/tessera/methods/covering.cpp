@@ -17,6 +17,7 @@
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/domain.h"
 #include "tessera/core/error.h"
+#include "tessera/core/face_projection.h"
 #include "tessera/core/process_memory.h"
 #include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/bezier_patch.h"
@@ -71,6 +72,7 @@ class CoveringCoordinates {
       converted_domain_ = domain.distributed(space_);
     }
     domain_ = is_weighted || cuts_domain ? &converted_domain_ : &domain;
+    original_domain_ = &domain;
     if (is_weighted) {
       start_ = weights_.cwiseProduct(start);
     } else {
@@ -105,12 +107,50 @@ class CoveringCoordinates {
     for (int v = 0; v < mesh.vertex_count(); ++v) {
       mesh.mutable_point(v).array() /= weights_.array();
     }
+    put_back_on_faces(mesh);
     for (CubicBezierPatch& patch : result.patches) {
       patch = CubicBezierPatch(weights_.cwiseInverse().asDiagonal() * patch.control_points());
     }
   }
 
  private:
+  // A vertex on a face in y = W x is on it exactly (place_on_faces), but y/w rounds: the bound
+  // u ≤ 20 of bvp:points=16 becomes y ≤ 20·w, and (20·w)/w = 20 + 3.6e-15. Vertices across a
+  // face of S by no more than kOnFaceTolerance are put back on it exactly, so that none lies
+  // outside S, not even by rounding (issue 34). Coordinate faces (a box's) cost O(1) a vertex.
+  void put_back_on_faces(TriangleMesh& mesh) const {
+    const Domain& domain = *original_domain_;
+    const int faces = static_cast<int>(domain.half_spaces().size());
+    std::vector<int> axis(static_cast<std::size_t>(faces), -1);  // -1: not a coordinate face
+    for (int k = 0; k < faces; ++k) {
+      const Eigen::VectorXd& normal = domain.half_spaces()[k].normal;
+      if ((normal.array() != 0.0).count() == 1) {
+        normal.cwiseAbs().maxCoeff(&axis[k]);
+      }
+    }
+    std::vector<int> across;
+    for (int v = 0; v < mesh.vertex_count(); ++v) {
+      const auto x = mesh.point(v);
+      across.clear();
+      for (int k = 0; k < faces; ++k) {
+        const HalfSpace& h = domain.half_spaces()[k];
+        const double d = axis[k] >= 0 ? h.normal(axis[k]) * (x(axis[k]) - h.point(axis[k]))
+                                      : domain.signed_distance(k, x);
+        if (d < 0) {
+          across.push_back(k);
+        }
+      }
+      if (across.empty()) {
+        continue;
+      }
+      Eigen::VectorXd placed = x;
+      place_on_faces(domain, across, placed);
+      if ((placed - x).norm() <= kOnFaceTolerance * (1.0 + x.norm())) {
+        mesh.mutable_point(v) = placed;
+      }
+    }
+  }
+
   void check_sizes(const ImplicitProblem& problem, const Eigen::VectorXd& start,
                    const Domain& domain) const {
     if (space_->is_distributed()) {
@@ -146,6 +186,7 @@ class CoveringCoordinates {
   std::optional<ScaledProblem> scaled_;
   Domain converted_domain_;  ///< W S, or S cut to this rank's rows, when the domain changes
   const Domain* domain_ = nullptr;
+  const Domain* original_domain_ = nullptr;  ///< S in the problem's own coordinates
   Eigen::VectorXd start_;
   std::optional<CountedProblem> problem_;
 };
@@ -176,6 +217,7 @@ class StageRunner {
   /// Stages in a row of the same step are accounted together.
   /// \return what the stage returned: whether it did its work.
   bool run(std::string_view step, detail::CoveringStage stage, detail::CoveringStage after_stop) {
+    report_progress(step);
     if (!open_step_.empty() && open_step_ != step) {
       close_step(open_step_);
       open_step_ = {};
@@ -260,6 +302,23 @@ class StageRunner {
   const Clock::time_point clock_start_ = Clock::now();
   Clock::time_point step_start_ = clock_start_;
   std::string_view open_step_;  ///< the step of the stages last run, not yet accounted
+  std::string_view reported_step_;  ///< the step whose start the progress callback last heard
+
+  // The start of each step after the build, with the mesh's counts then: the build reports
+  // itself (ProgressSchedule), and the clipping, refinement and validation at large n take
+  // minutes of their own.
+  void report_progress(std::string_view step) {
+    const ProgressCallback& progress = run_.options.progress;
+    if (!progress || step == reported_step_ || step == "start" || step == "build") {
+      return;
+    }
+    reported_step_ = step;
+    CoveringProgress report;
+    report.vertex_count = run_.result.mesh.vertex_count();
+    report.triangle_count = run_.result.mesh.triangle_count();
+    report.stage = step;
+    progress(report);
+  }
   WorkCounts counted_so_far_;
   std::vector<PhaseWork> steps_;
 };

@@ -36,7 +36,7 @@ struct CoveringOptions {
   /// The corrector of the start projection, clipping and refinement (and of the method's own
   /// projections where it uses the shared corrector).
   CorrectorOptions corrector;
-  ProgressCallback progress;   ///< called every ~1000 vertices when set
+  ProgressCallback progress;   ///< when set: see CoveringProgress and ProgressSchedule
   StopRequest stop_requested;  ///< polled about once per vertex when set (see StopRequest)
 
   /// \throw InvalidArgument naming the first shared option that is out of range; `owner` names

@@ -448,7 +448,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     enqueue(first);
     keep_factorisation(first, std::move(linearization));
   }
-  int next_progress = 1000;
+  ProgressSchedule progress_schedule;
   int next_heap_release = kReleaseHeapCharts;
   Eigen::VectorXd y(rows_);
   while (!open_.empty() && !stopped_) {
@@ -615,8 +615,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
         release_free_heap();
       }
     }
-    if (options_.progress && chart_count() >= next_progress) {
-      next_progress = chart_count() + 1000;
+    if (options_.progress && progress_schedule.is_due(chart_count())) {
       options_.progress({chart_count(), 0, static_cast<int>(open_.size())});
     }
   }

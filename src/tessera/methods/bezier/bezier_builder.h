@@ -146,7 +146,7 @@ class BezierBuilder {
   int connections_ = 0;
   int step_reductions_ = 0;
   double longest_edge_ = 0.0;  // of the whole mesh, for the radius of the overlap search
-  int next_progress_ = 1000;
+  ProgressSchedule progress_schedule_;
 };
 
 /// Collapses the build's needles and swaps its caps away (bezier_shape_repair.cpp,

@@ -71,8 +71,7 @@ int BezierBuilder::add_vertex(VertexData vertex) {
   vertex_triangles_.emplace_back();
   front_out_.emplace_back();
   front_in_.emplace_back();
-  if (options_.progress && static_cast<int>(vertices_.size()) >= next_progress_) {
-    next_progress_ += 1000;
+  if (options_.progress && progress_schedule_.is_due(static_cast<int>(vertices_.size()))) {
     CoveringProgress progress;
     progress.vertex_count = static_cast<int>(vertices_.size());
     progress.triangle_count = static_cast<int>(triangles_.size());

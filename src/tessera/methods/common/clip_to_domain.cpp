@@ -92,16 +92,27 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   const int m = problem.equation_count();
   OrientationGuard guard(problem, vertex_neighbours(mesh));
   const int vertex_count = mesh.vertex_count();
-  // Every vertex's distance to the face (one reduction on a split mesh).
-  std::vector<double> d(vertex_count, 0.0);
+  // Every vertex's distance to the face and, after them, the squared norms of the vertices not
+  // on it, for the on-face tolerance (one reduction on a split mesh).
+  std::vector<double> d(2 * static_cast<std::size_t>(vertex_count), 0.0);
   for (int v = 0; v < vertex_count; ++v) {
     if (!std::binary_search(on_faces[v].begin(), on_faces[v].end(), k)) {
       d[v] = domain.partial_signed_distance(k, mesh.point(v));
+      d[vertex_count + v] = mesh.point(v).squaredNorm();
     }
   }
   if (space.is_distributed() && vertex_count > 0) {
-    space.sum(d.data(), vertex_count);
+    space.sum(d.data(), 2 * vertex_count);
   }
+  std::vector<int> onto_face;  // vertices on the face to kOnFaceTolerance, not yet recorded
+  for (int v = 0; v < vertex_count; ++v) {
+    if (!std::binary_search(on_faces[v].begin(), on_faces[v].end(), k) &&
+        std::abs(d[v]) <= kOnFaceTolerance * (1.0 + std::sqrt(d[vertex_count + v]))) {
+      onto_face.push_back(v);
+      d[v] = 0.0;
+    }
+  }
+  d.resize(vertex_count);
   {
     // Room for the cut vertices (at most one per edge across the face, fewer than the
     // triangles across it), so that adding them does not double the mesh's storage.
@@ -114,6 +125,20 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
     mesh.reserve(vertex_count + 2 * across + 16, mesh.triangle_count() + 2 * across + 16);
   }
   auto work_faces = on_faces;
+  // A vertex on the face to kOnFaceTolerance lies on it, as faces_of_vertices counts them before
+  // the first face: it is recorded there and put on it exactly. Vertices that an earlier face's
+  // clipping put on M ∩ that face are the ones: where the two faces coincide on M (bounds on
+  // twin coordinates of symmetric states, u25 ≤ 20 and u26 ≤ 20 of an even grid) they lie
+  // across this face by rounding, ±4e-16, with either sign. Counted as across, each got a cut
+  // point a rounding error away (a needle that folds, "would fold the triangle") or a cut
+  // projected onto both faces at once (singular): issue 34, python/examples/bvp_scipy.py.
+  for (int v : onto_face) {
+    std::vector<int>& faces = work_faces[v];
+    faces.insert(std::upper_bound(faces.begin(), faces.end(), k), k);
+    Eigen::VectorXd x = mesh.point(v);
+    place_on_faces(domain, faces, x, space);
+    undo.move(mesh, v, x);
+  }
   // After v moves onto the face, only triangles with another vertex strictly inside are kept;
   // the others (all corners on or outside the face) are dropped by step 3 whatever their shape.
   const auto is_kept_without = [&](const Triangle& t, int v) {

@@ -97,6 +97,7 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
   try {
     build_initial_hexagon(start_point, start_frame);
     int processed = 0;
+    ProgressSchedule progress_schedule;
     while (auto center = next_frontal()) {
       const FrontState::Checkpoint checkpoint = state_.checkpoint();
       const int merges_before = merges_;
@@ -117,7 +118,7 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
       if (space_->local_rows() >= kReleaseHeapDimension && processed % kMemorySampleVertices == 0) {
         sample_memory(summary);
       }
-      if (options_.progress && processed % 1000 == 0) {
+      if (options_.progress && progress_schedule.is_due(processed)) {
         options_.progress(
             {state_.live_vertex_count(), state_.live_triangle_count(), state_.front_size()});
       }

@@ -9,14 +9,6 @@
 #include "tessera/geometry/mesh_quality.h"
 
 namespace tessera::detail {
-namespace {
-
-// A vertex within this distance (relative to 1 + |x|) of a bounding hyperplane lies on it: the
-// methods' own boundary snapping (the atlas's chart centres, refinement midpoints) leaves
-// vertices there to corrector tolerance, and they must count as on the face, not across it.
-constexpr double kOnFaceTolerance = 1e-9;
-
-}  // namespace
 
 // The lengths ‖point(u) − point(w)‖ of the pairs (u, w): one reduction on a split mesh.
 std::vector<double> lengths(const TriangleMesh& mesh, const AmbientSpace& space,
@@ -112,8 +104,10 @@ std::vector<int> common_faces(const std::vector<int>& a, const std::vector<int>&
   return result;
 }
 
-// Records which bounding hyperplanes each vertex already lies on (to kOnFaceTolerance) and
-// puts it on them exactly.
+// Records which bounding hyperplanes each vertex already lies on (to kOnFaceTolerance, relative
+// to 1 + |x|) and puts it on them exactly: the methods' own boundary snapping (the atlas's chart
+// centres, refinement midpoints) leaves vertices there to corrector tolerance, and they must
+// count as on the face, not across it.
 FaceSets faces_of_vertices(const Domain& domain, const AmbientSpace& space, TriangleMesh& mesh) {
   FaceSets on_faces(mesh.vertex_count());
   const int faces = static_cast<int>(domain.half_spaces().size());
