@@ -82,7 +82,14 @@ INSTANTIATE_TEST_SUITE_P(
         // left by a front collision: the partial mesh was written INVALID.
         StressCase{"seed2026_case1049_pleat_bezier_degenerate_boundary_ear", "whitney_pleat",
                    "bezier", 0.033986398610485552, 0.0051090232736647825,
-                   {0.10583720440591016, 0.10124087236423875, 0.099069994800693228}}),
+                   {0.10583720440591016, 0.10124087236423875, 0.099069994800693228}},
+        // A fan that turned 378° around its boundary vertex, two of its triangles tilted 68°
+        // from M overlapping the first by 3° and 15°: the partial mesh passed validation
+        // (GeometricValidation.FindsAFanThatTurnsMoreThanOnceAroundItsVertex holds the fan).
+        // The final check now removes the overlapping triangles.
+        StressCase{"seed2026_case512_trough_bezier_fan_turns_twice", "trough", "bezier",
+                   0.017472887638939873, 0.016321245381585841,
+                   {-0.0046050273432154303, 0.012445481445525283, 0.24653129405870128}}),
     [](const ::testing::TestParamInfo<StressCase>& info) { return info.param.name; });
 
 }  // namespace
