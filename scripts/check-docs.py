@@ -17,6 +17,11 @@ An HTML comment on the line before a block's fence says how to treat it:
     <!-- docs-check: slow -->          run only with --slow (over about 30 s on 2 cores)
     <!-- docs-check: output -->        the block is the printed output of the block before:
                                        its numbers are compared (see compare_output)
+    <!-- docs-check: continues -->     a Python block that goes on from the Python block before
+                                       (its names): runs after that block's code, in one process
+
+Run as root (a container, CI), Open MPI's mpiexec refuses to start unless told otherwise; the
+check then sets OMPI_ALLOW_RUN_AS_ROOT as docs/cluster.md tells a root user to.
 
 Usage: scripts/check-docs.py [--slow] [--list] [--timeout S] [DOCUMENT ...]
 Exit status 0 when every block that ran succeeded and every output matched, 1 otherwise.
@@ -37,7 +42,7 @@ from typing import List, Optional
 REPOSITORY = Path(__file__).resolve().parent.parent
 LINKED = ["build", "examples", "python", "scripts", "docs", "bench", "tests"]
 RUNNABLE = {"sh": "shell", "bash": "shell", "python": "python"}
-MARKER = re.compile(r"<!--\s*docs-check:\s*(skip|slow|output)\b\s*(.*?)\s*-->")
+MARKER = re.compile(r"<!--\s*docs-check:\s*(skip|slow|output|continues)\b\s*(.*?)\s*-->")
 
 
 @dataclass
@@ -46,7 +51,7 @@ class Block:
     line: int           # of the opening fence, 1-based
     language: str       # the fence's info string
     text: str
-    marker: Optional[str] = None  # skip, slow or output
+    marker: Optional[str] = None  # skip, slow, output or continues
     reason: str = ""
 
     @property
@@ -140,6 +145,8 @@ def environment(shims: Path) -> dict:
     env["PATH"] = f"{shims}:{env.get('PATH', '/usr/bin:/bin')}"
     python_path = str(REPOSITORY / "build" / "python")
     env["PYTHONPATH"] = python_path + (":" + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    if os.geteuid() == 0:
+        env["OMPI_ALLOW_RUN_AS_ROOT"] = env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1"
     return env
 
 
@@ -188,6 +195,7 @@ def main() -> int:
             blocks = blocks_of(document)
             directory = None
             last_output = None
+            python_so_far = ""  # the code a 'continues' block goes on from
             for block in blocks:
                 if block.marker == "output":
                     if options.list:
@@ -217,6 +225,10 @@ def main() -> int:
                 if options.list:
                     print(f"{block.where():32} {block.kind}")
                     continue
+                if block.kind == "python":
+                    if block.marker == "continues":
+                        block.text = python_so_far + block.text
+                    python_so_far = block.text
                 if directory is None:
                     directory = scratch_directory(base, block.document)
                 began = time.monotonic()

@@ -162,6 +162,36 @@ MeshQuality measure_shape(const TriangleMesh& mesh) {
   return shape_of(mesh, [&mesh](int v) { return mesh.point(v); });
 }
 
+// The area equals
+// sqrt(det G) / 2 for the Gram matrix G of two edge vectors, but det G = |u|^2 |v|^2 - (u.v)^2
+// cancels catastrophically for thin triangles (its rounding error, ~1e-16 L^4, would give a
+// collinear triangle an area of ~1e-8 L^2). Instead the apex is projected onto the longest
+// edge u: area = |u| |w| / 2 with w = v - (u.v / u.u) u, whose error is a few ulp * L^2.
+std::pair<double, double> triangle_area_and_longest_squared(const TriangleMesh& mesh,
+                                                            const Triangle& tri) {
+  const auto points = mesh.points();
+  const AmbientSpace& space = mesh.space();
+  std::array<double, 3> squared_length;  // edge k joins tri[k] and tri[(k + 1) % 3]
+  for (int k = 0; k < 3; ++k) {
+    squared_length[k] = (points.col(tri[(k + 1) % 3]) - points.col(tri[k])).squaredNorm();
+  }
+  space.sum(squared_length.data(), 3);  // over the ranks of a split mesh (else nothing)
+  const int k = static_cast<int>(std::max_element(squared_length.begin(), squared_length.end()) -
+                                 squared_length.begin());
+  const double uu = squared_length[k];
+  if (uu == 0.0) {
+    return {0.0, 0.0};
+  }
+  const auto base = points.col(tri[k]);
+  const auto u = points.col(tri[(k + 1) % 3]) - base;
+  const auto v = points.col(tri[(k + 2) % 3]) - base;
+  // (In one process Eigen's own reductions, as before the split: the same bits.)
+  const double s = (space.is_distributed() ? space.dot(u, v) : u.dot(v)) / uu;
+  const double ww =
+      space.is_distributed() ? space.squared_norm(v - s * u) : (v - s * u).squaredNorm();
+  return {0.5 * std::sqrt(uu * ww), uu};
+}
+
 double surface_area(const TriangleMesh& mesh) { return measure_shape(mesh).area; }
 
 void check_mesh_of_problem(const TriangleMesh& mesh, const ImplicitProblem& problem,

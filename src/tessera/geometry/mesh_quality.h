@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <limits>
+#include <utility>
 
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/linearization.h"
@@ -116,5 +117,11 @@ double min_angle_of_sides(double a, double b, double c);
 
 /// Sum of the triangle areas in R^n.
 double surface_area(const TriangleMesh& mesh);
+
+/// Area of the triangle `tri` of `mesh` in R^n and its longest edge squared, accurate for thin
+/// triangles (base times height over the longest edge: no cancellation), over the ranks of a
+/// split mesh.
+std::pair<double, double> triangle_area_and_longest_squared(const TriangleMesh& mesh,
+                                                            const Triangle& tri);
 
 }  // namespace tessera

@@ -555,7 +555,7 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
     ReferenceFrame& frame = frames[static_cast<std::size_t>(newest_frame)];
     frame.triangle = reference;
     // Orthonormal basis of the reference plane from its longest edge and the apex's offset
-    // from that edge (accurate for thin triangles; see area_and_longest_squared).
+    // from that edge (accurate for thin triangles; see triangle_area_and_longest_squared).
     const Triangle& r = triangles[reference];
     std::array<double, 3> squared_length;
     for (int j = 0; j < 3; ++j) {

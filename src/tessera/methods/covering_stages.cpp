@@ -14,6 +14,7 @@
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
 #include "tessera/geometry/bezier_patch.h"
+#include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/geometry/pinched_vertices.h"
@@ -170,22 +171,7 @@ int remove_degenerate_boundary_triangles(CoveringResult& result, const Validatio
     std::vector<bool> touched(mesh.vertex_count(), false);
     for (int t = 0; t < mesh.triangle_count(); ++t) {
       const Triangle& tri = mesh.triangle(t);
-      // The area as base × height over the longest edge (no cancellation for thin triangles).
-      int base = 0;
-      double longest_squared = 0.0;
-      for (int k = 0; k < 3; ++k) {
-        const double squared = (mesh.point(tri[(k + 1) % 3]) - mesh.point(tri[k])).squaredNorm();
-        if (squared > longest_squared) {
-          longest_squared = squared;
-          base = k;
-        }
-      }
-      const Eigen::VectorXd along = mesh.point(tri[(base + 1) % 3]) - mesh.point(tri[base]);
-      Eigen::VectorXd apex_offset = mesh.point(tri[(base + 2) % 3]) - mesh.point(tri[base]);
-      if (longest_squared > 0.0) {
-        apex_offset -= (apex_offset.dot(along) / longest_squared) * along;
-      }
-      const double area = 0.5 * std::sqrt(longest_squared) * apex_offset.norm();
+      const auto [area, longest_squared] = triangle_area_and_longest_squared(mesh, tri);
       if (!(area <= options.degenerate_area_ratio * longest_squared) ||
           touched[tri[0]] || touched[tri[1]] || touched[tri[2]]) {
         continue;
