@@ -37,8 +37,10 @@ nlohmann::json read_json(const std::string& path) {
 TEST(CliComponents, AllFindsTheTorusAndTheSphereAndListsThem) {
   const std::string mesh = work_path("ts.ply");
   const std::string summary = work_path("ts.json");
-  const CommandResult result = run_cli("mesh torus_and_sphere --components all --component-seeds "
-                                       "256 -o '" + mesh + "' --summary '" + summary + "'");
+  const CommandResult result = run_cli(
+      "mesh torus_and_sphere --components all --component-seeds "
+      "256 -o '" +
+      mesh + "' --summary '" + summary + "'");
   ASSERT_EQ(result.exit_code, kSuccess) << result.output;
   EXPECT_TRUE(contains(result.output, "components     2 (256 seeds")) << result.output;
   EXPECT_TRUE(contains(result.output, "χ 0, closed, genus 1")) << result.output;
@@ -65,12 +67,14 @@ TEST(CliComponents, AllFindsTheTorusAndTheSphereAndListsThem) {
 
 TEST(CliComponents, SeveralStartsSayWhichComponentEachReached) {
   const std::string summary = work_path("starts.json");
-  const CommandResult result =
-      run_cli("mesh two_spheres --method front --start 1,0,0.5 --start -1,0,0.6 --start "
-              "1.2,0.4,0 -o '" + work_path("starts.ply") + "' --summary '" + summary + "'");
+  const CommandResult result = run_cli(
+      "mesh two_spheres --method front --start 1,0,0.5 --start -1,0,0.6 --start "
+      "1.2,0.4,0 -o '" +
+      work_path("starts.ply") + "' --summary '" + summary + "'");
   ASSERT_EQ(result.exit_code, kSuccess) << result.output;
-  EXPECT_TRUE(contains(result.output, "start 1 → component 1; start 2 → component 2; start 3 → "
-                                      "component 1 (already covered)"))
+  EXPECT_TRUE(contains(result.output,
+                       "start 1 → component 1; start 2 → component 2; start 3 → "
+                       "component 1 (already covered)"))
       << result.output;
   const nlohmann::json starts = read_json(summary).at("run").at("starts");
   ASSERT_EQ(starts.size(), 3u);

@@ -167,12 +167,12 @@ TEST(EveryComponentAtlas, FewSeedsFindWhatTheyLandOn) {
 TEST(SeveralStarts, EachStartsItsComponentOrSaysWhichOneCoveredIt) {
   ProblemSetup setup = make_catalogue_problem("two_spheres");
   std::vector<Eigen::VectorXd> starts(4, Eigen::VectorXd(3));
-  starts[0] << 1.0, 0.0, 0.5;     // sphere at +1
-  starts[1] << -1.0, 0.0, 0.6;    // sphere at −1
-  starts[2] << 1.2, 0.4, 0.0;     // sphere at +1 again
-  starts[3] << 0.0, 0.0, 0.0;     // between them: projects onto neither (∇F = 0 there)
-  const CoveringResult result = cover_components(setup, find_covering_method("front"),
-                                                 MethodSettings{}, starts, {});
+  starts[0] << 1.0, 0.0, 0.5;   // sphere at +1
+  starts[1] << -1.0, 0.0, 0.6;  // sphere at −1
+  starts[2] << 1.2, 0.4, 0.0;   // sphere at +1 again
+  starts[3] << 0.0, 0.0, 0.0;   // between them: projects onto neither (∇F = 0 there)
+  const CoveringResult result =
+      cover_components(setup, find_covering_method("front"), MethodSettings{}, starts, {});
   expect_components(result, setup, {{2, 0}, {2, 0}});
   const auto& outcome = result.summary.starts;
   ASSERT_EQ(outcome.size(), 4u);
@@ -190,8 +190,8 @@ TEST(SeveralStarts, EachStartsItsComponentOrSaysWhichOneCoveredIt) {
 TEST(SeveralStarts, NoneThatProjectsIsAStartFailure) {
   ProblemSetup setup = make_catalogue_problem("two_spheres");
   const std::vector<Eigen::VectorXd> starts(2, Eigen::VectorXd::Zero(3));
-  const CoveringResult result = cover_components(setup, find_covering_method("atlas"),
-                                                 MethodSettings{}, starts, {});
+  const CoveringResult result =
+      cover_components(setup, find_covering_method("atlas"), MethodSettings{}, starts, {});
   EXPECT_EQ(result.summary.termination, CoveringTermination::StartFailed);
   EXPECT_EQ(result.mesh.triangle_count(), 0);
 }

@@ -62,7 +62,7 @@ struct ComponentRecord {
 
 /// What became of one start a user gave (`--start` given more than once).
 struct StartRecord {
-  Eigen::VectorXd guess;      ///< the start as given
+  Eigen::VectorXd guess;        ///< the start as given
   Eigen::VectorXd on_manifold;  ///< its projection onto M; empty if the projection failed
   /// The component (index into CoveringSummary::components) it started or already lay on;
   /// −1 if its projection failed.
@@ -73,8 +73,8 @@ struct StartRecord {
 
 /// The search for components over the region (`--components all`).
 struct ComponentSearchRecord {
-  int seed_count = 0;                   ///< seeds spread over the region
-  double seed_spacing = 0.0;            ///< (volume / seeds)^(1/d) of the seeded box, metric units
+  int seed_count = 0;         ///< seeds spread over the region
+  double seed_spacing = 0.0;  ///< (volume / seeds)^(1/d) of the seeded box, metric units
   std::vector<std::string> seeded_coordinates;  ///< the d coordinates the seeds vary
   int seeds_not_projected = 0;  ///< the corrector failed, or M was reached outside the region
   int seeds_on_covered = 0;     ///< landed on a component covered before

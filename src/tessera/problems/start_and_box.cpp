@@ -135,8 +135,7 @@ std::vector<Eigen::VectorXd> parse_starts(const std::vector<std::string>& starts
   const int n = problem.ambient_dimension();
   std::vector<Eigen::VectorXd> points;
   for (std::size_t i = 0; i < starts.size(); ++i) {
-    const std::string option =
-        starts.size() == 1 ? "--start" : "--start #" + std::to_string(i + 1);
+    const std::string option = starts.size() == 1 ? "--start" : "--start #" + std::to_string(i + 1);
     const auto values = parse_numbers(starts[i], option);
     TESSERA_CHECK(static_cast<int>(values.size()) == n,
                   option << " has " << values.size() << " values, problem '" << problem.name()

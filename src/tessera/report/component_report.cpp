@@ -61,11 +61,11 @@ void add_components_json(const CoveringSummary& summary, int ambient_dimension,
   nlohmann::json starts = nlohmann::json::array();
   for (std::size_t i = 0; i < summary.starts.size(); ++i) {
     const StartRecord& s = summary.starts[i];
-    nlohmann::json entry = {{"start", i + 1},
-                            {"component", s.component >= 0 ? nlohmann::json(s.component + 1)
-                                                           : nlohmann::json(nullptr)},
-                            {"started_component", s.started_component},
-                            {"message", s.message}};
+    nlohmann::json entry = {
+        {"start", i + 1},
+        {"component", s.component >= 0 ? nlohmann::json(s.component + 1) : nlohmann::json(nullptr)},
+        {"started_component", s.started_component},
+        {"message", s.message}};
     if (lists_points) {
       entry["point"] = point_json(s.guess);
       entry["on_manifold"] =
@@ -99,9 +99,9 @@ std::string components_text(const CoveringSummary& summary, int ambient_dimensio
     for (std::size_t i = 0; i < search.seeded_coordinates.size(); ++i) {
       out << (i ? ", " : "") << search.seeded_coordinates[i];
     }
-    out << ", spacing " << search.seed_spacing << ": " << search.seeds_started
-        << " started one, " << search.seeds_on_covered << " landed on one covered, "
-        << search.seeds_not_projected << " not projected into the region";
+    out << ", spacing " << search.seed_spacing << ": " << search.seeds_started << " started one, "
+        << search.seeds_on_covered << " landed on one covered, " << search.seeds_not_projected
+        << " not projected into the region";
     if (search.seeds_not_tried > 0) {
       out << ", " << search.seeds_not_tried << " not tried";
     }

@@ -50,8 +50,9 @@ Eigen::VectorXd closest_point_on_triangle(const Eigen::Ref<const Eigen::VectorXd
     const double da = ap.squaredNorm();
     const double db = bp.squaredNorm();
     const double dc = cp.squaredNorm();
-    return da <= db && da <= dc ? Eigen::VectorXd(a) : db <= dc ? Eigen::VectorXd(b)
-                                                                : Eigen::VectorXd(c);
+    return da <= db && da <= dc ? Eigen::VectorXd(a)
+           : db <= dc           ? Eigen::VectorXd(b)
+                                : Eigen::VectorXd(c);
   }
   return a + (vb / denominator) * ab + (vc / denominator) * ac;
 }
@@ -92,9 +93,8 @@ int ComponentCoverage::covering_component(const Eigen::Ref<const Eigen::VectorXd
   const Eigen::VectorXd y = scaled(x);
   std::vector<bool> is_near(static_cast<std::size_t>(mesh_.vertex_count()), false);
   for (int v = 0; v < mesh_.vertex_count(); ++v) {
-    const double distance = weights_.size() > 0
-                                ? (weights_.cwiseProduct(mesh_.point(v)) - y).norm()
-                                : (mesh_.point(v) - y).norm();
+    const double distance = weights_.size() > 0 ? (weights_.cwiseProduct(mesh_.point(v)) - y).norm()
+                                                : (mesh_.point(v) - y).norm();
     is_near[static_cast<std::size_t>(v)] = distance <= candidate_radius;
   }
   int found = -1;

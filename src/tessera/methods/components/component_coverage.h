@@ -44,7 +44,7 @@ class ComponentCoverage {
   const TriangleMesh& mesh_;
   Eigen::VectorXd weights_;
   double tolerance_;
-  std::vector<int> component_ends_;  ///< one past the last triangle of each component
+  std::vector<int> component_ends_;    ///< one past the last triangle of each component
   std::vector<double> longest_edges_;  ///< per triangle, in the metric
   double longest_edge_ = 0.0;          ///< over all triangles
 };

@@ -105,7 +105,8 @@ double seed_spacing(const SeededBox& box, int count, const Eigen::VectorXd& weig
   }
   double log_volume = 0.0;
   for (int k = 0; k < d; ++k) {
-    const double w = weights.size() > 0 ? weights(box.coordinates[static_cast<std::size_t>(k)]) : 1.0;
+    const double w =
+        weights.size() > 0 ? weights(box.coordinates[static_cast<std::size_t>(k)]) : 1.0;
     log_volume += std::log(w * (box.upper(k) - box.lower(k)));
   }
   return std::exp((log_volume - std::log(static_cast<double>(count))) / d);

@@ -80,15 +80,12 @@ std::string origin_name(bool is_start, int index) {
 class ComponentRun {
  public:
   ComponentRun(const ImplicitProblem& problem, const ComponentSearchOptions& options)
-      : options_(options),
-        coverage_(result_.mesh, metric_weights(problem), options.tolerance) {
+      : options_(options), coverage_(result_.mesh, metric_weights(problem), options.tolerance) {
     result_.mesh = TriangleMesh(problem.ambient_dimension());
   }
 
   /// The component covering x on M, or −1.
-  int covering_component(const Eigen::VectorXd& x) const {
-    return coverage_.covering_component(x);
-  }
+  int covering_component(const Eigen::VectorXd& x) const { return coverage_.covering_component(x); }
 
   /// Whether the search may go on: no failure, no stop request, vertices left for a component.
   bool may_continue() {
@@ -96,17 +93,17 @@ class ComponentRun {
       return false;
     }
     if (options_.stop_requested && options_.stop_requested()) {
-      result_.summary.record_failure(CoveringTermination::Interrupted,
-                                     "stopped on request after " +
-                                         std::to_string(component_count()) + " component(s)");
+      result_.summary.record_failure(
+          CoveringTermination::Interrupted,
+          "stopped on request after " + std::to_string(component_count()) + " component(s)");
       return false;
     }
     if (vertices_left() < 3) {
-      result_.summary.record_failure(
-          CoveringTermination::VertexLimit,
-          "the vertex limit " + std::to_string(options_.max_vertices) + " was reached after " +
-              std::to_string(component_count()) + " component(s); components not yet found "
-              "are missing");
+      result_.summary.record_failure(CoveringTermination::VertexLimit,
+                                     "the vertex limit " + std::to_string(options_.max_vertices) +
+                                         " was reached after " + std::to_string(component_count()) +
+                                         " component(s); components not yet found "
+                                         "are missing");
       return false;
     }
     return true;
@@ -123,9 +120,9 @@ class ComponentRun {
     has_work_ = true;
     if (part.mesh.triangle_count() == 0) {
       if (part.summary.termination != CoveringTermination::StartFailed) {
-        result_.summary.record_failure(part.summary.termination,
-                                       "the covering from " + origin + " made no triangle: " +
-                                           part.summary.message);
+        result_.summary.record_failure(
+            part.summary.termination,
+            "the covering from " + origin + " made no triangle: " + part.summary.message);
       }
       return -1;
     }
@@ -164,9 +161,9 @@ class ComponentRun {
       result_.summary.notes.push_back("component " + std::to_string(index + 1) + ": " + note);
     }
     if (!part.summary.is_complete()) {
-      result_.summary.record_failure(part.summary.termination,
-                                     "component " + std::to_string(index + 1) + " (" + origin +
-                                         "): " + part.summary.message);
+      result_.summary.record_failure(
+          part.summary.termination,
+          "component " + std::to_string(index + 1) + " (" + origin + "): " + part.summary.message);
     }
     result_.summary.components.push_back(std::move(record));
     coverage_.add_component();
@@ -199,8 +196,8 @@ CoveringResult cover_components(const ImplicitProblem& problem, const Domain& do
   TESSERA_CHECK(options.seed_count >= 1, "ComponentSearchOptions::seed_count = "
                                              << options.seed_count << " must be at least 1");
   for (const Eigen::VectorXd& start : starts) {
-    TESSERA_CHECK(start.size() == n, "start point has " << start.size()
-                                                        << " coordinates, the problem n = " << n);
+    TESSERA_CHECK(start.size() == n,
+                  "start point has " << start.size() << " coordinates, the problem n = " << n);
   }
   SeededBox box;
   if (options.every_component) {
@@ -322,8 +319,9 @@ CoveringResult cover_components(const ImplicitProblem& problem, const Domain& do
   for (const PhaseWork& phase : summary.work_by_phase) {
     covering_seconds += phase.wall_seconds;
   }
-  summary.work_by_phase.insert(summary.work_by_phase.begin(),
-                               PhaseWork{"seeds", seeds, std::max(0.0, seconds - covering_seconds)});
+  summary.work_by_phase.insert(
+      summary.work_by_phase.begin(),
+      PhaseWork{"seeds", seeds, std::max(0.0, seconds - covering_seconds)});
   summary.vertex_count = run.result().mesh.vertex_count();
   summary.triangle_count = run.result().mesh.triangle_count();
   summary.wall_seconds = seconds;
@@ -357,14 +355,13 @@ CoveringResult cover_components(ProblemSetup& setup, const CoveringMethod& metho
   const std::vector<Eigen::VectorXd> given =
       starts.empty() ? std::vector<Eigen::VectorXd>{setup.start} : starts;
   MethodSettings component_settings = settings;
-  CoveringResult result = cover_components(*setup.problem, setup.domain, given, options,
-                          [&](const ComponentRequest& request) {
-                            setup.start = request.start;
-                            setup.expected_euler_characteristic =
-                                request.is_first_start ? restore.euler : std::nullopt;
-                            component_settings.max_vertices = request.max_vertices;
-                            return cover(setup, method, component_settings);
-                          });
+  CoveringResult result = cover_components(
+      *setup.problem, setup.domain, given, options, [&](const ComponentRequest& request) {
+        setup.start = request.start;
+        setup.expected_euler_characteristic = request.is_first_start ? restore.euler : std::nullopt;
+        component_settings.max_vertices = request.max_vertices;
+        return cover(setup, method, component_settings);
+      });
   result.summary.method = method.name;
   return result;
 }
