@@ -25,6 +25,8 @@
 #include "tessera/io/output_checks.h"
 #include "tessera/io/split_mesh_output.h"
 #include "tessera/io/view_mesh.h"
+#include "tessera/methods/components/component_seeds.h"
+#include "tessera/methods/components/cover_components.h"
 #include "tessera/methods/stability/state_jacobian.h"
 #include "tessera/picture/run_diagram.h"
 #include "tessera/problems/catalogue.h"
@@ -103,7 +105,24 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
                    "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
                    "vertices, then smoothed; slower)")
       ->check(CLI::IsMember({"disk", "hexagonal"}));
-  mesh_app->add_option("--start", mesh.start, "start point, comma separated, e.g. 0,0,1");
+  mesh_app
+      ->add_option("--start", mesh.starts,
+                   "start point, comma separated, e.g. 0,0,1; give it more than once to cover "
+                   "the component of each (the report says which component each start reached)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  mesh_app
+      ->add_option("--components", mesh.components,
+                   "'start' (default): the components the start points lie on; 'all': also "
+                   "search the bounded region (--box or the problem's domain) for every other "
+                   "component with seeds projected onto M (docs/components.md)")
+      ->check(CLI::IsMember({"start", "all"}));
+  mesh_app
+      ->add_option("--component-seeds", mesh.component_seeds,
+                   "--components all: the number of seeds spread over the region (a Halton "
+                   "sequence; default 512); components smaller than their spacing, which the "
+                   "report prints, may be missed")
+      ->check(CLI::Range(1, 10'000'000));
   mesh_app->add_option("--box", mesh.box,
                        "clip to a box: lower,upper for each coordinate, e.g. -1,1,-1,1,-0.8,1, "
                        "or bounds on named coordinates, e.g. lambda=5:20,epsilon=0.15: (an empty "
@@ -341,7 +360,27 @@ namespace {
 int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   ProblemSetup setup = resolve_problem(command.problem);
   const int n = setup.problem->ambient_dimension();
-  apply_start_and_box(setup, command.start, command.box);
+  apply_start_and_box(setup, command.starts.empty() ? "" : command.starts.front(), command.box);
+  const std::vector<Eigen::VectorXd> starts = parse_starts(command.starts, *setup.problem);
+  // Several components: more than one start, or the search of the region.
+  const bool searches = command.components == "all";
+  const bool covers_several = searches || starts.size() > 1;
+  TESSERA_CHECK(command.component_seeds == 0 || searches,
+                "--component-seeds " << command.component_seeds
+                                     << " needs --components all (the search it seeds)");
+  TESSERA_CHECK(!covers_several || command.backend == "serial",
+                (searches ? "--components all" : "--start given more than once")
+                    << " is not yet available with --backend " << command.backend
+                    << ": run it with the serial backend, or one start per run");
+  if (searches) {
+    TESSERA_CHECK(!seeded_box(setup.domain).is_empty(),
+                  "--components all searches a bounded region, but the domain of '"
+                      << command.problem << "' ("
+                      << (setup.domain.is_unbounded() ? "all of R^" + std::to_string(n)
+                                                      : setup.domain.describe())
+                      << ") bounds no coordinate on both sides: give --box, "
+                      << box_syntax(*setup.problem));
+  }
   const CoveringMethod& method =
       command.method.empty() ? covering_methods().front() : find_covering_method(command.method);
   // The atlas and the front run on split states (each rank its rows of every vertex); bezier,
@@ -481,7 +520,17 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   const InterruptGuard interrupt;
   // Collective on the PETSc backend: every rank stops at the same vertex.
   settings.stop_requested = [&backend] { return backend.any_rank(InterruptGuard::requested()); };
-  CoveringResult result = backend.cover(setup, method, settings);
+  CoveringResult result;
+  if (covers_several) {
+    ComponentSearchOptions search;
+    search.every_component = searches;
+    if (command.component_seeds > 0) {
+      search.seed_count = command.component_seeds;
+    }
+    result = cover_components(setup, method, settings, starts, search);
+  } else {
+    result = backend.cover(setup, method, settings);
+  }
   if (show_progress) {
     std::fprintf(stderr, "\r%60s\r", "");
   }
@@ -550,9 +599,18 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   ReportOptions report_options;
   report_options.samples = command.report_samples;
   report_options.measure_distances = false;
+  // The problem's known topology and area are those of the first start's component.
+  const bool has_several_components = result.summary.components.size() > 1;
+  const auto only_known_of_one_component = [&](MeshReport& made) {
+    if (has_several_components) {
+      made.expected_euler_characteristic.reset();
+      made.exact_area.reset();
+    }
+  };
   MeshReport before =
       make_report(result.mesh, setup, command.problem,
                   result.validation ? &*result.validation : nullptr, report_options);
+  only_known_of_one_component(before);
   if (!command.summary.empty() && is_root) {
     before.run = result.summary;
     before.improvement = improvement;
@@ -572,6 +630,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   report_options.decide_together = [&backend](bool stop) { return backend.any_rank(stop); };
   MeshReport report =
       make_report(result.mesh, setup, command.problem, &before.validation, report_options);
+  only_known_of_one_component(report);
   report.run = result.summary;
   report.improvement = improvement;
   report.view = view_report;

@@ -14,7 +14,12 @@ struct MeshCommand {
   std::string problem;  ///< catalogue name (with parameters) or problem file
   std::string method;   ///< one of covering_method_names(); empty: the default (the first)
   MethodSettings settings;
-  std::string start;
+  /// --start, once or more: each start not on a component covered before starts one.
+  std::vector<std::string> starts;
+  /// --components: "start" (the components of the starts, default) or "all" (also every
+  /// component that seeds over the bounded region land on).
+  std::string components = "start";
+  int component_seeds = 0;  ///< --component-seeds: seeds of the search; 0: the default (512)
   std::string box;
   std::string output;
   std::string summary;

@@ -36,6 +36,7 @@
 #include "tessera/io/npy.h"
 #include "tessera/io/output_checks.h"
 #include "tessera/io/view_mesh.h"
+#include "tessera/methods/components/cover_components.h"
 #include "tessera/methods/covering_methods.h"
 #include "tessera/methods/improvement/improve_mesh.h"
 #include "tessera/methods/stability/state_jacobian.h"
@@ -116,6 +117,11 @@ struct MeshRequest {
   std::string method;  ///< empty: the default
   MethodSettings settings;
   std::vector<double> start;
+  /// More start points after `start` (mesh(start=[[…], […]])): each not yet covered starts a
+  /// component (`--start` given more than once).
+  std::vector<std::vector<double>> more_starts;
+  std::string components = "start";  ///< `--components`: "start" or "all"
+  int component_seeds = 0;           ///< `--component-seeds`; 0: the default
   std::vector<double> box;
   /// Bounds on named coordinates, `--box`'s name=lower:upper,… form; replaces `box` if set.
   std::string named_box;
@@ -150,6 +156,21 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
                       box_text(request));
   const CoveringMethod& method = request.method.empty() ? covering_methods().front()
                                                         : find_covering_method(request.method);
+  // As `tessera mesh --start … --start …` and `--components all`.
+  std::vector<Eigen::VectorXd> starts;
+  if (!request.more_starts.empty()) {
+    std::vector<std::string> texts{join_numbers(request.start)};
+    for (const std::vector<double>& start : request.more_starts) {
+      texts.push_back(join_numbers(start));
+    }
+    starts = parse_starts(texts, *setup.problem);
+  }
+  TESSERA_CHECK(request.components == "start" || request.components == "all",
+                "components = '" << request.components << "' must be 'start' or 'all'");
+  const bool covers_several = request.components == "all" || starts.size() > 1;
+  TESSERA_CHECK(request.component_seeds == 0 || request.components == "all",
+                "component_seeds = " << request.component_seeds
+                                     << " needs components='all' (the search it seeds)");
   // As `tessera mesh`: a method's own options given to another method would be ignored.
   refuse_options_of_other_methods(request.settings, method.name, /*keyword_names=*/true);
   const bool wants_patches = request.refine > 0 || request.wants_patches;
@@ -207,7 +228,17 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
   handle->comment = "tessera mesh " + problem->argument + ", method " + method.name;
   {
     py::gil_scoped_release release;
-    CoveringResult result = cover(setup, method, settings);
+    CoveringResult result;
+    if (covers_several) {
+      ComponentSearchOptions search;
+      search.every_component = request.components == "all";
+      if (request.component_seeds > 0) {
+        search.seed_count = request.component_seeds;
+      }
+      result = cover_components(setup, method, settings, starts, search);
+    } else {
+      result = cover(setup, method, settings);
+    }
     std::optional<ImprovementReport> improvement;
     if (request.improve && result.summary.is_complete()) {
       // As `tessera mesh --improve`: swaps, 3 passes of tangential smoothing, swaps again.
@@ -236,6 +267,11 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
     MeshReport report =
         make_report(result.mesh, setup, problem->argument,
                     result.validation ? &*result.validation : nullptr, report_options);
+    if (result.summary.components.size() > 1) {
+      // The problem's known topology and area are the first start's component's.
+      report.expected_euler_characteristic.reset();
+      report.exact_area.reset();
+    }
     report.run = result.summary;
     report.improvement = improvement;
     report.backend = BackendReport{"serial", 1};  // the bindings solve in this process
@@ -728,6 +764,9 @@ PYBIND11_MODULE(_tessera, module) {
       .def(py::init<>())
       .def_readwrite("method", &MeshRequest::method)
       .def_readwrite("start", &MeshRequest::start)
+      .def_readwrite("more_starts", &MeshRequest::more_starts)
+      .def_readwrite("components", &MeshRequest::components)
+      .def_readwrite("component_seeds", &MeshRequest::component_seeds)
       .def_readwrite("box", &MeshRequest::box)
       .def_readwrite("named_box", &MeshRequest::named_box)
       .def_readwrite("improve", &MeshRequest::improve)

@@ -657,6 +657,8 @@ def mesh(
     placement: str = "disk",
     start: Optional[ArrayLike] = None,
     box: Optional[Union[ArrayLike, Dict[str, Any]]] = None,
+    components: str = "start",
+    component_seeds: Optional[int] = None,
     improve: bool = False,
     view: Optional[str] = None,
     folds: Optional[str] = None,
@@ -690,7 +692,15 @@ def mesh(
         the steps; front and bezier: no bound by default).
     placement: atlas: "disk" (default) or "hexagonal".
     start: start point (n values); box: lower, upper for each coordinate, or a dict of bounds
-        on named coordinates, e.g. {"lambda": (5, 20), "epsilon": (0.15, None)}.
+        on named coordinates, e.g. {"lambda": (5, 20), "epsilon": (0.15, None)}. Several start
+        points, one per row (a list of lists or a 2-D array), cover the component of each
+        (``--start`` given more than once); ``summary["run"]["starts"]`` says which component
+        each reached.
+    components: "start" (default): the components of the start points; "all": also search
+        the bounded region (box or the problem's domain) for every other component with
+        seeds projected onto M (``--components all``, docs/components.md). The components
+        are in ``summary["run"]["components"]``.
+    component_seeds: the number of seeds of that search (default 512).
     improve: edge swaps and tangential smoothing on M afterwards (``--improve``).
     view: the view written by `Mesh.write` and reported (``--view``).
     folds: the parameter plane of the fold curves, e.g. "lambda,epsilon" (``--folds``,
@@ -741,7 +751,18 @@ def mesh(
     request.step = _finite_positive("step", step)
     request.tolerance = _finite_positive("tolerance", tolerance)
     request.placement = _member("placement", placement, ["disk", "hexagonal"])
-    request.start = _numbers(start)
+    if start is not None and not isinstance(start, str) and np.ndim(start) == 2:
+        # Several start points, one per row (``--start`` given more than once).
+        rows = [_numbers(row) for row in np.asarray(start, dtype=float)]
+        if not rows:
+            raise ValueError("start: no start point in the list")
+        request.start = rows[0]
+        request.more_starts = rows[1:]
+    else:
+        request.start = _numbers(start)
+    request.components = _member("components", components, ["start", "all"])
+    if component_seeds is not None:
+        request.component_seeds = _in_range("component_seeds", component_seeds, 1, 10_000_000, int)
     _set_box(request, box)
     request.improve = bool(improve)
     request.view = view or ""

@@ -2,6 +2,7 @@
 // What every covering method returns: the mesh and a summary (Options in, Result out).
 #pragma once
 
+#include <Eigen/Core>
 #include <chrono>
 #include <functional>
 #include <optional>
@@ -33,6 +34,52 @@ struct PhaseWork {
   std::string phase;
   WorkCounts counts;
   double wall_seconds = 0.0;
+};
+
+/// The note of a covering of one start's component (the atlas's; a run of several components
+/// replaces it with its own).
+inline constexpr std::string_view kStartComponentNote =
+    "covered the component of M that contains the start point; other components, if any, need "
+    "their own start points (or --components all)";
+
+/// One component of a run that covers several (`--components all`, several `--start`s;
+/// methods/components/cover_components.h): where it came from and what its mesh is.
+struct ComponentRecord {
+  /// What started it: "start K" (the K-th start given, from 1) or "seed K" (the K-th seed of
+  /// the search over the region, from 1).
+  std::string origin;
+  Eigen::VectorXd start;  ///< the point on M its covering started from (problem coordinates)
+  int first_vertex = 0;   ///< its vertices are first_vertex … first_vertex + vertex_count − 1
+  int vertex_count = 0;
+  int first_triangle = 0;  ///< its triangles likewise
+  int triangle_count = 0;
+  int euler_characteristic = 0;
+  int boundary_loop_count = 0;
+  int genus = -1;  ///< of a closed orientable component; −1 otherwise (MeshValidation::genus)
+  CoveringTermination termination = CoveringTermination::Completed;
+  std::string message;  ///< its run's message when not Completed
+};
+
+/// What became of one start a user gave (`--start` given more than once).
+struct StartRecord {
+  Eigen::VectorXd guess;        ///< the start as given
+  Eigen::VectorXd on_manifold;  ///< its projection onto M; empty if the projection failed
+  /// The component (index into CoveringSummary::components) it started or already lay on;
+  /// −1 if its projection failed.
+  int component = -1;
+  bool started_component = false;  ///< false: it landed on a component covered before it
+  std::string message;             ///< why the projection failed (component −1)
+};
+
+/// The search for components over the region (`--components all`).
+struct ComponentSearchRecord {
+  int seed_count = 0;         ///< seeds spread over the region
+  double seed_spacing = 0.0;  ///< (volume / seeds)^(1/d) of the seeded box, metric units
+  std::vector<std::string> seeded_coordinates;  ///< the d coordinates the seeds vary
+  int seeds_not_projected = 0;  ///< the corrector failed, or M was reached outside the region
+  int seeds_on_covered = 0;     ///< landed on a component covered before
+  int seeds_started = 0;        ///< started a component
+  int seeds_not_tried = 0;      ///< left when the search stopped (a failure, the vertex limit)
 };
 
 /// Counters and timings of one covering run. Wall time is informational (benchmarks measure).
@@ -100,6 +147,11 @@ struct CoveringSummary {
   int removed_triangles = 0;
   int repaired_holes = 0;  ///< places where removed triangles were replaced by a new triangulation
   std::vector<std::string> notes;  ///< remarks for the user, e.g. where a crossing was met
+  /// A run of several components (cover_components): each one, in the order of their vertices,
+  /// and what became of each start given. Empty for a run of one start's component.
+  std::vector<ComponentRecord> components;
+  std::vector<StartRecord> starts;
+  std::optional<ComponentSearchRecord> component_search;  ///< with `--components all`
   bool is_complete() const { return termination == CoveringTermination::Completed; }
   /// A failure found by a step of the run: the first ends the run's status (termination and
   /// message), later ones are kept as notes.

@@ -70,6 +70,46 @@ ProblemSetup make_crossing(const ParameterValues& /*values*/) {
       "catalogue:crossing");
 }
 
+ProblemSetup make_two_spheres(const ParameterValues& /*values*/) {
+  // Two disjoint spheres of radius 1/2 about (±1, 0, 0): the product of their equations, whose
+  // gradient on one sphere is the other's (nonzero) value times its own. Two components, each
+  // χ = 2; the start lies on the one at x = +1 (tessera mesh --components all finds both).
+  return parse_problem(
+      "name two_spheres\n"
+      "description two spheres of radius 1/2 about (±1, 0, 0): "
+      "((x-1)²+y²+z²−1/4)((x+1)²+y²+z²−1/4) = 0\n"
+      "variables x y z\n"
+      "equation ((x - 1)^2 + y^2 + z^2 - 0.25)*((x + 1)^2 + y^2 + z^2 - 0.25)\n"
+      "start 1 0 0.5\n"
+      "step 0.15\n"
+      "box x -2 2\n"
+      "box y -1 1\n"
+      "box z -1 1\n"
+      "euler 2\n"
+      "area 3.141592653589793\n",
+      "catalogue:two_spheres");
+}
+
+ProblemSetup make_torus_and_sphere(const ParameterValues& /*values*/) {
+  // The catalogue's torus (R = 1, r = 0.4, about the x axis) with a sphere of radius 0.3 in its
+  // hole, 0.3 from the torus: the product of the two equations. Two components, χ = 0 and 2;
+  // the start lies on the torus (Hohmann's guess).
+  return parse_problem(
+      "name torus_and_sphere\n"
+      "description torus R = 1, r = 0.4 about the x axis and a sphere of radius 0.3 in its "
+      "hole: ((|x|²+0.84)² − 4(y²+z²))(|x|² − 0.09) = 0\n"
+      "variables x y z\n"
+      "equation ((x^2 + y^2 + z^2 + 0.84)^2 - 4*(y^2 + z^2))*(x^2 + y^2 + z^2 - 0.09)\n"
+      "start -0.4 1 0.1\n"
+      "step 0.1\n"
+      "box x -1 1\n"
+      "box y -1.6 1.6\n"
+      "box z -1.6 1.6\n"
+      "euler 0\n"
+      "area 15.791367041742973\n",
+      "catalogue:torus_and_sphere");
+}
+
 ProblemSetup make_plane(const ParameterValues& /*values*/) {
   ProblemSetup setup;
   setup.problem = std::make_unique<Plane>();
@@ -454,6 +494,15 @@ const std::vector<CatalogueEntry>& catalogue() {
                  "plane through a sphere, z(x²+y²+z²−1) = 0: two sheets crossing along a "
                  "circle (Henderson section 8); the start lies on the sphere",
                  {}, make_crossing),
+      make_entry("two_spheres",
+                 "two disjoint spheres of radius 1/2 about (±1, 0, 0) in [-2, 2]×[-1, 1]²: two "
+                 "components (--components all)",
+                 {}, make_two_spheres),
+      make_entry("torus_and_sphere",
+                 "torus R = 1, r = 0.4 about the x axis with a sphere of radius 0.3 in its "
+                 "hole: two components, χ 0 and 2 (--components all); the start lies on the "
+                 "torus",
+                 {}, make_torus_and_sphere),
       make_entry("bvp",
                  "Gelfand–Bratu u'' + λ exp(u/(1+εu)) = 0, u(0) = u(1) = 0 on N points, "
                  "coordinates (u1…uN, lambda, epsilon); sparse J; a fold surface with a cusp",

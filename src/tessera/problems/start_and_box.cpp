@@ -130,6 +130,21 @@ Domain named_bounds(const std::string& text, const ImplicitProblem& problem) {
 
 }  // namespace
 
+std::vector<Eigen::VectorXd> parse_starts(const std::vector<std::string>& starts,
+                                          const ImplicitProblem& problem) {
+  const int n = problem.ambient_dimension();
+  std::vector<Eigen::VectorXd> points;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    const std::string option = starts.size() == 1 ? "--start" : "--start #" + std::to_string(i + 1);
+    const auto values = parse_numbers(starts[i], option);
+    TESSERA_CHECK(static_cast<int>(values.size()) == n,
+                  option << " has " << values.size() << " values, problem '" << problem.name()
+                         << "' has n = " << n << " coordinates");
+    points.emplace_back(Eigen::Map<const Eigen::VectorXd>(values.data(), n));
+  }
+  return points;
+}
+
 void apply_start_and_box(ProblemSetup& setup, const std::string& start, const std::string& box) {
   const int n = setup.problem->ambient_dimension();
   if (!start.empty()) {

@@ -3,6 +3,7 @@
 // `--box -1,1,-1,1,-1,1` or `--box lambda=5:20`): the CLI's options and the bindings' keywords.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,12 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
 /// '-1,1,-1,1,-1,1', or bounds on named coordinates only, … e.g. 'x=-1:1,z=0:'", with examples
 /// in `problem`'s coordinate names that apply_start_and_box accepts.
 std::string box_syntax(const ImplicitProblem& problem);
+
+/// Parses the start points of `--start` given once or more ("0,0,1" each).
+/// \throw InvalidArgument naming the start (its position when there are several) for an item
+///        that is not a number or a wrong number of values.
+std::vector<Eigen::VectorXd> parse_starts(const std::vector<std::string>& starts,
+                                          const ImplicitProblem& problem);
 
 /// Sets setup.start from "--start" text and intersects setup.domain with "--box" text (either
 /// may be empty): lower,upper for each coordinate, or name=lower:upper,… on named coordinates

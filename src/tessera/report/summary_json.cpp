@@ -9,6 +9,7 @@
 #include "tessera/core/error.h"
 #include "tessera/io/text_file.h"
 #include "tessera/problems/view.h"
+#include "tessera/report/component_report.h"
 #include "tessera/report/improvement_report.h"
 
 namespace tessera {
@@ -299,6 +300,7 @@ std::string to_json(const MeshReport& report) {
       }
     }
     j["run"]["notes"] = r.notes;
+    add_components_json(r, report.ambient_dimension, j["run"]);
   }
   if (report.improvement) {
     j["improvement"] = improvement_json(*report.improvement);
@@ -395,6 +397,7 @@ std::string to_text(const MeshReport& report) {
       }
     }
     out << ", " << to_string(r.termination) << (r.message.empty() ? "" : ": " + r.message) << "\n";
+    out << components_text(r, report.ambient_dimension);
     if (r.max_sampled_distance >= 0) {
       out << "tolerance      every triangle checked: largest sampled distance to M "
           << r.max_sampled_distance << " (bound " << r.tolerance << "), " << r.refined_edges

@@ -133,9 +133,7 @@ void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringRe
     context.swap_after_clipping = true;
     context.retry_if_clipping_fails = options.boundary_snap > 0;
   }
-  summary.notes.push_back(
-      "covered the component of M that contains the start point; other "
-      "components, if any, need their own start points");
+  summary.notes.emplace_back(kStartComponentNote);
 }
 
 }  // namespace
