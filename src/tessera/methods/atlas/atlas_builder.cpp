@@ -144,7 +144,8 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   }
   double radius = 0.0;
   RadiusCap cap = RadiusCap::None;
-  if (!choose_radius(linearization, trial, radius, cap)) {
+  if (!choose_radius(linearization, trial, parent >= 0 ? charts_[parent].radius : 0.0, radius,
+                     cap)) {
     return -2;
   }
   if (band_capped && cap == RadiusCap::Grading) {
