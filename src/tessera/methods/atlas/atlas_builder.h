@@ -187,6 +187,9 @@ class AtlasBuilder {
     return spare;
   }
   std::vector<int> candidates_;     // scratch
+  std::vector<int> retire_around_;  // scratch of retire_finished_charts
+  std::vector<int> retire_closed_;  // scratch of retire_finished_charts
+  std::vector<int> retire_open_;    // scratch of retire_finished_charts
   Eigen::VectorXd offset_;          // scratch
   Eigen::VectorXd predicted_;       // scratch
   Eigen::MatrixXd jacobian_;        // J at the last point checked for singularity
