@@ -339,5 +339,33 @@ TEST(Atlas, IsDeterministic) {
   EXPECT_EQ((a.result.mesh.points() - b.result.mesh.points()).norm(), 0.0);
 }
 
+// Issue 35: at n = 3 the atlas had come to spend 133–156 evaluations of F per vertex (20–24 on
+// 2026-11-22): every chart's radius was measured twice, each probe projected to the solver's
+// tolerance. Counts are deterministic, so they are bounded here; speed is in bench/RESULTS.md.
+class AtlasWorkAtSmallN : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(AtlasWorkAtSmallN, StaysWithinItsBudgetOfEvaluationsPerVertex) {
+  const AtlasRun run = run_atlas(GetParam(), 1e-3);
+  const CoveringSummary& summary = run.result.summary;
+  ASSERT_TRUE(summary.is_complete()) << summary.message;
+  const double vertices = run.result.mesh.vertex_count();
+  ASSERT_GT(vertices, 0);
+  // 43–48 now; 133–156 before the fix.
+  EXPECT_LE(summary.function_evaluations / vertices, 55.0);
+  // 2.41 and 3.41 now and before: one factorisation per chart, one per vertex to validate.
+  EXPECT_LE(summary.factorisations / vertices, 2.6);
+  EXPECT_LE(summary.jacobian_evaluations / vertices, 3.6);
+  for (const PhaseWork& phase : summary.work_by_phase) {
+    if (phase.phase == "build") {
+      // About 30 per chart now: twelve probes of two or three chord steps, and the child's
+      // projection; 136 before.
+      EXPECT_LE(phase.counts.function_evaluations / vertices, 38.0);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ClosedSurfaces, AtlasWorkAtSmallN,
+                         ::testing::Values("sphere", "torus", "equipotential"));
+
 }  // namespace
 }  // namespace tessera
