@@ -105,7 +105,8 @@ class AtlasBuilder {
   bool choose_radius(const Linearization& at_center, double trial, double expected,
                      double& radius, RadiusCap& cap);
   bool project(const Linearization& at_center, double distance, Eigen::VectorXd& y);
-  bool probe(const Linearization& at_center, double distance, Eigen::VectorXd& y);
+  bool probe(const Linearization& at_center, double distance, Eigen::VectorXd& y,
+             double known_contraction = -1.0, double* contraction = nullptr);
   void evaluate_jacobian(const Eigen::VectorXd& x);
   double jacobian_scale() const;
   int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);

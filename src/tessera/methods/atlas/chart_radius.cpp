@@ -29,8 +29,7 @@ constexpr double kProbeAccuracy = 1e-3;
 // ratio 0.7, and every chart of a smooth surface was measured twice (torus at 1e-3: 2.0
 // measurements, 136 evaluations of F per chart). At 1.35 a radius down to 0.945 R_parent is
 // accepted at once; one that wants to grow by more than that is measured again, up to the
-// bound. (1.3 cost the same and left a hexagonal `crossing` mesh 23 % over its bound by the
-// test's Gauss–Newton measure, which near the singular circle overstates the distance.)
+// bound.
 constexpr double kExpectedSlack = 1.35;
 
 }  // namespace
@@ -102,12 +101,22 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
         is_graph = space_->norm(a.col(i)) <= r;
       }
     }
+    std::array<double, 6> contraction{};  // of the outer probes' chords (−1: not a chord)
     for (int i = 0; i < probes && is_graph && !first_step_probes_; ++i) {  // full projections
       const double theta = (i % 6) * std::numbers::pi / 3.0;
       const double distance = i < 6 ? r : kInnerProbe * r;
       predicted = x + distance * (T * Eigen::Vector2d(std::cos(theta), std::sin(theta)));
       y = predicted;
-      is_graph = probe(at_center, distance, y);
+      if (i < 6) {
+        is_graph = probe(at_center, distance, y, -1.0, &contraction[i]);
+      } else {
+        // The inner probe starts from the outer one's offset scaled as a quadratic (still on
+        // the normal space of the chart, so pointOnDisk is the same point), off by the cubic
+        // part only; the outer chord's contraction, larger than the inner one's, bounds its
+        // remainder from the first step on: one step where it took two or three.
+        y += kInnerProbe * kInnerProbe * a.col(i - 6);
+        is_graph = probe(at_center, distance, y, contraction[i - 6]);
+      }
       y -= predicted;  // the offset; its tangential part is zero for the chord, not for GN
       const Eigen::Vector2d along = space_->tangent_coordinates(T, y);
       a.col(i) = y - T * along;
@@ -213,16 +222,24 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
 
 // pointOnDisk for a radius probe: the chart's chord, stopped once the offset is known to
 // kProbeAccuracy·ε (the remainder of a chord contracting by θ after a step dx is at most
-// θ/(1 − θ)·‖dx‖, θ the largest ratio of successive steps seen). Where the chord does not contract,
-// project() decides, as for any other point.
-bool AtlasBuilder::probe(const Linearization& at_center, double distance, Eigen::VectorXd& y) {
+// θ/(1 − θ)·‖dx‖, θ the largest ratio of successive steps seen, at least `known_contraction`
+// where that is ≥ 0: then the first step may suffice). `contraction` (may be null) receives the
+// θ used, −1 where the chord was not used. Where the chord does not contract, project() decides,
+// as for any other point.
+bool AtlasBuilder::probe(const Linearization& at_center, double distance, Eigen::VectorXd& y,
+                         double known_contraction, double* contraction) {
   const double accuracy = kProbeAccuracy * options_.tolerance;
   const CorrectorOptions& corrector = options_.corrector;
   probe_start_ = y;
   probe_residual_.resize(space_->local_equations());
   probe_step_.resize(rows_);
   double previous = 0.0;
-  double theta = 0.0;
+  // θ: the largest ratio of successive steps, or the one the caller knows to bound this chord's.
+  const bool is_known = known_contraction >= 0.0 && known_contraction <= corrector.max_contraction;
+  double theta = is_known ? known_contraction : 0.0;
+  if (contraction != nullptr) {
+    *contraction = -1.0;
+  }
   for (int k = 0; k < corrector.max_iterations; ++k) {
     problem_.evaluate(y, probe_residual_);
     if (!space_->all_finite(probe_residual_)) {
@@ -233,6 +250,9 @@ bool AtlasBuilder::probe(const Linearization& at_center, double distance, Eigen:
     const double correction = space_->norm(probe_step_);
     y += probe_step_;
     if (correction <= corrector.tolerance * (1.0 + space_->norm(y))) {
+      if (contraction != nullptr) {
+        *contraction = theta;
+      }
       return true;  // the solver's own criterion (reached first where ε is tiny)
     }
     if (k > 0) {
@@ -240,9 +260,12 @@ bool AtlasBuilder::probe(const Linearization& at_center, double distance, Eigen:
       if (theta > corrector.max_contraction) {
         break;
       }
-      if (theta / (1.0 - theta) * correction <= accuracy) {
-        return true;
+    }
+    if ((k > 0 || is_known) && theta / (1.0 - theta) * correction <= accuracy) {
+      if (contraction != nullptr) {
+        *contraction = theta;
       }
+      return true;
     }
     previous = correction;
   }
