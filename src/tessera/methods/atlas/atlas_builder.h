@@ -106,7 +106,8 @@ class AtlasBuilder {
                      double& radius, RadiusCap& cap);
   bool project(const Linearization& at_center, double distance, Eigen::VectorXd& y);
   bool probe(const Linearization& at_center, double distance, Eigen::VectorXd& y,
-             double known_contraction = -1.0, double* contraction = nullptr);
+             double known_contraction = -1.0, double offset = -1.0,
+             double* contraction = nullptr);
   void evaluate_jacobian(const Eigen::VectorXd& x);
   double jacobian_scale() const;
   int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);

@@ -108,14 +108,15 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
       predicted = x + distance * (T * Eigen::Vector2d(std::cos(theta), std::sin(theta)));
       y = predicted;
       if (i < 6) {
-        is_graph = probe(at_center, distance, y, -1.0, &contraction[i]);
+        is_graph = probe(at_center, distance, y, -1.0, -1.0, &contraction[i]);
       } else {
         // The inner probe starts from the outer one's offset scaled as a quadratic (still on
         // the normal space of the chart, so pointOnDisk is the same point), off by the cubic
         // part only; the outer chord's contraction, larger than the inner one's, bounds its
         // remainder from the first step on: one step where it took two or three.
         y += kInnerProbe * kInnerProbe * a.col(i - 6);
-        is_graph = probe(at_center, distance, y, contraction[i - 6]);
+        is_graph = probe(at_center, distance, y, contraction[i - 6],
+                         kInnerProbe * kInnerProbe * space_->norm(a.col(i - 6)));
       }
       y -= predicted;  // the offset; its tangential part is zero for the chord, not for GN
       const Eigen::Vector2d along = space_->tangent_coordinates(T, y);
@@ -221,14 +222,17 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
 }
 
 // pointOnDisk for a radius probe: the chart's chord, stopped once the offset is known to
-// kProbeAccuracy·ε (the remainder of a chord contracting by θ after a step dx is at most
-// θ/(1 − θ)·‖dx‖, θ the largest ratio of successive steps seen, at least `known_contraction`
-// where that is ≥ 0: then the first step may suffice). `contraction` (may be null) receives the
-// θ used, −1 where the chord was not used. Where the chord does not contract, project() decides,
-// as for any other point.
+// kProbeAccuracy·min(ε, offset), `offset` its expected size (< 0: the first step's). The
+// remainder of a chord contracting by θ after a step dx is at most θ/(1 − θ)·‖dx‖, θ the largest
+// ratio of successive steps seen, at least `known_contraction` where that is ≥ 0 (then the first
+// step may suffice). `contraction` (may be null) receives the θ used, −1 where the chord was not
+// used. Where the chord does not contract, project() decides, as for any other point.
 bool AtlasBuilder::probe(const Linearization& at_center, double distance, Eigen::VectorXd& y,
-                         double known_contraction, double* contraction) {
-  const double accuracy = kProbeAccuracy * options_.tolerance;
+                         double known_contraction, double offset, double* contraction) {
+  double accuracy = kProbeAccuracy * options_.tolerance;
+  if (offset >= 0.0) {
+    accuracy = std::min(accuracy, kProbeAccuracy * offset);
+  }
   const CorrectorOptions& corrector = options_.corrector;
   probe_start_ = y;
   probe_residual_.resize(space_->local_equations());
@@ -248,6 +252,11 @@ bool AtlasBuilder::probe(const Linearization& at_center, double distance, Eigen:
     probe_residual_ = -probe_residual_;
     at_center.solve_minimum_norm(probe_residual_, probe_step_);
     const double correction = space_->norm(probe_step_);
+    if (k == 0 && offset < 0.0) {
+      // The first step is the offset to first order: where it is below ε (a disk held small by
+      // the curvature or the reach), the accuracy follows it.
+      accuracy = std::min(accuracy, kProbeAccuracy * correction);
+    }
     y += probe_step_;
     if (correction <= corrector.tolerance * (1.0 + space_->norm(y))) {
       if (contraction != nullptr) {
