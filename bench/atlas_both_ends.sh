@@ -6,6 +6,7 @@
 # bvp:points=1000 and bratu2d:N=32 at the command line's defaults.
 # Usage: bench/atlas_both_ends.sh BEFORE AFTER [REPEATS]   (binaries of tessera; REPEATS of the
 #        small-n runs, default 3, the smallest time kept). Prints a Markdown table.
+#        SMALL="…" and LARGE="…" replace the problem lists (LARGE="" leaves large n out).
 set -euo pipefail
 before=$1
 after=$2
@@ -47,14 +48,14 @@ echo "\`bench/atlas_both_ends.sh\`, $(date -u +%Y-%m-%dT%H:%MZ), load $(cut -d' 
 echo
 echo "| problem | binary | F/vertex | DF/vertex | factorisations/vertex | vertices | covering s | build s |"
 echo "|---|---|---|---|---|---|---|---|"
-for problem in sphere torus equipotential; do
+for problem in ${SMALL:-sphere torus equipotential}; do
   for label in before after; do
     binary=$before
     [ "$label" = after ] && binary=$after
     row "$problem" "$label" "$binary" "$repeats" --tolerance 1e-3
   done
 done
-for problem in bvp:points=1000 bratu2d:N=32; do
+for problem in ${LARGE-bvp:points=1000 bratu2d:N=32}; do
   for label in before after; do
     binary=$before
     [ "$label" = after ] && binary=$after
