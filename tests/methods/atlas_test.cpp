@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "support/test_support.h"
 #include "tessera/core/corrector.h"
@@ -39,8 +41,13 @@ AtlasRun run_atlas(const std::string& specification, double tolerance = 0.0,
 }
 
 // Largest distance to M of points the method did not produce: 12 points inside every triangle
-// (barycentric grid of order 5 without the vertices), projected with full Gauss–Newton.
-double max_distance_inside_triangles(const TriangleMesh& mesh, const ImplicitProblem& problem) {
+// (barycentric grid of order 5 without the vertices), projected with full Gauss–Newton. Next to
+// a singular curve of F Gauss–Newton's displacement only bounds the distance from above (on
+// `crossing` it went 0.0049 from a point 0.0036 from M): there `exact` measures it, as the stress
+// campaign does.
+double max_distance_inside_triangles(
+    const TriangleMesh& mesh, const ImplicitProblem& problem,
+    const std::function<double(const Eigen::VectorXd&)>& exact = nullptr) {
   Linearization workspace;
   CorrectorOptions options;
   double largest = 0.0;
@@ -53,6 +60,10 @@ double max_distance_inside_triangles(const TriangleMesh& mesh, const ImplicitPro
           continue;
         }
         x = (i * mesh.point(t[0]) + j * mesh.point(t[1]) + k * mesh.point(t[2])) / 5.0;
+        if (exact) {
+          largest = std::max(largest, exact(x));
+          continue;
+        }
         const Eigen::VectorXd before = x;
         EXPECT_TRUE(project_gauss_newton(problem, x, options, workspace).is_success());
         largest = std::max(largest, (x - before).norm());
@@ -233,7 +244,15 @@ TEST_P(AtlasHexagonalCovers, WithAValidMeshWithinTheBound) {
   const MeshValidation validation = validate(result.mesh);
   ASSERT_TRUE(validation.is_valid()) << validation.report();
   EXPECT_EQ(validation.euler_characteristic, *setup.expected_euler_characteristic);
-  EXPECT_LE(max_distance_inside_triangles(result.mesh, *setup.problem), options.tolerance);
+  // crossing, z(|x|² − 1) = 0: the nearer of the plane z = 0 and the unit sphere.
+  const auto crossing_distance = [](const Eigen::VectorXd& x) {
+    return std::min(std::abs(x[2]), std::abs(x.norm() - 1.0));
+  };
+  EXPECT_LE(max_distance_inside_triangles(
+                result.mesh, *setup.problem,
+                GetParam() == "crossing" ? crossing_distance
+                                         : std::function<double(const Eigen::VectorXd&)>()),
+            options.tolerance);
 }
 
 INSTANTIATE_TEST_SUITE_P(Catalogue, AtlasHexagonalCovers,
@@ -338,6 +357,34 @@ TEST(Atlas, IsDeterministic) {
   EXPECT_EQ(a.result.mesh.triangles(), b.result.mesh.triangles());
   EXPECT_EQ((a.result.mesh.points() - b.result.mesh.points()).norm(), 0.0);
 }
+
+// Issue 35: at n = 3 the atlas had come to spend 133–156 evaluations of F per vertex (20–24 on
+// 2026-11-22): every chart's radius was measured twice, each probe projected to the solver's
+// tolerance. Counts are deterministic, so they are bounded here; speed is in bench/RESULTS.md.
+class AtlasWorkAtSmallN : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(AtlasWorkAtSmallN, StaysWithinItsBudgetOfEvaluationsPerVertex) {
+  const AtlasRun run = run_atlas(GetParam(), 1e-3);
+  const CoveringSummary& summary = run.result.summary;
+  ASSERT_TRUE(summary.is_complete()) << summary.message;
+  const double vertices = run.result.mesh.vertex_count();
+  ASSERT_GT(vertices, 0);
+  // 37–43 now (about 14 of them the refinement's check of every triangle); 133–156 before.
+  EXPECT_LE(summary.function_evaluations / vertices, 48.0);
+  // 2.41 and 3.41 now and before: one factorisation per chart, one per vertex to validate.
+  EXPECT_LE(summary.factorisations / vertices, 2.6);
+  EXPECT_LE(summary.jacobian_evaluations / vertices, 3.6);
+  for (const PhaseWork& phase : summary.work_by_phase) {
+    if (phase.phase == "build") {
+      // About 25 per chart now: six probes of two or three chord steps, six inner ones of about
+      // one, the child's projection; 119–142 before.
+      EXPECT_LE(phase.counts.function_evaluations / vertices, 30.0);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ClosedSurfaces, AtlasWorkAtSmallN,
+                         ::testing::Values("sphere", "torus", "equipotential"));
 
 }  // namespace
 }  // namespace tessera

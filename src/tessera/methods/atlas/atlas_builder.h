@@ -101,8 +101,13 @@ class AtlasBuilder {
   }
 
  private:
-  bool choose_radius(const Linearization& at_center, double trial, double& radius, RadiusCap& cap);
+  // `expected`: the radius the chart will likely get (its parent's), 0 if unknown.
+  bool choose_radius(const Linearization& at_center, double trial, double expected,
+                     double& radius, RadiusCap& cap);
   bool project(const Linearization& at_center, double distance, Eigen::VectorXd& y);
+  bool probe(const Linearization& at_center, double distance, Eigen::VectorXd& y,
+             double known_contraction = -1.0, double offset = -1.0,
+             double* contraction = nullptr);
   void evaluate_jacobian(const Eigen::VectorXd& x);
   double jacobian_scale() const;
   int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);
@@ -184,10 +189,16 @@ class AtlasBuilder {
     return spare;
   }
   std::vector<int> candidates_;     // scratch
+  std::vector<int> retire_around_;  // scratch of retire_finished_charts
+  std::vector<int> retire_closed_;  // scratch of retire_finished_charts
+  std::vector<int> retire_open_;    // scratch of retire_finished_charts
   Eigen::VectorXd offset_;          // scratch
   Eigen::VectorXd predicted_;       // scratch
   Eigen::MatrixXd jacobian_;        // J at the last point checked for singularity
   Eigen::VectorXd probe_;           // scratch
+  Eigen::VectorXd probe_residual_;  // scratch: F at a probe
+  Eigen::VectorXd probe_step_;      // scratch: its chord step
+  Eigen::VectorXd probe_start_;     // scratch: its predicted point
   Eigen::MatrixXd quadratic_;       // scratch: n×12, the offsets a(θ_i) of choose_radius
   Eigen::MatrixXd probe_residuals_; // scratch: (n−2)×6, −F at the first-step probes
   Eigen::MatrixXd probe_steps_;     // scratch: n×6, their chord steps

@@ -19,6 +19,18 @@ constexpr double kMaxTangentialDrift = 0.1;
 // choose_radius probes M at r and at this fraction of r: the slope between them is the
 // turning of the tangent plane near the rim of the disk.
 constexpr double kInnerProbe = 0.75;
+// A radius probe is projected until its offset is known to this fraction of the tolerance: an
+// error δ in an offset of about ε (the offset at the chosen radius) changes the radius by δ/(2ε),
+// here 0.05 %. Two or three chord steps where the solver's tolerance (1e-10) took five or six.
+constexpr double kProbeAccuracy = 1e-3;
+// Where probes are full projections, the first measurement is made at this multiple of the
+// parent's radius (the radius a chart most likely gets), not at the graded bound
+// radius_growth·R_parent (1.5): measured at 1.5 R the parent's radius is below the acceptance
+// ratio 0.7, and every chart of a smooth surface was measured twice (torus at 1e-3: 2.0
+// measurements, 136 evaluations of F per chart). 1.4 is just below 1/0.7: a radius down to
+// 0.98 R_parent is accepted at once, a smaller one measured again at its size as before; one that
+// wants to grow beyond 1.4 R_parent is measured again there, up to the bound.
+constexpr double kExpectedSlack = 1.4;
 
 }  // namespace
 
@@ -38,11 +50,16 @@ constexpr double kInnerProbe = 0.75;
 // The radius is also capped where M is not a graph of slope ≤ 1 over the disk of radius r, or
 // the corrector does not converge that far (r is halved): the disk then reaches past a
 // turn of M or onto another part of it, so its tangent-plane projection is not one-to-one.
-bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, double& radius,
-                                 RadiusCap& cap) {
+bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, double expected,
+                                 double& radius, RadiusCap& cap) {
   const Eigen::VectorXd& x = at_center.point();
   const Eigen::MatrixXd& T = at_center.tangent_basis();
   double r = trial;
+  // (Full projections only: the first-step probes of large n are left as they were.)
+  bool from_expected = !first_step_probes_ && expected > 0 && kExpectedSlack * expected < trial;
+  if (from_expected) {
+    r = kExpectedSlack * expected;
+  }
   int measurements = 0;
   bool halved = false;  // the corrector or the graph test refused a larger disk
   bool turned = false;  // a remeasurement was asked for by the curvature cap
@@ -84,12 +101,23 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
         is_graph = space_->norm(a.col(i)) <= r;
       }
     }
+    std::array<double, 6> contraction{};  // of the outer probes' chords (−1: not a chord)
     for (int i = 0; i < probes && is_graph && !first_step_probes_; ++i) {  // full projections
       const double theta = (i % 6) * std::numbers::pi / 3.0;
       const double distance = i < 6 ? r : kInnerProbe * r;
       predicted = x + distance * (T * Eigen::Vector2d(std::cos(theta), std::sin(theta)));
       y = predicted;
-      is_graph = project(at_center, distance, y);
+      if (i < 6) {
+        is_graph = probe(at_center, distance, y, -1.0, -1.0, &contraction[i]);
+      } else {
+        // The inner probe starts from the outer one's offset scaled as a quadratic (still on
+        // the normal space of the chart, so pointOnDisk is the same point), off by the cubic
+        // part only; the outer chord's contraction, larger than the inner one's, bounds its
+        // remainder from the first step on: one step where it took two or three.
+        y += kInnerProbe * kInnerProbe * a.col(i - 6);
+        is_graph = probe(at_center, distance, y, contraction[i - 6],
+                         kInnerProbe * kInnerProbe * space_->norm(a.col(i - 6)));
+      }
       y -= predicted;  // the offset; its tangential part is zero for the chord, not for GN
       const Eigen::Vector2d along = space_->tangent_coordinates(T, y);
       a.col(i) = y - T * along;
@@ -160,7 +188,15 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
     const double for_turning = largest_curvature > 0
                                    ? options_.max_turning_angle / largest_curvature
                                    : options_.step;
-    const double chosen = std::min({options_.step, r, for_tolerance, for_turning});
+    const double wanted = std::min({options_.step, for_tolerance, for_turning});
+    const double chosen = std::min(r, wanted);
+    if (from_expected && !halved && wanted > 1.01 * r && measurements < 4) {
+      // Measured at the expected radius, M allows a larger disk: measured again there (up to
+      // the graded bound), so that a radius may grow as before.
+      from_expected = false;
+      r = std::min(trial, wanted);
+      continue;
+    }
     if (chosen < 0.7 * r && measurements < 4) {
       // Measured beyond the radius chosen: measure again there, where the quadratic model
       // is accurate (third-order terms shrink by the ratio of the radii), and so that the
@@ -183,6 +219,67 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
     return true;
   }
   return false;
+}
+
+// pointOnDisk for a radius probe: the chart's chord, stopped once the offset is known to
+// kProbeAccuracy·min(ε, offset), `offset` its expected size (< 0: the first step's). The
+// remainder of a chord contracting by θ after a step dx is at most θ/(1 − θ)·‖dx‖, θ the largest
+// ratio of successive steps seen, at least `known_contraction` where that is ≥ 0 (then the first
+// step may suffice). `contraction` (may be null) receives the θ used, −1 where the chord was not
+// used. Where the chord does not contract, project() decides, as for any other point.
+bool AtlasBuilder::probe(const Linearization& at_center, double distance, Eigen::VectorXd& y,
+                         double known_contraction, double offset, double* contraction) {
+  double accuracy = kProbeAccuracy * options_.tolerance;
+  if (offset >= 0.0) {
+    accuracy = std::min(accuracy, kProbeAccuracy * offset);
+  }
+  const CorrectorOptions& corrector = options_.corrector;
+  probe_start_ = y;
+  probe_residual_.resize(space_->local_equations());
+  probe_step_.resize(rows_);
+  double previous = 0.0;
+  // θ: the largest ratio of successive steps, or the one the caller knows to bound this chord's.
+  const bool is_known = known_contraction >= 0.0 && known_contraction <= corrector.max_contraction;
+  double theta = is_known ? known_contraction : 0.0;
+  if (contraction != nullptr) {
+    *contraction = -1.0;
+  }
+  for (int k = 0; k < corrector.max_iterations; ++k) {
+    problem_.evaluate(y, probe_residual_);
+    if (!space_->all_finite(probe_residual_)) {
+      break;
+    }
+    probe_residual_ = -probe_residual_;
+    at_center.solve_minimum_norm(probe_residual_, probe_step_);
+    const double correction = space_->norm(probe_step_);
+    if (k == 0 && offset < 0.0) {
+      // The first step is the offset to first order: where it is below ε (a disk held small by
+      // the curvature or the reach), the accuracy follows it.
+      accuracy = std::min(accuracy, kProbeAccuracy * correction);
+    }
+    y += probe_step_;
+    if (correction <= corrector.tolerance * (1.0 + space_->norm(y))) {
+      if (contraction != nullptr) {
+        *contraction = theta;
+      }
+      return true;  // the solver's own criterion (reached first where ε is tiny)
+    }
+    if (k > 0) {
+      theta = std::max(theta, correction / previous);
+      if (theta > corrector.max_contraction) {
+        break;
+      }
+    }
+    if ((k > 0 || is_known) && theta / (1.0 - theta) * correction <= accuracy) {
+      if (contraction != nullptr) {
+        *contraction = theta;
+      }
+      return true;
+    }
+    previous = correction;
+  }
+  y = probe_start_;
+  return project(at_center, distance, y);
 }
 
 // Henderson's pointOnDisk: F(y) = 0 with Tᵀ(y − y_predicted) = 0, by the chord iteration of
