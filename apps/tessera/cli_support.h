@@ -4,10 +4,15 @@
 // (report/, problems/start_and_box.h, io/output_checks.h).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace CLI {
+class App;
+class ParseError;
+class Validator;
+}  // namespace CLI
 
 namespace tessera::app {
 

@@ -12,34 +12,6 @@
 
 namespace tessera::app {
 
-CLI::App* add_compare_command(CLI::App& app, CompareCommand& command) {
-  auto* compare = app.add_subcommand(
-      "compare", "run every covering method on one problem and print a table side by side");
-  compare->add_option("problem", command.problem, "catalogue name or problem file")->required();
-  compare
-      ->add_option("--step,-s", command.settings.step,
-                   "front: edge length; atlas: largest chart radius (defaults as for mesh)")
-      ->check(finite_positive());
-  compare
-      ->add_option("--tolerance,-t", command.settings.tolerance,
-                   "bound on the distance of every triangle to M, the same for every method "
-                   "(default: step/50, the atlas's default)")
-      ->check(finite_positive());
-  compare
-      ->add_option("--placement", command.settings.atlas_placement,
-                   "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
-                   "vertices, then smoothed; slower)")
-      ->check(CLI::IsMember({"disk", "hexagonal"}));
-  compare->add_option("--start", command.start, "start point, comma separated");
-  compare->add_option("--box", command.box,
-                      "clip to a box: lower,upper for each coordinate, or name=lower:upper,…");
-  compare
-      ->add_option("--max-vertices", command.settings.max_vertices,
-                   "stop each method after this many vertices")
-      ->check(CLI::Range(7, 100'000'000));
-  return compare;
-}
-
 int run_compare(const CompareCommand& command) {
   const auto make_setup = [&command] {
     ProblemSetup setup = resolve_problem(command.problem);

@@ -2,10 +2,13 @@
 // `tessera compare PROBLEM`: every covering method on the same problem, one table row each.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <string>
 
 #include "tessera/methods/covering_methods.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace tessera::app {
 

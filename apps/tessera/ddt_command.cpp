@@ -90,36 +90,6 @@ void print_row(const Row& row, bool has_function) {
 
 }  // namespace
 
-CLI::App* add_ddt_command(CLI::App& app, DdtCommand& command) {
-  auto* ddt = app.add_subcommand(
-      "ddt", "data-dependent triangulation of scattered data in the plane (Malcolm)");
-  ddt->add_option("points", command.points, "CSV file with columns x, y[, value]")->required();
-  ddt->add_option("--function", command.function,
-                  "sample Franke's F1, F2, F7, F8 or F9 at the points and measure the "
-                  "interpolation error against it");
-  ddt->add_option("--value-column", command.value_column, "take the values from this column");
-  ddt->add_option("--criterion", command.criterion,
-                  "delaunay, mwt, maxmin3d, mwt3d, abn, jnd, pf, pd or equid (default abn)");
-  ddt->add_option("--norm", command.norm, "cost-vector ordering: l1, l2 (default) or lex")
-      ->check(CLI::IsMember({"l1", "l2", "lex"}));
-  ddt->add_option("--test", command.test, "swap test: local or global (default)")
-      ->check(CLI::IsMember({"local", "global"}));
-  ddt->add_option("-o,--output", command.output,
-                  "write the triangulation as PLY (value as z and as property 'value')");
-  ddt->add_option("--grid", command.grid, "error grid size (default 33: 33×33 on [0,1]²)")
-      ->check(CLI::Range(2, 10000));
-  ddt->add_flag("--all-criteria", command.all_criteria,
-                "print the error of every criterion (the report's table rows)");
-  ddt->add_option("--orders", command.orders,
-                  "with --all-criteria: also try this many sweep orders and print the spread")
-      ->check(CLI::Range(1, 1000));
-  ddt->add_option("--compare-report", command.compare_report,
-                  "with --all-criteria and --function: print Malcolm's Table 1 (33) or 2 (100) "
-                  "value beside each row")
-      ->check(CLI::IsMember({33, 100}));
-  return ddt;
-}
-
 int run_ddt(const DdtCommand& command) {
   if (!command.output.empty()) {
     check_mesh_output(command.output);

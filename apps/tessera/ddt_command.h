@@ -2,8 +2,11 @@
 // `tessera ddt`: data-dependent triangulation of scattered data in the plane (Malcolm).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <string>
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace tessera::app {
 

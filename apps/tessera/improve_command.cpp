@@ -33,33 +33,6 @@ void print_line(const char* label, const MeshQuality& quality, const MeshValidat
 
 }  // namespace
 
-CLI::App* add_improve_command(CLI::App& app, ImproveCommand& command) {
-  auto* improve = app.add_subcommand(
-      "improve", "improve a mesh of M by edge swaps judged in the tangent plane of M");
-  improve
-      ->add_option("mesh", command.mesh,
-                   "mesh file (.ply, .obj, .vtk or .vtu) or the states of `mesh --states` (.npy)")
-      ->required();
-  improve->add_option("--problem,-p", command.problem, "catalogue name or problem file")
-      ->required();
-  improve
-      ->add_option("--criterion", command.criterion,
-                   "angle (max-min angle, Delaunay-type; default), normal (angle between "
-                   "adjacent triangles' planes) or distance (distance to M of the edge midpoint)")
-      ->check(CLI::IsMember({"angle", "normal", "distance"}));
-  improve->add_option("-o,--output", command.output, "improved mesh: .ply, .obj, .vtk or .vtu")
-      ->required();
-  improve->add_option("--summary", command.summary, "write the before/after numbers as JSON");
-  improve->add_option("--max-sweeps", command.max_sweeps, "most sweeps over the edges (default 50)")
-      ->check(CLI::Range(1, 100000));
-  improve
-      ->add_option("--smooth", command.smooth,
-                   "passes of tangential smoothing after the swaps, followed by one more round "
-                   "of swaps (default 0: vertices do not move)")
-      ->check(CLI::Range(0, 1000));
-  return improve;
-}
-
 int run_improve(const ImproveCommand& command) {
   check_mesh_output(command.output);
   check_output_folder(command.summary);

@@ -2,8 +2,11 @@
 // `tessera improve`: edge swaps on a mesh of M (Lawson's procedure in the tangent plane of M).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <string>
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace tessera::app {
 

@@ -2,11 +2,14 @@
 // `tessera mesh`: cover a problem's surface with a triangle mesh by one of the methods.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
 #include "tessera/methods/covering_methods.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace tessera::app {
 

@@ -297,65 +297,6 @@ void write_mesh_picture(const std::string& path, const TriangleMesh& mesh,
   write_picture(path, scene, options);
 }
 
-CLI::App* add_render_command(CLI::App& app, RenderCommand& command) {
-  auto* render = app.add_subcommand("render", "draw a mesh as a picture (.png or .svg)");
-  render->add_option("mesh", command.mesh,
-                     "mesh file (.ply, .obj, .vtk, .vtu or .npy states); none with --diagram");
-  render->add_option("-o,--output", command.output, "picture file: .png or .svg")->required();
-  render->add_option("--problem,-p", command.problem,
-                     "catalogue name or problem file: coordinate names, --view, --colour distance");
-  render->add_option("--view", command.view,
-                     "with --problem: the functionals drawn (as `mesh --view`), the first three "
-                     "place the vertices; default: the file's first three coordinates");
-  render->add_option("--colour,--color", command.colour,
-                     "colour the triangles by: height (the third coordinate, default), a "
-                     "coordinate or view column name, min-angle, area, curvature (Gauss, angle "
-                     "deficit), distance (of the centroid to M; needs --problem), stability (by "
-                     "the file's unstable_count, from `mesh --stability`), a vertex data array "
-                     "of the file by name, or none");
-  render->add_option("--curves", command.curves,
-                     "polylines drawn over the surface (or in the --diagram), repeatable: the "
-                     "curve files of `mesh --folds/--hopf/--level` (.json, .csv, .vtk, .vtu, "
-                     ".ply), drawn by their kind "
-                     "(fold solid, hopf dashed, neutral_saddle dotted); marked points by their "
-                     "marker (cusp triangle, bogdanov_takens square, zero_hopf diamond)");
-  render->add_option("--diagram", command.diagram,
-                     "P1,P2: draw the two-parameter bifurcation diagram of the --curves files "
-                     "over their columns P1 and P2 instead of a mesh");
-  render->add_option("--azimuth", command.azimuth,
-                     "camera azimuth about the third axis, degrees (default -60; without it and "
-                     "--elevation a continuation view is seen from where its folds show)");
-  render->add_option("--elevation", command.elevation, "camera elevation, degrees (default 30)")
-      ->check(CLI::Range(-90.0, 90.0));
-  render->add_option("--zoom", command.zoom, "1: the surface fills the frame (default)")
-      ->check(finite_positive());
-  render->add_flag("--perspective", command.perspective, "perspective instead of orthographic");
-  render
-      ->add_option("--edges", command.edges,
-                   "draw the edges: on, off or auto (where the triangles are large enough on "
-                   "the screen: a median edge of 6 pixels and more, default)")
-      ->check(CLI::IsMember({"on", "off", "auto"}));
-  render
-      ->add_option("--axes", command.axes,
-                   "ticks (axes with ticks, numbers and names along the bounding box), triad, "
-                   "off, or auto (ticks for continuation views and --top maps, else the "
-                   "triad; default)")
-      ->check(CLI::IsMember({"auto", "ticks", "triad", "off"}));
-  std::ostringstream aspect_help;  // the ratio as the code uses it, not a copy that can drift
-  aspect_help << "auto (equal scales unless the axes' extents differ by more than "
-              << kMaxEqualAspectRatio
-              << "x, default), equal or box (every axis to the same length)";
-  render->add_option("--aspect", command.aspect, aspect_help.str())
-      ->check(CLI::IsMember({"auto", "equal", "box"}));
-  render->add_option("--size", command.size, "WIDTHxHEIGHT in pixels (default 800x600)");
-  render->add_flag("--top", command.top,
-                   "look from above (the first coordinate right, the second up), unshaded: "
-                   "planar triangulations coloured by their data, e.g. `tessera ddt` output");
-  render->add_flag("--no-boundary", command.no_boundary, "do not draw the boundary curves");
-  render->add_option("--title", command.title, "a line of text at the top");
-  return render;
-}
-
 int run_diagram(const RenderCommand& command, int width, int height) {
   const auto [p1, p2] = parse_parameter_pair(command.diagram);
   TESSERA_CHECK(command.mesh.empty(),

@@ -2,7 +2,6 @@
 // `tessera render` and `tessera mesh --picture`: pictures of meshes (docs/pictures.md).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +11,10 @@
 #include "tessera/io/vertex_data.h"
 #include "tessera/picture/picture.h"
 #include "tessera/problems/problem_setup.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace tessera::app {
 
