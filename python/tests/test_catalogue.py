@@ -7,17 +7,7 @@ import numpy as np
 import pytest
 
 import tessera
-
-
-def without_times(value):
-    """The summary without wall times, ratios of them and the process's sampled memory (they
-    differ between two runs)."""
-    if isinstance(value, dict):
-        return {k: without_times(v) for k, v in value.items()
-                if "seconds" not in k and "worth" not in k and k != "memory"}
-    if isinstance(value, list):
-        return [without_times(v) for v in value]
-    return value
+from summary_compare import without_times
 
 
 def test_torus_summary_is_the_cli_summary(cli, tmp_path):

@@ -8,15 +8,7 @@ import numpy as np
 import pytest
 
 import tessera
-
-
-def without_times(value):
-    if isinstance(value, dict):
-        return {k: without_times(v) for k, v in value.items()
-                if "seconds" not in k and "worth" not in k and k != "memory"}
-    if isinstance(value, list):
-        return [without_times(v) for v in value]
-    return value
+from summary_compare import without_times
 
 
 def test_every_component_of_the_torus_and_sphere_is_the_cli_run(cli, tmp_path):
