@@ -97,6 +97,13 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
 void check_thin_triangles(const MeshView& view, const GeometricInput& geometry,
                           const std::vector<std::pair<int, int>>& pairs, DefectRecorder& recorder,
                           MeshValidation& result);
+// Fans whose corners' arcs in M's tangent plane at their vertex overlap (mesh_validation_fans.cpp),
+// from check_orientation's oriented cosines and arcs (start, signed sweep) per corner.
+void check_fan_arcs(const MeshView& view,
+                    const std::vector<std::array<double, 3>>& corner_cosine,
+                    const std::vector<std::array<std::array<double, 2>, 3>>& corner_arcs,
+                    const ValidationOptions& options, DefectRecorder& recorder,
+                    MeshValidation& result);
 // "triangle 17 (vertices 3, 8, 9)"
 std::string triangle_name(int t, const Triangle& tri);
 void check_domain(const MeshView& view, const GeometricInput& geometry,
