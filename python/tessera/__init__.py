@@ -680,6 +680,7 @@ def mesh(
     progress: Union[None, bool, Callable[[Dict[str, Any]], None]] = None,
     allow_partial: bool = False,
     handle_interrupt: bool = True,
+    threads: Optional[int] = None,
 ) -> Mesh:
     """Covers a problem's surface with a triangle mesh: ``tessera mesh``.
 
@@ -735,6 +736,9 @@ def mesh(
         later stage begins (docs/python.md, "Progress"); an exception it raises stops the run
         and is raised.
     allow_partial: return the mesh of a run that stopped early instead of raising.
+    threads: threads of the data-parallel steps (``--threads``; default: TESSERA_THREADS,
+        OMP_NUM_THREADS or every core). A Python problem runs on one thread whatever this says
+        (each evaluation takes the GIL); the mesh does not depend on it (docs/threads.md).
     handle_interrupt: Ctrl-C stops the run (from the main thread, while Python's SIGINT handler
         is the default one) and raises `Interrupted` carrying the valid partial mesh.
 
@@ -783,6 +787,7 @@ def mesh(
     request.edge_length_factor = _in_range("edge_length_factor", edge_length_factor, 0.1, 3.0)
     request.min_tangent_cosine = _in_range("min_tangent_cosine", min_tangent_cosine, 0.01, 0.999)
     request.refine = _in_range("refine", refine, 1, 64, int)
+    request.threads = _in_range("threads", threads, 1, 100_000, int)
     core = _tessera.mesh(chosen._core, request, _progress(progress), bool(handle_interrupt))
     result = Mesh._wrap(core)
     if core.interrupted:

@@ -235,6 +235,7 @@ std::string to_json(const MeshReport& report) {
                 {"message", r.message},
                 {"step", r.step},
                 {"wall_seconds", r.wall_seconds},
+                {"threads", r.threads},
                 {"function_evaluations", r.function_evaluations},
                 {"jacobian_evaluations", r.jacobian_evaluations},
                 {"factorisations", r.factorisations},
@@ -413,7 +414,8 @@ std::string to_text(const MeshReport& report) {
     for (const std::string& note : r.notes) {
       out << "note           " << note << "\n";
     }
-    out << "work           " << r.wall_seconds << " s, " << r.function_evaluations
+    out << "work           " << r.wall_seconds << " s on " << r.threads
+        << (r.threads == 1 ? " thread, " : " threads, ") << r.function_evaluations
         << " evaluations of F, " << r.jacobian_evaluations << " of DF, " << r.factorisations
         << " factorisations";
     if (r.vertex_count > 0) {
