@@ -12,6 +12,7 @@
 #include "geometry/mesh_examples.h"
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/domain.h"
+#include "tessera/core/parallel_for.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/methods/covering_methods.h"
@@ -225,11 +226,21 @@ TEST(MeasureQuality, ATimeBudgetKeepsAUniformSampleOfEachKind) {
   EXPECT_EQ(all.centroid_distance.count, result.mesh.triangle_count());
   EXPECT_LE(sampled.centroid_distance.max, all.centroid_distance.max);
   EXPECT_GT(sampled.centroid_distance.max, 0.0);
+  // On one thread the stop request is polled before every sample; on several, before every
+  // block, the first of them kMinDistanceSamples long.
   QualityOptions stopped;
   int polls = 0;
   stopped.stop_requested = [&polls] { return ++polls > 5; };
+  {
+    const ThreadCountScope one(1);
+    const MeshQuality cut_short = measure_quality(result.mesh, *setup.problem, stopped);
+    EXPECT_EQ(cut_short.centroid_distance.count, 5);
+  }
+  polls = 0;
+  stopped.stop_requested = [&polls] { return ++polls > 1; };
+  const ThreadCountScope two(2);
   const MeshQuality cut_short = measure_quality(result.mesh, *setup.problem, stopped);
-  EXPECT_EQ(cut_short.centroid_distance.count, 5);
+  EXPECT_EQ(cut_short.centroid_distance.count, kMinDistanceSamples);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tessera/core/parallel_for.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/methods/covering_methods.h"
 #include "tessera/problems/catalogue.h"
@@ -117,6 +118,9 @@ INSTANTIATE_TEST_SUITE_P(Methods, StopHook,
 // the tolerance holds on part of it only. The front's build does not depend on the tolerance,
 // so a run without one counts the build's polls.
 TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
+  // One thread: the request is polled before every triangle (on several, before every block of
+  // anchor groups), so that the count of polls below is exact.
+  const ThreadCountScope one(1);
   const ProblemSetup setup = make_catalogue_problem("torus");
   const CoveringMethod& front = find_covering_method("front");
   MethodSettings settings;
@@ -134,7 +138,7 @@ TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
       << stopped.summary.message;
   EXPECT_NE(stopped.summary.message.find("tolerance check"), std::string::npos)
       << stopped.summary.message;
-  EXPECT_EQ(polls, stop_after + 1);  // not asked again after the first `true`
+  EXPECT_EQ(polls, stop_after + 1);                       // not asked again after the first `true`
   EXPECT_EQ(stopped.summary.max_sampled_distance, -1.0);  // no bound for the whole mesh
   const auto& notes = stopped.summary.notes;
   EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& note) {
@@ -151,6 +155,31 @@ TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
   settings.stop_requested = nullptr;
   const CoveringResult refined = cover(setup, front, settings);
   EXPECT_GT(refined.summary.refined_edges, 0);
+}
+
+// The same on threads: the request, polled on the calling thread between blocks of anchor
+// groups, stops the check before any split.
+TEST(StopRequest, StopDuringTheToleranceCheckOnThreadsKeepsTheBuiltMeshValid) {
+  const ThreadCountScope two(2);
+  const ProblemSetup setup = make_catalogue_problem("torus");
+  const CoveringMethod& front = find_covering_method("front");
+  MethodSettings settings;
+  int build_polls = 0;
+  settings.stop_requested = counting_polls(build_polls);
+  const CoveringResult built = cover(setup, front, settings);
+  ASSERT_TRUE(built.summary.is_complete()) << built.summary.message;
+  settings.tolerance = 2e-4;
+  int polls = 0;
+  const int stop_after = build_polls + 1;  // one block of groups checked, then stop
+  settings.stop_requested = [&polls, stop_after] { return ++polls > stop_after; };
+  const CoveringResult stopped = cover(setup, front, settings);
+  EXPECT_EQ(stopped.summary.termination, CoveringTermination::Interrupted)
+      << stopped.summary.message;
+  EXPECT_EQ(polls, stop_after + 1);
+  EXPECT_EQ(stopped.summary.refined_edges, 0);
+  EXPECT_EQ(stopped.mesh.vertex_count(), built.mesh.vertex_count());
+  const MeshValidation validation = validate(stopped.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
 }
 
 // A stop during clipping (at n = 10⁵ each projection onto a face costs a factorisation; the

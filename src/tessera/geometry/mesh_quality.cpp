@@ -447,11 +447,13 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
   };
   if (threads > 1) {
     // Rounds in blocks: each block's points on threads, then recorded in order; the stop
-    // request and the time budget are polled between blocks, on this thread.
-    constexpr std::size_t kRoundsPerBlock = 4096;
+    // request and the time budget are polled between blocks, on this thread. The first block
+    // is the samples the budget always leaves.
+    const std::size_t later_blocks = 256 * static_cast<std::size_t>(threads);
     constexpr double kNotSampled = -1.0;          // distances are >= 0; NaN: the projection failed
     std::vector<std::array<double, 3>> measured;  // per round: vertex, centroid, midpoint
-    for (std::size_t first = 0; first < rounds; first += kRoundsPerBlock) {
+    for (std::size_t first = 0, block = kMinDistanceSamples; first < rounds;
+         first += block, block = later_blocks) {
       bool stop = (first >= static_cast<std::size_t>(kMinDistanceSamples) && !has_time()) ||
                   (options.stop_requested && options.stop_requested());
       if (options.decide_together) {
@@ -460,7 +462,7 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
       if (stop) {
         break;
       }
-      const std::size_t size = std::min(kRoundsPerBlock, rounds - first);
+      const std::size_t size = std::min(block, rounds - first);
       measured.assign(size, {kNotSampled, kNotSampled, kNotSampled});
       parallel_for(static_cast<int>(size), threads, [&](int k) {
         const std::size_t i = first + static_cast<std::size_t>(k);

@@ -28,13 +28,22 @@ ExpressionProblem::ExpressionProblem(std::string name, std::vector<Expression> e
   }
 }
 
+namespace {
+
+// Scratch per thread (one workspace serves any expressions, one thread at a time), so that the
+// problem is thread-safe; after a thread's first evaluation nothing is allocated.
+ExpressionWorkspace& thread_workspace() {
+  thread_local ExpressionWorkspace workspace;
+  return workspace;
+}
+
+}  // namespace
+
 void ExpressionProblem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
                                  Eigen::Ref<Eigen::VectorXd> F) const {
   TESSERA_CHECK(F.size() == static_cast<Eigen::Index>(equations_.size()),
                 "F has size " << F.size() << ", expected " << equations_.size());
-  // Scratch per thread (one workspace serves any expressions, one thread at a time), so that
-  // the problem is thread-safe.
-  thread_local ExpressionWorkspace workspace;
+  ExpressionWorkspace& workspace = thread_workspace();
   for (std::size_t i = 0; i < equations_.size(); ++i) {
     F(static_cast<Eigen::Index>(i)) = equations_[i].value(x, workspace);
   }
@@ -46,7 +55,7 @@ void ExpressionProblem::jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
       J.rows() == static_cast<Eigen::Index>(equations_.size()) && J.cols() == ambient_dimension(),
       "J is " << J.rows() << "×" << J.cols() << ", expected " << equations_.size() << "×"
               << ambient_dimension());
-  thread_local ExpressionWorkspace workspace;
+  ExpressionWorkspace& workspace = thread_workspace();
   thread_local Eigen::VectorXd gradient;
   gradient.resize(ambient_dimension());
   for (std::size_t i = 0; i < equations_.size(); ++i) {
