@@ -449,7 +449,8 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
     // Rounds in blocks: each block's points on threads, then recorded in order; the stop
     // request and the time budget are polled between blocks, on this thread. The first block
     // is the samples the budget always leaves.
-    const std::size_t later_blocks = 256 * static_cast<std::size_t>(threads);
+    // (Few blocks: each ends at a barrier, which costs a time slice on a loaded machine.)
+    const std::size_t later_blocks = 4096 * static_cast<std::size_t>(threads);
     constexpr double kNotSampled = -1.0;          // distances are >= 0; NaN: the projection failed
     std::vector<std::array<double, 3>> measured;  // per round: vertex, centroid, midpoint
     for (std::size_t first = 0, block = kMinDistanceSamples; first < rounds;

@@ -38,8 +38,8 @@ struct QualityOptions {
   /// n = 10⁵ a sample costs about a factorisation (0.3–0.5 s). Infinite: no limit.
   double max_seconds = std::numeric_limits<double>::infinity();
   /// Polled before every distance sample on one thread, before every block of samples on
-  /// several (the first kMinDistanceSamples of each kind, then 256 per thread: a millisecond
-  /// at n = 3); true ends the measurement with what was measured (the counts say how much).
+  /// several (the first kMinDistanceSamples of each kind, then 4096 rounds per thread: some
+  /// 50 ms at n = 3); true ends the measurement with what was measured (the counts say how much).
   /// Ctrl-C during the report at large n. Polled on the calling thread only.
   std::function<bool()> stop_requested;
   /// In a distributed run (every rank measuring the same samples, each a collective

@@ -256,9 +256,11 @@ PassSamples TriangleSampler::sample(const std::vector<std::pair<int, int>>& pair
               measured[static_cast<std::size_t>(k)]);
     }
   };
-  // On several threads the stop request is polled before every block of groups: 32 groups a
-  // thread, about a millisecond at n = 3.
-  const int tasks_per_poll = 32 * threads;
+  // On several threads the stop request is polled before every block of groups: 1024 groups
+  // a thread, some 30 ms at n = 3. Each block ends at a barrier, where a thread that the
+  // machine's other work has descheduled holds all up for a time slice: small blocks made two
+  // threads slower than one on a loaded machine (bench/RESULTS.md, "Threads").
+  const int tasks_per_poll = 1024 * threads;
   for (int first = 0; first < tasks && !found.interrupted; first += tasks_per_poll) {
     if (may_stop && threads > 1 && is_stop_requested_()) {
       found.interrupted = true;
