@@ -157,8 +157,8 @@ TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
   EXPECT_GT(refined.summary.refined_edges, 0);
 }
 
-// The same on threads: the request, polled on the calling thread between blocks of anchor
-// groups, stops the check before any split.
+// The same on threads: the request, polled on the calling thread before every block of anchor
+// groups, stops the check at its first poll, before any split.
 TEST(StopRequest, StopDuringTheToleranceCheckOnThreadsKeepsTheBuiltMeshValid) {
   const ThreadCountScope two(2);
   const ProblemSetup setup = make_catalogue_problem("torus");
@@ -170,7 +170,7 @@ TEST(StopRequest, StopDuringTheToleranceCheckOnThreadsKeepsTheBuiltMeshValid) {
   ASSERT_TRUE(built.summary.is_complete()) << built.summary.message;
   settings.tolerance = 2e-4;
   int polls = 0;
-  const int stop_after = build_polls + 1;  // one block of groups checked, then stop
+  const int stop_after = build_polls;  // the check's first poll says stop
   settings.stop_requested = [&polls, stop_after] { return ++polls > stop_after; };
   const CoveringResult stopped = cover(setup, front, settings);
   EXPECT_EQ(stopped.summary.termination, CoveringTermination::Interrupted)
