@@ -30,7 +30,6 @@ Eigen::VectorXd centroid(const Eigen::Map<const Eigen::MatrixXd>& points, const 
   return (points.col(tri[0]) + points.col(tri[1]) + points.col(tri[2])) / 3.0;
 }
 
-double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
 // Oriented cosine s = det(Tᵀe₁, Tᵀe₂) / |e₁ ∧ e₂| of the triangle against the oriented plane
 // spanned by the orthonormal columns of T (n×2). Tᵀ is the orthogonal projection onto that

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +18,9 @@
 #include "tessera/geometry/triangle_mesh.h"
 
 namespace tessera::detail {
+
+/// An angle in degrees, for messages.
+inline double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
 constexpr int kDefectKindCount = static_cast<int>(MeshDefectKind::VertexOutsideDomain) + 1;
 
