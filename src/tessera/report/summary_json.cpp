@@ -40,6 +40,7 @@ nlohmann::json geometry(const MeshValidation& v) {
   }
   return {
       {"checked", v.is_geometry_checked},
+      {"cut_short", v.checks_cut_short},
       {"flipped_triangles",
        {{"count", v.flipped_triangle_count}, {"triangles", first_entries(v.flipped_triangles)}}},
       {"overlapping_triangles", {{"count", v.overlapping_pair_count}, {"pairs", pairs}}},
@@ -572,7 +573,10 @@ std::string to_text(const MeshReport& report) {
     out << " (expected " << *report.expected_euler_characteristic << ")";
   }
   out << ", " << (v.is_orientable ? "orientable" : "non-orientable") << ", "
-      << (v.is_valid() ? "valid" : "INVALID") << "\n";
+      << (!v.is_valid()      ? "INVALID"
+          : v.is_cut_short() ? "valid as far as checked"
+                             : "valid")
+      << "\n";
   if (v.is_geometry_checked) {
     out << "geometry       " << v.flipped_triangle_count << " flipped triangle(s), "
         << v.overlapping_pair_count << " overlapping pair(s), " << v.vertex_outside_domain_count
