@@ -100,7 +100,7 @@ std::string triangle_name(int t, const Triangle& tri) {
 // curve of F (the `crossing` problem's circle, where DF → 0 on M) that is no approximation at
 // all. A vertex is shared by about six triangles, so this is also half as many factorisations.
 void check_orientation(const MeshView& view, const GeometricInput& geometry,
-                       const ValidationOptions& options, DefectRecorder& recorder,
+                       const ValidationOptions& options, CheckStop& stop, DefectRecorder& recorder,
                        MeshValidation& result) {
   const MeshTopology& topology = view.topology;
   const std::vector<Triangle>& triangles = topology.triangles();
@@ -143,6 +143,9 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
     if (is_done[v] || topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v]) {
       continue;
     }
+    if (stop.is_stopped()) {
+      break;  // the vertices not done are left unjudged (counted below)
+    }
     is_done[v] = 1;
     if (!linearization.factor(geometry.problem, points.col(v))) {
       continue;  // DF rank deficient at the vertex: not judged there
@@ -171,6 +174,26 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
       }
       ring.swap(next_ring);
     }
+  }
+  // Cut short by a stop request: the vertices never reached have no tangent plane, and their
+  // corners vote nowhere; a triangle with none judged is not "unoriented" (DF singular), it
+  // was not looked at.
+  std::vector<std::uint8_t> is_cut(vertex_count, 0);
+  int cut_vertices = 0;
+  int judgeable_vertices = 0;
+  for (int v = 0; v < vertex_count; ++v) {
+    if (!topology.vertex_triangles(v).empty() && view.is_finite_vertex[v]) {
+      ++judgeable_vertices;
+      if (!is_done[v]) {
+        is_cut[v] = 1;
+        ++cut_vertices;
+      }
+    }
+  }
+  if (cut_vertices > 0) {
+    result.checks_cut_short.push_back("orientation along M: " + std::to_string(cut_vertices) +
+                                      " of " + std::to_string(judgeable_vertices) +
+                                      " vertices not judged");
   }
   auto corner_of = [&](int t, int v) {
     return triangles[t][0] == v ? 0 : (triangles[t][1] == v ? 1 : 2);
@@ -242,7 +265,10 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
       }
     }
     if (judged == 0) {
-      ++result.unoriented_triangle_count;
+      const Triangle& tri = triangles[t];
+      if (!is_cut[tri[0]] && !is_cut[tri[1]] && !is_cut[tri[2]]) {
+        ++result.unoriented_triangle_count;
+      }
       continue;
     }
     magnitude /= judged;
@@ -413,7 +439,7 @@ OverlapOnManifold overlap_on_manifold(const MeshView& view, const GeometricInput
 // intersection is clipped exactly; any overlap beyond rounding (overlap_area_ratio) is judged
 // on M by overlap_on_manifold, in M's own tangent plane.
 void check_overlaps(const MeshView& view, const GeometricInput& geometry,
-                    const ValidationOptions& options, DefectRecorder& recorder,
+                    const ValidationOptions& options, CheckStop& stop, DefectRecorder& recorder,
                     MeshValidation& result) {
   const MeshTopology& topology = view.topology;
   const std::vector<Triangle>& triangles = topology.triangles();
@@ -499,7 +525,17 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
   // Pairs the fan check (check_fan_arcs) has reported already.
   const std::set<std::pair<int, int>> known(result.overlapping_triangle_pairs.begin(),
                                             result.overlapping_triangle_pairs.end());
+  // A stop request is polled per pair: at large n the planar test's passes over n-vectors add
+  // up to seconds, and the projections onto M after it to a factorisation each.
+  std::size_t judged_pairs = 0;
   for (const auto& [s, t] : pairs) {
+    if (stop.is_stopped()) {
+      result.checks_cut_short.push_back(
+          "overlaps on M: " + std::to_string(pairs.size() - judged_pairs) + " of " +
+          std::to_string(pairs.size()) + " pairs of nearby triangles not judged");
+      break;
+    }
+    ++judged_pairs;
     if (known.count({std::min(view.original[s], view.original[t]),
                      std::max(view.original[s], view.original[t])}) > 0) {
       continue;
@@ -568,7 +604,7 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
       return out.str();
     });
   }
-  check_thin_triangles(view, geometry, pairs, recorder, result);
+  check_thin_triangles(view, geometry, pairs, stop, recorder, result);
 }
 
 // 3. Domain. Vertices on ∂S are placed there by a projection onto the faces, which rounds to
