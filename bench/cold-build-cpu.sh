@@ -5,15 +5,17 @@
 # a shared machine says little; CPU seconds / 2 estimates the wall time on a free 2-core machine.
 # Prints "seconds file" per unit, largest first, then the total.
 #
-#   bench/cold-build-cpu.sh BUILD_DIR     (BUILD_DIR is removed first)
+#   bench/cold-build-cpu.sh BUILD_DIR [CMAKE_ARGS…]    (BUILD_DIR is removed first; e.g.
+#                                                       -DTESSERA_UNITY_BUILD=OFF)
 set -euo pipefail
 root=$(realpath "$(dirname "$0")/..")
 build=$1
+shift
 rm -rf "$build"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_BUILD_TESTS=OFF \
   -DTESSERA_USE_PETSC=OFF -DTESSERA_USE_SUITESPARSE=OFF -DTESSERA_USE_SUPERLU=OFF \
   -DTESSERA_USE_METIS=OFF -DTESSERA_BUILD_PYTHON=OFF \
-  -DCMAKE_CXX_COMPILER_LAUNCHER="$root/bench/cpu-time-launcher.sh" >/dev/null
+  -DCMAKE_CXX_COMPILER_LAUNCHER="$root/bench/cpu-time-launcher.sh" "$@" >/dev/null
 log=$(realpath "$build")/cold-cpu.txt
 : >"$log"
 TESSERA_CPU_LOG=$log nice ninja -C "$build" -j 2 tessera_cli >/dev/null

@@ -17,10 +17,11 @@ if [ ! -f build/CMakeCache.txt ]; then
   echo "tessera: configuring build/ (Release, without the tests)…"
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_BUILD_TESTS=OFF >/dev/null
 fi
-# 576 CPU-seconds with an empty ccache (bench/cold-build-cpu.sh), / 2 cores. The terminal shows
-# Ninja's progress only; the compiler's output goes to a log (GCC 12 warns falsely about some
-# std::string code, GCC bug 105651, which would be a first user's only sight of the build).
-echo "tessera: building the command-line tool build/tessera (the first time about 5 minutes on" \
+# 439 CPU-seconds with an empty ccache (bench/cold-build-cpu.sh), about 225 s on 2 cores. The
+# terminal shows Ninja's progress only; the compiler's output goes to a log (GCC 12 warns falsely
+# about some std::string code, GCC bug 105651, which would be a first user's only sight of the
+# build).
+echo "tessera: building the command-line tool build/tessera (the first time about 4 minutes on" \
      "2 cores, then seconds)…"
 log=build/run-example-build.log
 if ! cmake --build build --target tessera_cli --parallel "$(nproc)" 2>&1 | tee "$log" |

@@ -15,8 +15,11 @@ seconds="${1:-60}"
 shift || true
 # clang-14 is Debian 12's clang; libclang-rt-dev holds its libFuzzer runtime (libclang_rt.fuzzer).
 scripts/install-dependencies.sh clang libclang-rt-dev
+# File by file (no unity build): the one build in CI that compiles each file on its own, so that a
+# file that uses what only its batch-mates include fails here, not on a developer's machine.
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DTESSERA_SANITIZE=address,undefined \
+  -DTESSERA_UNITY_BUILD=OFF \
   -DTESSERA_BUILD_FUZZERS=ON -DTESSERA_BUILD_TESTS=OFF -DTESSERA_BUILD_PYTHON=OFF -DTESSERA_USE_PETSC=OFF >/dev/null
 cmake --build build-fuzz --target fuzzers --parallel "$(nproc)"
 

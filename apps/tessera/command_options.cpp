@@ -220,6 +220,10 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
                    "each is a projection onto M, the report's cost at large n")
       ->check(CLI::Range(0, 100'000'000));
   mesh_app->add_flag("--quiet,-q", mesh.quiet, "print nothing but errors");
+  mesh_app->add_flag("--progress", mesh.progress,
+                     "print the progress to stderr as lines, also when it is not a terminal (a "
+                     "batch job's log): the build's counts about once a second and the start of "
+                     "every later stage (clip, refine, validate, patches, report)");
   mesh_app
       ->add_option("--max-vertices", mesh.settings.max_vertices, "stop after this many vertices")
       ->check(CLI::Range(7, 100'000'000));

@@ -4,9 +4,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
-#include <csignal>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +13,7 @@
 #include "cli_support.h"
 #include "picture_command.h"
 #include "solver_backend.h"
+#include "stop_signals.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/bezier_surface.h"
 #include "tessera/geometry/mesh_validation.h"
@@ -28,6 +26,7 @@
 #include "tessera/methods/components/component_seeds.h"
 #include "tessera/methods/components/cover_components.h"
 #include "tessera/methods/stability/state_jacobian.h"
+#include "tessera/methods/stop_grace.h"
 #include "tessera/picture/run_diagram.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/start_and_box.h"
@@ -42,40 +41,6 @@
 #include "tessera/report/summary_json.h"
 
 namespace tessera::app {
-namespace {
-
-std::atomic<int> interrupt_signals{0};
-
-extern "C" void count_interrupt(int signal) {
-  if (interrupt_signals.fetch_add(1) >= 1) {
-    std::signal(signal, SIG_DFL);  // the second one: the default action, now
-    std::raise(signal);
-  }
-}
-
-// SIGINT and SIGTERM count as a stop request while a covering runs; the previous handlers
-// come back afterwards.
-class InterruptGuard {
- public:
-  InterruptGuard()
-      : previous_int_(std::signal(SIGINT, count_interrupt)),
-        previous_term_(std::signal(SIGTERM, count_interrupt)) {
-    interrupt_signals = 0;
-  }
-  ~InterruptGuard() {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-  }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-  static bool requested() { return interrupt_signals.load() > 0; }
-
- private:
-  void (*previous_int_)(int);
-  void (*previous_term_)(int);
-};
-
-}  // namespace
 
 namespace {
 
@@ -332,26 +297,34 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   check_replaces_same_kind("--level-output", level_file, TesseraFileKind::Curves);
   MeshFileOptions file_options;
   MethodSettings settings = command.settings;
-  const bool show_progress = !quiet && isatty(STDERR_FILENO);
-  if (show_progress) {
-    settings.progress = [](const CoveringProgress& p) {
-      const std::string stage(p.stage);
-      if (p.stage == "build") {
-        std::fprintf(stderr, "\r  %d vertices, %d triangles, front %d   ", p.vertex_count,
-                     p.triangle_count, p.front_size);
-      } else {
-        std::fprintf(stderr, "\r  %s: %d vertices, %d triangles          ", stage.c_str(),
-                     p.vertex_count, p.triangle_count);
-      }
-    };
-  }
-  // Ctrl-C or a kill (SIGTERM, e.g. a batch system's time limit) stops the method at its next
-  // vertex; the valid partial mesh and the summary are still written and the exit is 1. A
-  // second signal while the run finishes (clip, refine, validate) ends the process at once. A
-  // signal during the report's distances ends them with what they measured.
-  const InterruptGuard interrupt;
+  // On a terminal a status line; with --progress (a batch job's log) a line per report. Every
+  // report also tells the stop signals the stage now running.
+  const bool show_progress = !quiet && isatty(STDERR_FILENO) && !command.progress;
+  const bool progress_lines = !quiet && command.progress;
+  settings.progress = [show_progress, progress_lines](const CoveringProgress& p) {
+    StopSignals::enter(stage_of_progress(p.stage));
+    const std::string stage(p.stage);
+    if (progress_lines && p.stage == "build") {
+      std::fprintf(stderr, "tessera: build: %d vertices, %d triangles, front %d\n", p.vertex_count,
+                   p.triangle_count, p.front_size);
+    } else if (progress_lines) {
+      std::fprintf(stderr, "tessera: %s: %d vertices, %d triangles\n", stage.c_str(),
+                   p.vertex_count, p.triangle_count);
+    } else if (show_progress && p.stage == "build") {
+      std::fprintf(stderr, "\r  %d vertices, %d triangles, front %d   ", p.vertex_count,
+                   p.triangle_count, p.front_size);
+    } else if (show_progress) {
+      std::fprintf(stderr, "\r  %s: %d vertices, %d triangles          ", stage.c_str(),
+                   p.vertex_count, p.triangle_count);
+    }
+  };
+  // Ctrl-C or a kill (SIGTERM, e.g. a batch system's time limit) stops the run at its next
+  // vertex, projection or check; the checks after it get a grace of kCheckSecondsAfterStop,
+  // and the valid partial mesh and the summary are written at once, the report's measurements
+  // left out (docs/stopping.md). A second signal is counted, a third ends the process.
+  const StopSignals signals(/*notify=*/!quiet);
   // Collective on the PETSc backend: every rank stops at the same vertex.
-  settings.stop_requested = [&backend] { return backend.any_rank(InterruptGuard::requested()); };
+  settings.stop_requested = [&backend] { return backend.any_rank(StopSignals::is_requested()); };
   CoveringResult result;
   if (covers_several) {
     ComponentSearchOptions search;
@@ -366,8 +339,50 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   if (show_progress) {
     std::fprintf(stderr, "\r%60s\r", "");
   }
+  StopSignals::enter(RunStage::Report);
+  if (progress_lines) {
+    std::fprintf(stderr, "tessera: report: %d vertices, %d triangles\n", result.mesh.vertex_count(),
+                 result.mesh.triangle_count());
+  }
+  // After a stop the files come first: what only measures or adds to the mesh is left out,
+  // each named in the summary's stop.left_out (decided together on the PETSc backend).
+  const bool stopped = backend.any_rank(StopSignals::is_requested());
+  std::vector<std::string> left_out;
+  const auto leave_out_analyses = [&] {
+    if (fold_plane) {
+      left_out.push_back("fold curves: not computed, " + fold_file + " not written");
+    }
+    if (level_set) {
+      left_out.push_back("level curves: not computed, " + level_file + " not written");
+    }
+    if (wants_stability) {
+      left_out.push_back("stability: not computed");
+    }
+    if (wants_hopf) {
+      left_out.push_back("Hopf curves: not computed, " + hopf_file + " not written");
+    }
+    if (!command.picture.empty()) {
+      left_out.push_back("picture: " + command.picture + " not drawn");
+    }
+    if (!command.diagram.empty()) {
+      left_out.push_back("diagram: " + command.diagram + " not drawn");
+    }
+  };
+  const auto stop_report = [&](const MeshReport& made) -> std::optional<StopReport> {
+    if (!StopSignals::is_requested()) {
+      return std::nullopt;
+    }
+    StopReport stop{std::string(StopSignals::first_signal()), StopSignals::count(),
+                    std::string(to_string(StopSignals::stage_at_stop())), left_out};
+    for (const std::string& cut : made.validation.checks_cut_short) {
+      stop.left_out.push_back("geometric validation cut short: " + cut);
+    }
+    return stop;
+  };
   std::optional<ImprovementReport> improvement;
-  if (command.improve && result.summary.is_complete()) {
+  if (command.improve && stopped) {
+    left_out.push_back("--improve: the mesh was not improved");
+  } else if (command.improve && result.summary.is_complete()) {
     // Delaunay-type swaps judged in the tangent planes, 3 passes of tangential smoothing, and
     // swaps again (docs/algorithms/improvement.md): validity and boundary are kept. The report
     // says what they did; the covering's final check saw other triangles, so it is not reused.
@@ -427,10 +442,13 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
       view.specification(),
       view.is_all_coordinates() ? std::vector<std::string>() : view.names(), chosen.origin};
   // The run's summary before the distances are measured (minutes at large n): a run killed
-  // during the measurement still leaves it. Replaced below by the complete one.
+  // during the measurement still leaves it. Replaced below by the complete one; after a stop it
+  // is the final one (the validation of a mesh not yet validated cut short by the same grace).
   ReportOptions report_options;
   report_options.samples = command.report_samples;
   report_options.measure_distances = false;
+  report_options.validation.stop_requested =
+      after_grace([] { return StopSignals::is_requested(); });
   // The problem's known topology and area are those of the first start's component.
   const bool has_several_components = result.summary.components.size() > 1;
   const auto only_known_of_one_component = [&](MeshReport& made) {
@@ -443,52 +461,65 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
       make_report(result.mesh, setup, command.problem,
                   result.validation ? &*result.validation : nullptr, report_options);
   only_known_of_one_component(before);
+  before.run = result.summary;
+  before.improvement = improvement;
+  before.view = view_report;
+  before.backend = backend_report;
+  if (stopped) {
+    left_out.push_back(
+        "distances to M: not measured (each a projection onto M, a factorisation at large n)");
+    leave_out_analyses();
+    before.stop = stop_report(before);
+  }
   if (!command.summary.empty() && is_root) {
-    before.run = result.summary;
-    before.improvement = improvement;
-    before.view = view_report;
-    before.backend = backend_report;
     write_summary_json(command.summary, before);
   }
-  const bool stopped_before = backend.any_rank(InterruptGuard::requested());
-  report_options.measure_distances = true;
-  report_options.run_seconds = result.summary.wall_seconds;
-  report_options.stop_requested = [stopped_before] {
-    // After a stop in the covering, a second signal ends the process (the summary above is
-    // written).
-    return !stopped_before && InterruptGuard::requested();
-  };
-  // Every rank measures the same samples (collective projections) and stops at the same one.
-  report_options.decide_together = [&backend](bool stop) { return backend.any_rank(stop); };
-  MeshReport report =
-      make_report(result.mesh, setup, command.problem, &before.validation, report_options);
-  only_known_of_one_component(report);
-  report.run = result.summary;
-  report.improvement = improvement;
-  report.view = view_report;
-  report.backend = backend_report;
+  MeshReport report = before;
+  if (!stopped) {
+    report_options.measure_distances = true;
+    report_options.run_seconds = result.summary.wall_seconds;
+    // A stop during the measurement ends it with what it has (the counts say how much).
+    report_options.stop_requested = [] { return StopSignals::is_requested(); };
+    // Every rank measures the same samples (collective projections) and stops at the same one.
+    report_options.decide_together = [&backend](bool stop) { return backend.any_rank(stop); };
+    report = make_report(result.mesh, setup, command.problem, &before.validation, report_options);
+    only_known_of_one_component(report);
+    report.run = result.summary;
+    report.improvement = improvement;
+    report.view = view_report;
+    report.backend = backend_report;
+  }
+  const bool stopped_in_report = !stopped && backend.any_rank(StopSignals::is_requested());
+  if (stopped_in_report) {
+    left_out.push_back("distances to M: measured until the stop (their counts say how many)");
+    leave_out_analyses();
+  }
+  const bool is_stopped = stopped || stopped_in_report;
   // Folds, stability, Hopf and level curves on the finished mesh, in its view; the root writes
-  // their files.
-  AnalysisRequest request;
-  request.fold_plane = fold_plane;
-  if (wants_stability) {
-    request.stability = StabilityOptions{};
-    request.stability->eigenvalue_count = command.eigenvalues;
+  // their files. Once begun they run to their end (a stop is not polled there).
+  MeshAnalyses analyses;
+  if (!is_stopped) {
+    AnalysisRequest request;
+    request.fold_plane = fold_plane;
+    if (wants_stability) {
+      request.stability = StabilityOptions{};
+      request.stability->eigenvalue_count = command.eigenvalues;
+    }
+    request.hopf = wants_hopf;
+    request.level = level_set;
+    if (is_root) {
+      request.fold_file = fold_file;
+      request.hopf_file = hopf_file;
+      request.level_file = level_file;
+    }
+    request.comments = file_options.comments;
+    // The stability on the backend's own (the PETSc backend's: SLEPc on the ranks).
+    request.compute_stability = [&backend](const ProblemSetup& s, const TriangleMesh& m,
+                                           const StabilityOptions& o) {
+      return backend.stability_output(s, m, o);
+    };
+    analyses = analyse_mesh(setup, result.mesh, view, request, report);
   }
-  request.hopf = wants_hopf;
-  request.level = level_set;
-  if (is_root) {
-    request.fold_file = fold_file;
-    request.hopf_file = hopf_file;
-    request.level_file = level_file;
-  }
-  request.comments = file_options.comments;
-  // The stability on the backend's own (the PETSc backend's: SLEPc on the ranks).
-  request.compute_stability = [&backend](const ProblemSetup& s, const TriangleMesh& m,
-                                         const StabilityOptions& o) {
-    return backend.stability_output(s, m, o);
-  };
-  const MeshAnalyses analyses = analyse_mesh(setup, result.mesh, view, request, report);
   written.insert(written.end(), analyses.written.begin(), analyses.written.end());
   for (const std::string& warning : is_root ? analyses.warnings : std::vector<std::string>()) {
     std::cerr << "tessera: " << warning << "\n";
@@ -524,7 +555,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     written.push_back(report.states->states_file);
     written.push_back(report.states->triangles_file);
   }
-  if (has_mesh && !command.picture.empty() && (is_root || is_split)) {
+  if (has_mesh && !command.picture.empty() && !is_stopped && (is_root || is_split)) {
     PictureOptions picture;
     picture.choose_view = true;  // kept for continuation views (write_mesh_picture)
     picture.title = command.problem + " (" + method.name + ")";
@@ -575,6 +606,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
     }
     written.push_back(command.diagram);
   }
+  report.stop = stop_report(report);
   if (!command.summary.empty() && is_root) {
     write_summary_json(command.summary, report);
     written.push_back(command.summary);

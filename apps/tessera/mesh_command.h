@@ -42,6 +42,7 @@ struct MeshCommand {
   int report_samples = -1;  ///< --report-samples: -1 the default (make_report), 0 all
   bool ascii = false;
   bool quiet = false;
+  bool progress = false;  ///< --progress: progress as lines on stderr, also off a terminal
   bool improve = false;
   int refine = 0;       ///< bezier: evaluate the cubic patches on a K×K subdivision (0: off)
   std::string patches;  ///< bezier: write the Bézier control points to this file

@@ -301,6 +301,44 @@ TEST(GeometricValidation, FindsAVertexOneMillionthOutsideABox) {
                       "vertex 4 at (0, 0, 1) is 1e-06 outside the domain (");
 }
 
+// A stop request (ValidationOptions::stop_requested; a stopped `tessera mesh` after its grace)
+// cuts the checks on M short and says what they left; the combinatorial checks and the domain
+// check, which need no factorisation, still run in full, and nothing left is called unoriented.
+TEST(GeometricValidation, AStopRequestCutsTheChecksOnMShortButNotTheDomainCheck) {
+  const Domain box = Domain::box(Eigen::Vector3d::Constant(-1), Eigen::Vector3d::Constant(1));
+  TriangleMesh mesh = examples::octahedron();
+  mesh.mutable_point(4)(2) = 1.0 + 1e-6;  // vertex 4 is +e_z
+  ValidationOptions options;
+  int polls = 0;
+  options.stop_requested = [&polls] {
+    ++polls;
+    return false;
+  };
+  const MeshValidation whole = validate(mesh, Sphere(1.0), box, options);
+  EXPECT_GT(polls, 0);
+  EXPECT_FALSE(whole.is_cut_short());
+  EXPECT_EQ(whole.vertex_outside_domain_count, 1);
+
+  options.stop_requested = [] { return true; };
+  const MeshValidation cut = validate(mesh, Sphere(1.0), box, options);
+  ASSERT_TRUE(cut.is_cut_short());
+  EXPECT_EQ(cut.checks_cut_short.front(), "orientation along M: 6 of 6 vertices not judged");
+  EXPECT_NE(cut.checks_cut_short.back().find("overlaps on M: "), std::string::npos)
+      << cut.checks_cut_short.back();
+  EXPECT_EQ(cut.unoriented_triangle_count, 0);
+  EXPECT_EQ(cut.vertex_outside_domain_count, 1);  // the domain check is complete
+  EXPECT_EQ(cut.triangle_count, whole.triangle_count);
+  EXPECT_EQ(cut.euler_characteristic, 2);
+  EXPECT_NE(cut.report().find("geometry: cut short by a stop request"), std::string::npos)
+      << cut.report();
+
+  // Valid as far as checked, and said so.
+  mesh.mutable_point(4)(2) = 1.0;
+  const MeshValidation valid = validate(mesh, Sphere(1.0), box, options);
+  EXPECT_TRUE(valid.is_valid());
+  EXPECT_NE(valid.report().find("valid as far as checked"), std::string::npos) << valid.report();
+}
+
 // The case: an atlas corner vertex 3.9e-7 outside its box must be reported; a vertex
 // within rounding of a face must not.
 TEST(GeometricValidation, FindsABoundaryVertexOfAClippedSphereMovedOutside) {

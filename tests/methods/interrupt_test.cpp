@@ -40,6 +40,17 @@ StopRequest counting_polls(int& polls) {
   };
 }
 
+// Records in `polls_at_refine` how often the hook had been asked when the refinement began:
+// the polls of the build, the clipping and the swaps (the final checks poll too, after it).
+ProgressCallback note_polls_at_refine(const int& polls, int& polls_at_refine) {
+  polls_at_refine = -1;
+  return [&polls, &polls_at_refine](const CoveringProgress& progress) {
+    if (progress.stage == "refine" && polls_at_refine < 0) {
+      polls_at_refine = polls;
+    }
+  };
+}
+
 TEST_P(StopHook, StopsWithAValidPartialMesh) {
   const InterruptCase& param = GetParam();
   const ProblemSetup setup = make_catalogue_problem(param.problem);
@@ -124,10 +135,14 @@ TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
   const ProblemSetup setup = make_catalogue_problem("torus");
   const CoveringMethod& front = find_covering_method("front");
   MethodSettings settings;
+  int whole_polls = 0;
   int build_polls = 0;
-  settings.stop_requested = counting_polls(build_polls);
+  settings.stop_requested = counting_polls(whole_polls);
+  settings.progress = note_polls_at_refine(whole_polls, build_polls);
   const CoveringResult built = cover(setup, front, settings);
   ASSERT_TRUE(built.summary.is_complete()) << built.summary.message;
+  ASSERT_GT(build_polls, 0);
+  settings.progress = nullptr;
 
   settings.tolerance = 2e-4;  // far below the front's own accuracy: many triangles to split
   int polls = 0;
@@ -164,10 +179,14 @@ TEST(StopRequest, StopDuringTheToleranceCheckOnThreadsKeepsTheBuiltMeshValid) {
   const ProblemSetup setup = make_catalogue_problem("torus");
   const CoveringMethod& front = find_covering_method("front");
   MethodSettings settings;
+  int whole_polls = 0;
   int build_polls = 0;
-  settings.stop_requested = counting_polls(build_polls);
+  settings.stop_requested = counting_polls(whole_polls);
+  settings.progress = note_polls_at_refine(whole_polls, build_polls);
   const CoveringResult built = cover(setup, front, settings);
   ASSERT_TRUE(built.summary.is_complete()) << built.summary.message;
+  ASSERT_GT(build_polls, 0);
+  settings.progress = nullptr;
   settings.tolerance = 2e-4;
   int polls = 0;
   const int stop_after = build_polls;  // the check's first poll says stop
@@ -190,16 +209,20 @@ TEST(StopRequest, StopDuringClippingLeavesAValidMeshInsideTheDomain) {
   const ProblemSetup setup = make_catalogue_problem("sphere_cut");
   const CoveringMethod& atlas = find_covering_method("atlas");
   MethodSettings settings;
+  int whole_polls = 0;
   int build_polls = 0;
-  settings.stop_requested = counting_polls(build_polls);
+  settings.stop_requested = counting_polls(whole_polls);
+  settings.progress = note_polls_at_refine(whole_polls, build_polls);
   settings.tolerance = 0;  // the tolerance check polls too; without it only build and clip do
   const CoveringResult whole = cover(setup, atlas, settings);
   ASSERT_TRUE(whole.summary.is_complete()) << whole.summary.message;
   ASSERT_GT(whole.summary.clipped_half_spaces, 0);
+  ASSERT_GT(build_polls, 0);
+  settings.progress = nullptr;
 
   // build_polls counts the polls of the build, the clipping and the swaps after it, in that
-  // order. A stop after k polls lands past the build exactly when k is at least the build's
-  // count: found by bisection.
+  // order (the final checks' come after). A stop after k polls lands past the build exactly
+  // when k is at least the build's count: found by bisection.
   const auto stop_after = [&](int k, int& polls) {
     polls = 0;
     settings.stop_requested = [&polls, k] { return ++polls > k; };
@@ -230,6 +253,82 @@ TEST(StopRequest, StopDuringClippingLeavesAValidMeshInsideTheDomain) {
   // Only the band across the face is lost, not the cap.
   EXPECT_GT(stopped.mesh.triangle_count(), whole.mesh.triangle_count() * 8 / 10);
   EXPECT_LT(stopped.mesh.triangle_count(), whole.mesh.triangle_count());
+}
+
+// A stop during the final geometric check (a factorisation per vertex or two, a second each at
+// n = 10⁵): after the grace (CoveringOptions::check_seconds_after_stop) the check is cut short,
+// the mesh, whole and valid, is returned at once, and the run is Interrupted and says what was
+// not judged, in its message and in the validation it returns. With a grace the check
+// finishes: the run completed, validated in full.
+TEST(StopRequest, StopDuringTheFinalCheckCutsItShortAfterTheGrace) {
+  const ThreadCountScope one(1);  // blocks of 512 vertices: the polls below are this count's
+  const ProblemSetup setup = make_catalogue_problem("torus");
+  const CoveringMethod& front = find_covering_method("front");
+  MethodSettings settings;
+  int whole_polls = 0;
+  int build_polls = 0;
+  settings.stop_requested = counting_polls(whole_polls);
+  settings.progress = note_polls_at_refine(whole_polls, build_polls);
+  const CoveringResult whole = cover(setup, front, settings);
+  ASSERT_TRUE(whole.summary.is_complete()) << whole.summary.message;
+  ASSERT_TRUE(whole.validation.has_value());
+  // The check polls between blocks of vertices and of pairs of triangles, not per vertex: a
+  // block is milliseconds at n = 3.
+  ASSERT_GT(whole_polls, build_polls + 3) << "the final check polls the stop request";
+  settings.progress = nullptr;
+
+  // The stop comes after the build (no tolerance: no refinement polls), at the check's second
+  // poll: the orientation check has judged its first block of vertices only.
+  const int stop_after = build_polls + 1;
+  settings.check_seconds_after_stop = 0.0;
+  int polls = 0;
+  settings.stop_requested = [&polls, stop_after] { return ++polls > stop_after; };
+  const CoveringResult stopped = cover(setup, front, settings);
+  EXPECT_EQ(stopped.summary.termination, CoveringTermination::Interrupted)
+      << stopped.summary.message;
+  EXPECT_NE(stopped.summary.message.find("final check"), std::string::npos)
+      << stopped.summary.message;
+  EXPECT_EQ(polls, stop_after + 1);  // not asked again after the first `true`
+  EXPECT_EQ(stopped.mesh.vertex_count(), whole.mesh.vertex_count());
+  EXPECT_EQ(stopped.mesh.triangle_count(), whole.mesh.triangle_count());
+  ASSERT_TRUE(stopped.validation.has_value());
+  EXPECT_TRUE(stopped.validation->is_valid()) << stopped.validation->report();
+  ASSERT_TRUE(stopped.validation->is_cut_short());
+  EXPECT_NE(stopped.validation->checks_cut_short.front().find("not judged"), std::string::npos)
+      << stopped.validation->checks_cut_short.front();
+  // What was not judged is still valid: the whole check of the same mesh finds nothing.
+  const MeshValidation full = validate(stopped.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(full.is_valid()) << full.report();
+  EXPECT_FALSE(full.is_cut_short());
+
+  // A grace longer than the check: it finishes, and the run is complete.
+  settings.check_seconds_after_stop = 60.0;
+  polls = 0;
+  const CoveringResult finished = cover(setup, front, settings);
+  EXPECT_TRUE(finished.summary.is_complete()) << finished.summary.message;
+  ASSERT_TRUE(finished.validation.has_value());
+  EXPECT_FALSE(finished.validation->is_cut_short());
+}
+
+// After a stop in the build, the check gets the grace from its start; with none it judges
+// nothing on M, and the run (Interrupted already) notes it.
+TEST(StopRequest, StopInTheBuildWithoutGraceLeavesTheCheckOnMUndone) {
+  const ProblemSetup setup = make_catalogue_problem("torus");
+  MethodSettings settings;
+  settings.check_seconds_after_stop = 0.0;
+  int polls = 0;
+  settings.stop_requested = [&polls] { return ++polls > 40; };
+  const CoveringResult stopped = cover(setup, find_covering_method("front"), settings);
+  EXPECT_EQ(stopped.summary.termination, CoveringTermination::Interrupted);
+  EXPECT_EQ(polls, 41);
+  ASSERT_TRUE(stopped.validation.has_value());
+  ASSERT_TRUE(stopped.validation->is_cut_short());
+  const auto& notes = stopped.summary.notes;
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& note) {
+    return note.find("final check, which was cut short") != std::string::npos;
+  }));
+  const MeshValidation full = validate(stopped.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(full.is_valid()) << full.report();
 }
 
 // A hook that says stop at once still leaves a summary and a valid (possibly tiny) mesh.

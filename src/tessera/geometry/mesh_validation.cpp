@@ -151,7 +151,13 @@ std::string MeshValidation::report() const {
     out << ", genus " << genus;
   }
   out << "\n";
-  if (is_geometry_checked) {
+  if (is_geometry_checked && is_cut_short()) {
+    out << "geometry: cut short by a stop request (";
+    for (std::size_t i = 0; i < checks_cut_short.size(); ++i) {
+      out << (i ? "; " : "") << checks_cut_short[i];
+    }
+    out << "); the domain checked\n";
+  } else if (is_geometry_checked) {
     out << "geometry: orientation along M, overlaps on M and the domain checked";
     if (unoriented_triangle_count > 0) {
       out << " (" << unoriented_triangle_count
@@ -163,7 +169,7 @@ std::string MeshValidation::report() const {
     out << "geometry: not checked (no problem given)\n";
   }
   if (is_valid()) {
-    out << "valid: no defects\n";
+    out << (is_cut_short() ? "valid as far as checked: no defects found\n" : "valid: no defects\n");
     return out.str();
   }
   out << "invalid:\n";
@@ -468,8 +474,9 @@ MeshValidation validate_mesh(const TriangleMesh& mesh, const ValidationOptions& 
       original_index[t] = original(t);
     }
     const MeshView view{mesh, topology, original_index, shapes, is_finite};
-    detail::check_orientation(view, *geometry, options, recorder, result);
-    detail::check_overlaps(view, *geometry, options, recorder, result);
+    detail::CheckStop stop(options.stop_requested, mesh.space());
+    detail::check_orientation(view, *geometry, options, stop, recorder, result);
+    detail::check_overlaps(view, *geometry, options, stop, recorder, result);
     detail::check_domain(view, *geometry, options, recorder, result);
     result.is_geometry_checked = true;
     result.flipped_triangle_count = recorder.count(Kind::FlippedTriangle);

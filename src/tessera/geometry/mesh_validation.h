@@ -5,6 +5,7 @@
 // S (docs/validation.md).
 #pragma once
 
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -77,6 +78,13 @@ struct ValidationOptions {
   /// −ratio·(1 + ‖x‖∞): rounding of a point placed on a face is a few ulp of its coordinates
   /// (2e-16·‖x‖∞), so 1e-12 accepts every vertex snapped to ∂S and reports one 3.9e-7 outside.
   double domain_tolerance_ratio = 1e-12;
+  /// Polled before each factorisation of DF and each projection onto M of the geometric checks
+  /// (orientation, overlaps on M, thin triangles): the cost of validation at large n (one
+  /// factorisation is a second at n = 10⁵). Once it returns true those checks are cut short:
+  /// what they judged stands, the rest is left unjudged and MeshValidation::checks_cut_short
+  /// says what. The combinatorial checks and the domain check, which need no factorisation,
+  /// always run in full. Empty: never cut short. On a split mesh the ranks decide together.
+  std::function<bool()> stop_requested;
 };
 
 /// The result of validate(): plain members, so that it can be written as JSON field by field.
@@ -123,12 +131,20 @@ struct MeshValidation {
   std::vector<std::pair<int, int>> overlapping_triangle_pairs;  ///< (s, t), s < t
   std::vector<int> vertices_outside_domain;
 
+  /// What a stop request (ValidationOptions::stop_requested) left unjudged, one entry per
+  /// geometric check it cut short, e.g. "orientation along M: 310 of 431 vertices not judged";
+  /// empty when every check ran in full. A mesh valid with entries here is valid as far as it
+  /// was checked, no more.
+  std::vector<std::string> checks_cut_short;
+
   /// One entry per defect kind that occurs, in the order of MeshDefectKind.
   std::vector<MeshDefect> defects;
 
   /// True if there is no defect. Edges whose triangles disagree in orientation count only in
   /// orientable components: a Möbius strip is a valid, non-orientable mesh.
   bool is_valid() const { return defects.empty(); }
+  /// A stop request cut the geometric checks short (see checks_cut_short).
+  bool is_cut_short() const { return !checks_cut_short.empty(); }
   /// No defect but vertices that no triangle uses (what an edit leaves before compaction).
   bool is_valid_but_unreferenced() const {
     return defects.size() == static_cast<std::size_t>(unreferenced_vertex_count > 0 ? 1 : 0);

@@ -14,7 +14,6 @@
 namespace tessera::detail {
 namespace {
 
-double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
 // Length of the intersection of the arcs [a, a + α] and [b, b + β] of the circle, 0 ≤ α, β ≤ π.
 double arc_overlap(double a, double alpha, double b, double beta) {

@@ -31,7 +31,6 @@ Eigen::VectorXd centroid(const Eigen::Map<const Eigen::MatrixXd>& points, const 
   return (points.col(tri[0]) + points.col(tri[1]) + points.col(tri[2])) / 3.0;
 }
 
-double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
 // Oriented cosine s = det(Tᵀe₁, Tᵀe₂) / |e₁ ∧ e₂| of the triangle against the oriented plane
 // spanned by the orthonormal columns of T (n×2). Tᵀ is the orthogonal projection onto that
@@ -102,7 +101,7 @@ std::string triangle_name(int t, const Triangle& tri) {
 // curve of F (the `crossing` problem's circle, where DF → 0 on M) that is no approximation at
 // all. A vertex is shared by about six triangles, so this is also half as many factorisations.
 void check_orientation(const MeshView& view, const GeometricInput& geometry,
-                       const ValidationOptions& options, DefectRecorder& recorder,
+                       const ValidationOptions& options, CheckStop& stop, DefectRecorder& recorder,
                        MeshValidation& result) {
   const MeshTopology& topology = view.topology;
   const std::vector<Triangle>& triangles = topology.triangles();
@@ -139,15 +138,23 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
   std::vector<std::uint8_t> is_done(vertex_count, 0);
   if (!is_sparse) {
     // Every vertex on its own: on threads (judge_corners writes only the corners at v).
-    parallel_for(vertex_count, threads_for(geometry.problem), [&](int v) {
-      if (topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v]) {
-        return;
-      }
-      Linearization at_vertex;
-      if (at_vertex.factor(geometry.problem, points.col(v))) {
-        judge_corners(v, at_vertex.tangent_basis());
-      }
-    });
+    // By blocks, a stop request polled between them on this thread; a block is a few
+    // milliseconds at small n, fewer vertices where each is a dense factorisation of size n.
+    const int threads = threads_for(geometry.problem);
+    const int per_block = threads * (view.mesh.ambient_dimension() <= 64 ? 512 : 8);
+    for (int first = 0; first < vertex_count && !stop.is_stopped(); first += per_block) {
+      parallel_for(std::min(per_block, vertex_count - first), threads, [&](int i) {
+        const int v = first + i;
+        if (topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v]) {
+          return;
+        }
+        is_done[v] = 1;  // one writer per vertex
+        Linearization at_vertex;
+        if (at_vertex.factor(geometry.problem, points.col(v))) {
+          judge_corners(v, at_vertex.tangent_basis());
+        }
+      });
+    }
   }
   Linearization linearization;
   Eigen::MatrixXd near_tangent;
@@ -156,6 +163,9 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
   for (int v = 0; v < vertex_count && is_sparse; ++v) {
     if (is_done[v] || topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v]) {
       continue;
+    }
+    if (stop.is_stopped()) {
+      break;  // the vertices not done are left unjudged (counted below)
     }
     is_done[v] = 1;
     if (!linearization.factor(geometry.problem, points.col(v))) {
@@ -182,6 +192,26 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
       }
       ring.swap(next_ring);
     }
+  }
+  // Cut short by a stop request: the vertices never reached have no tangent plane, and their
+  // corners vote nowhere; a triangle with none judged is not "unoriented" (DF singular), it
+  // was not looked at.
+  std::vector<std::uint8_t> is_cut(vertex_count, 0);
+  int cut_vertices = 0;
+  int judgeable_vertices = 0;
+  for (int v = 0; v < vertex_count; ++v) {
+    if (!topology.vertex_triangles(v).empty() && view.is_finite_vertex[v]) {
+      ++judgeable_vertices;
+      if (!is_done[v]) {
+        is_cut[v] = 1;
+        ++cut_vertices;
+      }
+    }
+  }
+  if (cut_vertices > 0) {
+    result.checks_cut_short.push_back("orientation along M: " + std::to_string(cut_vertices) +
+                                      " of " + std::to_string(judgeable_vertices) +
+                                      " vertices not judged");
   }
   auto corner_of = [&](int t, int v) {
     return triangles[t][0] == v ? 0 : (triangles[t][1] == v ? 1 : 2);
@@ -253,7 +283,10 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
       }
     }
     if (judged == 0) {
-      ++result.unoriented_triangle_count;
+      const Triangle& tri = triangles[t];
+      if (!is_cut[tri[0]] && !is_cut[tri[1]] && !is_cut[tri[2]]) {
+        ++result.unoriented_triangle_count;
+      }
       continue;
     }
     magnitude /= judged;
@@ -424,7 +457,7 @@ OverlapOnManifold overlap_on_manifold(const MeshView& view, const GeometricInput
 // intersection is clipped exactly; any overlap beyond rounding (overlap_area_ratio) is judged
 // on M by overlap_on_manifold, in M's own tangent plane.
 void check_overlaps(const MeshView& view, const GeometricInput& geometry,
-                    const ValidationOptions& options, DefectRecorder& recorder,
+                    const ValidationOptions& options, CheckStop& stop, DefectRecorder& recorder,
                     MeshValidation& result) {
   const MeshTopology& topology = view.topology;
   const std::vector<Triangle>& triangles = topology.triangles();
@@ -571,20 +604,38 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
   // The planar tests on threads, by blocks of pairs (a split mesh's are sums over the ranks:
   // one thread, in order); the few pairs that overlap in the plane are then judged on M here,
   // in the pairs' order, so that the defects are recorded as one loop records them.
-  constexpr std::size_t kPairsPerBlock = 8192;
-  const std::size_t blocks = (pairs.size() + kPairsPerBlock - 1) / kPairsPerBlock;
+  // A stop request is polled between rounds of blocks and per pair judged on M, on this thread
+  // (CheckStop is not thread-safe, and on a split mesh every rank must poll at the same place):
+  // at large n a pair's planar test is a few passes over n-vectors, so blocks hold fewer pairs.
+  const std::size_t pairs_per_block =
+      std::clamp<std::size_t>((std::size_t{1} << 24) / static_cast<std::size_t>(std::max(n, 1)),
+                              64, 8192);
+  const std::size_t blocks = (pairs.size() + pairs_per_block - 1) / pairs_per_block;
+  const int threads = split ? 1 : thread_count();
   std::vector<std::vector<PlanarOverlapFound>> found(blocks);
-  parallel_for(static_cast<int>(blocks), split ? 1 : thread_count(), [&](int block) {
-    PlanarTester tester;
-    tester.d.resize(n);
-    const std::size_t first = static_cast<std::size_t>(block) * kPairsPerBlock;
-    for (std::size_t k = first; k < std::min(pairs.size(), first + kPairsPerBlock); ++k) {
-      test_in_plane(tester, k, found[static_cast<std::size_t>(block)]);
-    }
-  });
+  std::size_t tested_pairs = 0;
+  for (std::size_t round = 0; round < blocks && !stop.is_stopped();
+       round += static_cast<std::size_t>(threads)) {
+    const std::size_t round_blocks = std::min(blocks - round, static_cast<std::size_t>(threads));
+    parallel_for(static_cast<int>(round_blocks), threads, [&](int i) {
+      const std::size_t block = round + static_cast<std::size_t>(i);
+      PlanarTester tester;
+      tester.d.resize(n);
+      const std::size_t first = block * pairs_per_block;
+      for (std::size_t k = first; k < std::min(pairs.size(), first + pairs_per_block); ++k) {
+        test_in_plane(tester, k, found[block]);
+      }
+    });
+    tested_pairs = std::min(pairs.size(), (round + round_blocks) * pairs_per_block);
+  }
+  std::size_t unjudged_pairs = pairs.size() - tested_pairs;
   Linearization workspace;
   for (const std::vector<PlanarOverlapFound>& block : found) {
     for (const PlanarOverlapFound& candidate : block) {
+      if (stop.is_stopped()) {
+        ++unjudged_pairs;  // overlaps in the plane, not judged on M
+        continue;
+      }
       const auto [s, t] = pairs[candidate.pair];
       Eigen::VectorXd p = candidate.lifted;
       if (!project_onto_manifold(geometry.problem, p, workspace) || !workspace.is_factored()) {
@@ -610,7 +661,12 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
       });
     }
   }
-  check_thin_triangles(view, geometry, pairs, recorder, result);
+  if (unjudged_pairs > 0) {
+    result.checks_cut_short.push_back("overlaps on M: " + std::to_string(unjudged_pairs) + " of " +
+                                      std::to_string(pairs.size()) +
+                                      " pairs of nearby triangles not judged");
+  }
+  check_thin_triangles(view, geometry, pairs, stop, recorder, result);
 }
 
 // 3. Domain. Vertices on ∂S are placed there by a projection onto the faces, which rounds to

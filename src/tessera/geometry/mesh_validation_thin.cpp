@@ -31,8 +31,8 @@ namespace tessera::detail {
 // it covers that part of M twice. Well-shaped meshes have no such triangles and pay nothing.
 // Dense problems only (below).
 void check_thin_triangles(const MeshView& view, const GeometricInput& geometry,
-                          const std::vector<std::pair<int, int>>& pairs, DefectRecorder& recorder,
-                          MeshValidation& result) {
+                          const std::vector<std::pair<int, int>>& pairs, CheckStop& stop,
+                          DefectRecorder& recorder, MeshValidation& result) {
   const MeshTopology& topology = view.topology;
   const std::vector<Triangle>& triangles = topology.triangles();
   const TriangleShapes& shapes = view.shapes;
@@ -82,10 +82,22 @@ void check_thin_triangles(const MeshView& view, const GeometricInput& geometry,
       Eigen::Vector3d(0.25, 0.25, 0.5)};
   Linearization workspace;
   Linearization back;
+  int sampled = 0;
+  int to_sample = 0;
+  for (int t = 0; t < count; ++t) {
+    to_sample += is_thin[t] && !partners[t].empty() ? 1 : 0;
+  }
   for (int t = 0; t < count; ++t) {
     if (!is_thin[t] || partners[t].empty()) {
       continue;
     }
+    if (stop.is_stopped()) {
+      result.checks_cut_short.push_back(
+          "thin triangles on M: " + std::to_string(to_sample - sampled) + " of " +
+          std::to_string(to_sample) + " not sampled");
+      break;
+    }
+    ++sampled;
     const Triangle& tri = triangles[t];
     std::vector<int> found;
     for (const Eigen::Vector3d& w : samples) {

@@ -18,7 +18,7 @@ namespace tessera {
 
 namespace {
 
-constexpr std::string_view kFormat = "NumPy";
+constexpr std::string_view kNumPy = "NumPy";
 
 // The preamble and header of a C-order 2-d array: magic, version 1.0, header length, dictionary.
 // numpy.lib.format pads the header so that the data is aligned to 64 bytes (memory mapping).
@@ -43,7 +43,7 @@ void write_header(io_detail::OutputFile& file, std::string_view descr, std::int6
 }  // namespace
 
 void write_npy(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& points) {
-  io_detail::OutputFile file(kFormat, path);
+  io_detail::OutputFile file(kNumPy, path);
   write_header(file, "<f8", points.cols(), points.rows());
   for (Eigen::Index j = 0; j < points.cols(); ++j) {
     if constexpr (std::endian::native == std::endian::little) {
@@ -59,7 +59,7 @@ void write_npy(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>&
 }
 
 void write_npy(const std::string& path, const std::vector<Triangle>& triangles) {
-  io_detail::OutputFile file(kFormat, path);
+  io_detail::OutputFile file(kNumPy, path);
   write_header(file, "<i8", static_cast<std::int64_t>(triangles.size()), 3);
   for (const Triangle& triangle : triangles) {
     for (const int v : triangle) {
@@ -106,7 +106,7 @@ void write_split_states_npy(const std::string& path, const TriangleMesh& mesh,
   if (is_root) {
     try {
       write_npy(triangles_npy_path(path), mesh.triangles());
-      file.emplace(kFormat, path);
+      file.emplace(kNumPy, path);
       write_header(*file, "<f8", vertex_count, n);
     } catch (...) {
       error = std::current_exception();
@@ -149,7 +149,7 @@ void write_split_states_npy(const std::string& path, const TriangleMesh& mesh,
       error = std::current_exception();
     }
   }
-  io_detail::throw_if_root_failed(space, error, kFormat, path);
+  io_detail::throw_if_root_failed(space, error, kNumPy, path);
 }
 
 }  // namespace tessera

@@ -17,7 +17,7 @@ namespace tessera {
 
 namespace {
 
-constexpr std::string_view kFormat = "NumPy";
+constexpr std::string_view kNumPyInput = "NumPy";
 
 // What the header says about the data.
 struct NpyHeader {
@@ -85,7 +85,7 @@ class HeaderParser {
 
  private:
   [[noreturn]] void fail(const std::string& message) const {
-    io_detail::throw_file_error(kFormat, path_, "header: " + message);
+    io_detail::throw_file_error(kNumPyInput, path_, "header: " + message);
   }
   char peek() const { return position_ < text_.size() ? text_[position_] : '\0'; }
   void skip_spaces() {
@@ -196,19 +196,19 @@ class HeaderParser {
 NpyHeader parse_header(std::string_view content, const std::string& path) {
   constexpr std::string_view kMagic = "\x93NUMPY";
   if (content.size() < 10 || content.substr(0, kMagic.size()) != kMagic) {
-    io_detail::throw_file_error(kFormat, path,
+    io_detail::throw_file_error(kNumPyInput, path,
                                 "not an .npy file (it does not begin with \\x93NUMPY)");
   }
   const int major = static_cast<unsigned char>(content[6]);
   const int minor = static_cast<unsigned char>(content[7]);
   if (major < 1 || major > 3 || minor != 0) {
-    io_detail::throw_file_error(kFormat, path,
+    io_detail::throw_file_error(kNumPyInput, path,
                                 "format version " + std::to_string(major) + "." +
                                     std::to_string(minor) + " (1.0, 2.0 and 3.0 are read)");
   }
   const std::size_t preamble = major == 1 ? 10 : 12;
   if (content.size() < preamble) {
-    io_detail::throw_file_error(kFormat, path, "truncated in the preamble");
+    io_detail::throw_file_error(kNumPyInput, path, "truncated in the preamble");
   }
   std::size_t header_length = 0;
   for (std::size_t k = preamble - 1; k >= 8; --k) {
@@ -216,7 +216,7 @@ NpyHeader parse_header(std::string_view content, const std::string& path) {
   }
   if (header_length > content.size() - preamble) {
     io_detail::throw_file_error(
-        kFormat, path,
+        kNumPyInput, path,
         "the header of " + std::to_string(header_length) + " bytes is longer than the file");
   }
   NpyHeader header;
@@ -231,7 +231,7 @@ NpyHeader parse_header(std::string_view content, const std::string& path) {
       columns == 0 || rows <= std::numeric_limits<std::uint64_t>::max() / item_size / columns;
   if (!fits || rows * columns * item_size != data_size) {
     io_detail::throw_file_error(
-        kFormat, path,
+        kNumPyInput, path,
         "the shape (" + std::to_string(header.rows) + ", " + std::to_string(header.columns) +
             ") of '" + header.descr + "' needs " +
             (fits ? std::to_string(rows * columns * item_size) + " bytes" : "more bytes") +
@@ -264,13 +264,13 @@ namespace io_detail {
 Eigen::MatrixXd parse_npy_points(std::string_view content, const std::string& path) {
   const NpyHeader header = parse_header(content, path);
   if (header.kind != 'f') {
-    throw_file_error(kFormat, path,
+    throw_file_error(kNumPyInput, path,
                      "the states are of type '" + header.descr +
                          "'; floating-point numbers ('<f8' or '<f4') are expected");
   }
   if (header.columns < 1 || header.columns > std::numeric_limits<int>::max() ||
       header.rows > std::numeric_limits<int>::max()) {
-    throw_file_error(kFormat, path,
+    throw_file_error(kNumPyInput, path,
                      "the states have shape (" + std::to_string(header.rows) + ", " +
                          std::to_string(header.columns) +
                          "); expected (vertices, n) with n >= 1 and fewer than 2^31 of each");
@@ -292,12 +292,12 @@ std::vector<Triangle> parse_npy_triangles(std::string_view content, const std::s
                                           int vertex_count) {
   const NpyHeader header = parse_header(content, path);
   if (header.kind == 'f') {
-    throw_file_error(kFormat, path,
+    throw_file_error(kNumPyInput, path,
                      "the triangles are of type '" + header.descr +
                          "'; integers ('<i8', '<i4', …) are expected");
   }
   if (header.columns != 3 || header.rows > std::numeric_limits<int>::max()) {
-    throw_file_error(kFormat, path,
+    throw_file_error(kNumPyInput, path,
                      "the triangles have shape (" + std::to_string(header.rows) + ", " +
                          std::to_string(header.columns) + "); expected (triangles, 3)");
   }
@@ -311,7 +311,7 @@ std::vector<Triangle> parse_npy_triangles(std::string_view content, const std::s
                                      ? static_cast<std::int64_t>(bits << unused_bits) >> unused_bits
                                      : static_cast<std::int64_t>(bits);
       if (value < 0 || value >= vertex_count || (header.kind == 'u' && bits > INT32_MAX)) {
-        throw_file_error(kFormat, path,
+        throw_file_error(kNumPyInput, path,
                          "triangle " + std::to_string(t) + " has vertex index " +
                              (header.kind == 'u' ? std::to_string(bits) : std::to_string(value)) +
                              "; the states have " + std::to_string(vertex_count) + " vertices");
@@ -326,17 +326,17 @@ std::vector<Triangle> parse_npy_triangles(std::string_view content, const std::s
 
 TriangleMesh read_states_npy(const std::string& path) {
   const Eigen::MatrixXd points =
-      io_detail::parse_npy_points(io_detail::read_file(kFormat, path), path);
+      io_detail::parse_npy_points(io_detail::read_file(kNumPyInput, path), path);
   const std::string triangles_path = triangles_npy_path(path);
   std::error_code error;
   if (!std::filesystem::exists(triangles_path, error)) {
-    io_detail::throw_file_error(kFormat, path,
+    io_detail::throw_file_error(kNumPyInput, path,
                                 "its triangles belong in '" + triangles_path +
                                     "' (written beside it by tessera mesh --states), which does "
                                     "not exist");
   }
   std::vector<Triangle> triangles =
-      io_detail::parse_npy_triangles(io_detail::read_file(kFormat, triangles_path), triangles_path,
+      io_detail::parse_npy_triangles(io_detail::read_file(kNumPyInput, triangles_path), triangles_path,
                                      static_cast<int>(points.cols()));
   return TriangleMesh(points, std::move(triangles));
 }

@@ -11,7 +11,7 @@ namespace tessera {
 
 namespace {
 
-constexpr std::string_view kFormat = "OBJ";
+constexpr std::string_view kObj = "OBJ";
 
 }  // namespace
 
@@ -24,7 +24,7 @@ void write_obj(const std::string& path, const TriangleMesh& mesh, std::array<int
   }
   io_detail::check_triangle_indices(mesh, path);
 
-  io_detail::OutputFile file(kFormat, path);
+  io_detail::OutputFile file(kObj, path);
   file.text("# written by tessera: triangle mesh in R^");
   file.integer(n);
   file.text(", coordinates ");
@@ -59,7 +59,7 @@ void write_obj(const std::string& path, const TriangleMesh& mesh, std::array<int
 }
 
 TriangleMesh read_obj(const std::string& path) {
-  const std::string content = io_detail::read_file(kFormat, path);
+  const std::string content = io_detail::read_file(kObj, path);
   std::vector<double> coordinates;
   std::vector<Triangle> triangles;
   std::vector<std::size_t> triangle_lines;  // for the range check after the last vertex
@@ -75,7 +75,7 @@ TriangleMesh read_obj(const std::string& path) {
     line = line.substr(0, line.find('#'));
     const auto tokens = io_detail::split_tokens(line);
     auto fail = [&](const std::string& message) {
-      io_detail::throw_file_error(kFormat, path, line_number, message);
+      io_detail::throw_file_error(kObj, path, line_number, message);
     };
     if (tokens.empty()) {
       continue;
@@ -122,7 +122,7 @@ TriangleMesh read_obj(const std::string& path) {
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     for (const int v : triangles[t]) {
       if (v >= vertex_count) {
-        io_detail::throw_file_error(kFormat, path, triangle_lines[t],
+        io_detail::throw_file_error(kObj, path, triangle_lines[t],
                                     // 64 bits: v may be INT_MAX (found by obj_fuzz).
                                     "vertex index " + std::to_string(std::int64_t{v} + 1) +
                                         " is out of range; the file has " +

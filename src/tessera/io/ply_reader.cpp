@@ -18,7 +18,7 @@ namespace tessera {
 
 namespace {
 
-constexpr std::string_view kFormat = "PLY";
+constexpr std::string_view kPlyInput = "PLY";
 // Far above any ambient dimension tessera meets; bounds what a comment can make us allocate.
 constexpr std::int64_t kMaxDimension = 1 << 16;
 
@@ -101,11 +101,11 @@ ReadPlan make_plan(const PlyHeader& header, const std::vector<std::string>& requ
     }
   }
   if (plan.vertex_element < 0) {
-    io_detail::throw_file_error(kFormat, path, "the header declares no 'vertex' element");
+    io_detail::throw_file_error(kPlyInput, path, "the header declares no 'vertex' element");
   }
   const PlyElement& vertex = header.elements[static_cast<std::size_t>(plan.vertex_element)];
   if (vertex.count > INT_MAX) {
-    io_detail::throw_file_error(kFormat, path,
+    io_detail::throw_file_error(kPlyInput, path,
                                 "the header declares " + std::to_string(vertex.count) +
                                     " vertices; at most 2^31 - 1 are supported");
   }
@@ -115,7 +115,7 @@ ReadPlan make_plan(const PlyHeader& header, const std::vector<std::string>& requ
     // tessera writes the n coordinates first, whatever their names (x, y, z, then the names of
     // the problem; x0 ... before; any names given to write_ply).
     if (static_cast<std::size_t>(dimension) > vertex.properties.size()) {
-      io_detail::throw_file_error(kFormat, path,
+      io_detail::throw_file_error(kPlyInput, path,
                                   "the comment says the mesh is in R^" + std::to_string(dimension) +
                                       " but the vertex has only " +
                                       std::to_string(vertex.properties.size()) +
@@ -128,7 +128,7 @@ ReadPlan make_plan(const PlyHeader& header, const std::vector<std::string>& requ
     coordinates = detect_coordinates(vertex);
     if (coordinates.empty()) {
       io_detail::throw_file_error(
-          kFormat, path,
+          kPlyInput, path,
           "no coordinate properties: expected x, y, z (then x3, x4, ...) or x0, x1, ...; the "
           "vertex properties are " +
               property_list(vertex));
@@ -137,7 +137,7 @@ ReadPlan make_plan(const PlyHeader& header, const std::vector<std::string>& requ
     for (const auto& name : requested) {
       const int p = find_property(vertex, name);
       if (p < 0) {
-        io_detail::throw_file_error(kFormat, path,
+        io_detail::throw_file_error(kPlyInput, path,
                                     "no vertex property '" + name +
                                         "' (a requested coordinate); the vertex properties are " +
                                         property_list(vertex));
@@ -150,7 +150,7 @@ ReadPlan make_plan(const PlyHeader& header, const std::vector<std::string>& requ
     const auto& property = vertex.properties[static_cast<std::size_t>(coordinates[k])];
     if (property.is_list) {
       io_detail::throw_file_error(
-          kFormat, path,
+          kPlyInput, path,
           "vertex property '" + property.name + "' is a list; a coordinate must be a scalar");
     }
     plan.coordinate_of_property[static_cast<std::size_t>(coordinates[k])] = static_cast<int>(k);
@@ -164,7 +164,7 @@ ReadPlan make_plan(const PlyHeader& header, const std::vector<std::string>& requ
       plan.face_property = find_property(face, "vertex_index");
     }
     if (plan.face_property < 0) {
-      io_detail::throw_file_error(kFormat, path,
+      io_detail::throw_file_error(kPlyInput, path,
                                   "element 'face' has no list property 'vertex_indices' (or "
                                   "'vertex_index'); its properties are " +
                                       property_list(face));
@@ -172,7 +172,7 @@ ReadPlan make_plan(const PlyHeader& header, const std::vector<std::string>& requ
     const auto& property = face.properties[static_cast<std::size_t>(plan.face_property)];
     if (!property.is_list || !io_detail::is_integer_type(property.type)) {
       io_detail::throw_file_error(
-          kFormat, path, "face property '" + property.name + "' must be a list of integers");
+          kPlyInput, path, "face property '" + property.name + "' must be a list of integers");
     }
   }
   return plan;
@@ -199,9 +199,9 @@ void check_data_size(const PlyHeader& header, std::size_t data_size, const std::
                                   "' records, more than the " + std::to_string(data_size) +
                                   " bytes after the header can hold";
       if (ascii) {
-        io_detail::throw_file_error(kFormat, path, last_line, message);
+        io_detail::throw_file_error(kPlyInput, path, last_line, message);
       }
-      io_detail::throw_file_error(kFormat, path, message + " (truncated binary data)");
+      io_detail::throw_file_error(kPlyInput, path, message + " (truncated binary data)");
     }
   }
 }
@@ -243,7 +243,7 @@ class AsciiSource {
     error("unexpected end of file in " + what);
   }
   [[noreturn]] void error(const std::string& message) const {
-    io_detail::throw_file_error(kFormat, path_, cursor_.line(), message);
+    io_detail::throw_file_error(kPlyInput, path_, cursor_.line(), message);
   }
 
  private:
@@ -337,7 +337,7 @@ class BinarySource {
   }
   [[noreturn]] void error(const std::string& message) const {
     io_detail::throw_file_error(
-        kFormat, path_, message + " (at byte " + std::to_string(position_) + " after the header)");
+        kPlyInput, path_, message + " (at byte " + std::to_string(position_) + " after the header)");
   }
 
  private:
@@ -437,7 +437,7 @@ void read_records(Source& source, const PlyHeader& header, const ReadPlan& plan,
 }  // namespace
 
 TriangleMesh read_ply(const std::string& path, const std::vector<std::string>& coordinate_names) {
-  return io_detail::parse_ply(io_detail::read_file(kFormat, path), path, coordinate_names);
+  return io_detail::parse_ply(io_detail::read_file(kPlyInput, path), path, coordinate_names);
 }
 
 TriangleMesh io_detail::parse_ply(const std::string& content, const std::string& path,

@@ -15,7 +15,7 @@ namespace tessera {
 
 namespace {
 
-constexpr std::string_view kFormat = "PLY";
+constexpr std::string_view kPlyOutput = "PLY";
 
 // A name other tools accept as a PLY property and as a field name (meshio makes NumPy record
 // fields of them): a letter or '_', then letters, digits and '_'.
@@ -153,7 +153,7 @@ void write_ply(const std::string& path, const TriangleMesh& mesh, const PlyOptio
   const auto names = property_names(coordinate_names, options.vertex_scalars);
   io_detail::check_triangle_indices(mesh, path);
 
-  io_detail::OutputFile file(kFormat, path);
+  io_detail::OutputFile file(kPlyOutput, path);
   write_header(file, mesh, coordinate_names, names, options);
   if (options.binary) {
     write_binary_data(file, mesh, options);

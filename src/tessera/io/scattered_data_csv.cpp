@@ -16,7 +16,7 @@
 namespace tessera {
 namespace {
 
-constexpr std::string_view kFormat = "CSV";
+constexpr std::string_view kCsv = "CSV";
 
 std::string_view trim(std::string_view text) {
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) {
@@ -89,13 +89,13 @@ Columns columns_from_header(const std::vector<std::string_view>& fields, const s
   }
   if (columns.x < 0 || columns.y < 0) {
     io_detail::throw_file_error(
-        kFormat, path, line,
+        kCsv, path, line,
         std::string("the header has no column named '") + (columns.x < 0 ? "x" : "y") + "'");
   }
   if (!options.value_column.empty()) {
     const auto found = std::find(columns.names.begin(), columns.names.end(), options.value_column);
     if (found == columns.names.end()) {
-      io_detail::throw_file_error(kFormat, path, line,
+      io_detail::throw_file_error(kCsv, path, line,
                                   "the header has no column named '" + options.value_column +
                                       "' (the value column asked for)");
     }
@@ -145,7 +145,7 @@ ScatteredData parse_scattered_data_csv(const std::string& content, const std::st
         continue;
       }
       if (!options.value_column.empty()) {
-        io_detail::throw_file_error(kFormat, path, line_number,
+        io_detail::throw_file_error(kCsv, path, line_number,
                                     "the value column '" + options.value_column +
                                         "' was asked for by name, but the file has no header");
       }
@@ -153,13 +153,13 @@ ScatteredData parse_scattered_data_csv(const std::string& content, const std::st
     }
     const auto number = [&](int index) {
       if (index >= static_cast<int>(fields.size()) || fields[index].empty()) {
-        io_detail::throw_file_error(kFormat, path, line_number,
+        io_detail::throw_file_error(kCsv, path, line_number,
                                     "missing column " + column_name(*columns, index) + " (column " +
                                         std::to_string(index + 1) + ")");
       }
       const std::optional<double> value = parse_number(fields[index]);
       if (!value || !std::isfinite(*value)) {
-        io_detail::throw_file_error(kFormat, path, line_number,
+        io_detail::throw_file_error(kCsv, path, line_number,
                                     "column " + column_name(*columns, index) + " is '" +
                                         std::string(fields[index]) + "', not a finite number");
       }
@@ -175,7 +175,7 @@ ScatteredData parse_scattered_data_csv(const std::string& content, const std::st
 
   const auto n = static_cast<int>(xs.size());
   if (n < 3) {
-    io_detail::throw_file_error(kFormat, path,
+    io_detail::throw_file_error(kCsv, path,
                                 std::to_string(n) + " point(s); a triangulation needs at least 3");
   }
   data.points.resize(2, n);
@@ -190,7 +190,7 @@ ScatteredData parse_scattered_data_csv(const std::string& content, const std::st
   for (int i = 0; i < n; ++i) {
     const auto [where, inserted] = seen.emplace(std::pair{xs[i], ys[i]}, i);
     if (!inserted) {
-      io_detail::throw_file_error(kFormat, path, data.lines[i],
+      io_detail::throw_file_error(kCsv, path, data.lines[i],
                                   "the point (" + format_number(xs[i]) + ", " +
                                       format_number(ys[i]) + ") is the same as on line " +
                                       std::to_string(data.lines[where->second]));
@@ -216,7 +216,7 @@ ScatteredData parse_scattered_data_csv(const std::string& content, const std::st
   }
   if (is_collinear) {
     io_detail::throw_file_error(
-        kFormat, path,
+        kCsv, path,
         "all " + std::to_string(n) + " points lie on one line; a triangulation needs an area");
   }
   return data;
@@ -224,7 +224,7 @@ ScatteredData parse_scattered_data_csv(const std::string& content, const std::st
 
 ScatteredData read_scattered_data_csv(const std::string& path,
                                       const ScatteredDataCsvOptions& options) {
-  return parse_scattered_data_csv(io_detail::read_file(kFormat, path), path, options);
+  return parse_scattered_data_csv(io_detail::read_file(kCsv, path), path, options);
 }
 
 }  // namespace tessera

@@ -5,6 +5,7 @@
 
 #include "tessera/core/error.h"
 #include "tessera/io/detail/file_buffer.h"
+#include "tessera/io/detail/vtk_cell_types.h"
 #include "tessera/io/detail/write_checks.h"
 #include "tessera/io/text_file.h"
 
@@ -12,7 +13,7 @@ namespace tessera {
 
 namespace {
 
-constexpr int kVtkTriangle = 5;  // VTK cell type VTK_TRIANGLE
+using io_detail::kVtkTriangle;
 
 // Point j's first three coordinates, 0 for those beyond n.
 void write_point_xyz(io_detail::OutputFile& file, const TriangleMesh& mesh, int vertex) {

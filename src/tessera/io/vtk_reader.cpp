@@ -19,6 +19,7 @@
 #include "tessera/io/detail/file_buffer.h"
 #include "tessera/io/detail/mesh_parsers.h"
 #include "tessera/io/detail/ply_header.h"
+#include "tessera/io/detail/vtk_cell_types.h"
 #include "tessera/io/detail/vtk_points.h"
 #include "tessera/io/vtk.h"
 
@@ -44,12 +45,11 @@ bool starts_with_ignoring_case(std::string_view text, std::string_view prefix) {
 
 constexpr std::string_view kVtk = "VTK";
 
-// VTK cell types (vtkCellType.h).
-constexpr std::int64_t kVtkVertex = 1;
-constexpr std::int64_t kVtkPolyLine = 4;
-constexpr std::int64_t kVtkTriangle = 5;
-constexpr std::int64_t kVtkPolygon = 7;
-constexpr std::int64_t kVtkQuad = 9;
+using io_detail::kVtkPolygon;
+using io_detail::kVtkPolyLine;
+using io_detail::kVtkQuad;
+using io_detail::kVtkTriangle;
+using io_detail::kVtkVertex;
 
 class LegacyReader {
  public:

@@ -16,6 +16,7 @@
 #include "tessera/io/detail/file_buffer.h"
 #include "tessera/io/detail/mesh_parsers.h"
 #include "tessera/io/detail/ply_header.h"
+#include "tessera/io/detail/vtk_cell_types.h"
 #include "tessera/io/detail/vtk_points.h"
 #include "tessera/io/detail/xml_document.h"
 #include "tessera/io/vtk.h"
@@ -31,9 +32,9 @@ using io_detail::XmlElement;
 namespace {
 
 constexpr std::string_view kVtu = "VTU";
-constexpr int kVtkTriangle = 5;
-constexpr int kVtkPolygon = 7;
-constexpr int kVtkQuad = 9;
+using io_detail::kVtkPolygon;
+using io_detail::kVtkQuad;
+using io_detail::kVtkTriangle;
 
 class VtuReader {
  public:

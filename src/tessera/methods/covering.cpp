@@ -36,6 +36,9 @@ void CoveringOptions::validate_common(const char* owner) const {
   TESSERA_CHECK(
       std::isfinite(max_start_distance) && max_start_distance >= 0,
       owner << "::max_start_distance = " << max_start_distance << " must be a finite number >= 0");
+  TESSERA_CHECK(std::isfinite(check_seconds_after_stop) && check_seconds_after_stop >= 0,
+                owner << "::check_seconds_after_stop = " << check_seconds_after_stop
+                      << " must be a finite number >= 0");
 }
 
 namespace {

@@ -11,6 +11,7 @@
 
 #include "tessera/core/corrector.h"
 #include "tessera/methods/covering_result.h"
+#include "tessera/methods/stop_grace.h"
 
 namespace tessera {
 
@@ -38,6 +39,11 @@ struct CoveringOptions {
   CorrectorOptions corrector;
   ProgressCallback progress;   ///< when set: see CoveringProgress and ProgressSchedule
   StopRequest stop_requested;  ///< polled about once per vertex when set (see StopRequest)
+  /// After a stop request, the final checks (the geometric validation, the check for holes
+  /// covered over: a factorisation per projection, a second each at n = 10⁵) go on this long
+  /// and are then cut short, saying what they did not judge; the mesh is written within a
+  /// batch system's grace period either way (docs/stopping.md). 0: cut short at once.
+  double check_seconds_after_stop = kCheckSecondsAfterStop;
 
   /// \throw InvalidArgument naming the first shared option that is out of range; `owner` names
   ///        the method's options struct in the message, e.g. "AtlasOptions".

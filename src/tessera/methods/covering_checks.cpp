@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -124,7 +125,8 @@ void check_coverage(const Domain& domain, double step, CoveringResult& result) {
 // are projected (collective calls, the same on every rank).
 void check_holes_covered_over(const ImplicitProblem& problem, const Domain& domain,
                               double snap_distance, double tolerance,
-                              const CorrectorOptions& corrector, CoveringResult& result) {
+                              const CorrectorOptions& corrector, const StopRequest& stop_requested,
+                              CoveringResult& result) {
   if (!result.summary.is_complete() || domain.is_unbounded()) {
     return;
   }
@@ -198,7 +200,22 @@ void check_holes_covered_over(const ImplicitProblem& problem, const Domain& doma
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.nearest < b.nearest; });
   FactorisationCache factorisations(2, std::size_t{64} << 20);
+  std::size_t looked = 0;
   for (const auto& [nearest, index, k, longest] : candidates) {
+    // Polled by every rank alike (the candidates are the same everywhere): a stop ends the
+    // check on all of them at the same triangle.
+    if (stop_requested &&
+        (space.is_distributed() ? space.maximum(stop_requested() ? 1.0 : 0.0) > 0.0
+                                : stop_requested())) {
+      result.summary.record_failure(
+          CoveringTermination::Interrupted,
+          "interrupted during the check for holes covered over: " +
+              std::to_string(candidates.size() - looked) + " of " +
+              std::to_string(candidates.size()) +
+              " triangle(s) near a face of the domain were not looked under");
+      return;
+    }
+    ++looked;
     const Triangle& t = mesh.triangle(index);
     const Linearization* frozen = factorisations.find(nearest);
     if (frozen == nullptr) {

@@ -18,9 +18,12 @@ void check_coverage(const Domain& domain, double step, CoveringResult& result);
 /// No triangle with all corners inside S covers a part of M outside S (a hole of M ∩ S smaller
 /// than the triangle). Looks at triangles within `snap_distance` of a face (on sparse problems
 /// within twice the tolerance, and not at all without one). Does nothing unless the run
-/// completed.
+/// completed. `stop_requested` (may be empty) is polled before each projection, a
+/// factorisation at large n: once true, the triangles not yet looked under are left so and the
+/// run is Interrupted, its message saying how many.
 void check_holes_covered_over(const ImplicitProblem& problem, const Domain& domain,
                               double snap_distance, double tolerance,
-                              const CorrectorOptions& corrector, CoveringResult& result);
+                              const CorrectorOptions& corrector, const StopRequest& stop_requested,
+                              CoveringResult& result);
 
 }  // namespace tessera::detail

@@ -25,6 +25,9 @@ void apply_shared_settings(const MethodSettings& settings, CoveringOptions& opti
   }
   options.progress = settings.progress;
   options.stop_requested = settings.stop_requested;
+  if (settings.check_seconds_after_stop >= 0) {
+    options.check_seconds_after_stop = settings.check_seconds_after_stop;
+  }
 }
 
 // Defaults tied to the problem's suggested step h, the one length scale every catalogue entry

@@ -24,6 +24,8 @@ struct MethodSettings {
   double max_start_distance = 0.0;  ///< in ambient units; 0: the method's default
   ProgressCallback progress;
   StopRequest stop_requested;  ///< see StopRequest; empty: the run is never interrupted
+  /// CoveringOptions::check_seconds_after_stop; negative: its default (kCheckSecondsAfterStop).
+  double check_seconds_after_stop = -1.0;
   // atlas
   std::string atlas_placement = "disk";
   // front

@@ -201,16 +201,34 @@ int remove_degenerate_boundary_triangles(CoveringResult& result, const Validatio
   return removed;
 }
 
+// A check cut short by a stop request makes the run Interrupted (a note if it had failed
+// before), saying what was not judged: the mesh is valid only as far as it was checked.
+void note_cut_short(const MeshValidation& validation, CoveringSummary& summary) {
+  if (!validation.is_cut_short()) {
+    return;
+  }
+  std::string what;
+  for (const std::string& cut : validation.checks_cut_short) {
+    what += (what.empty() ? "" : "; ") + cut;
+  }
+  summary.record_failure(CoveringTermination::Interrupted,
+                         "interrupted during the final check, which was cut short: " + what);
+}
+
 // The geometric validation of stage::validate_and_repair (its contract in covering_stages.h).
+// `is_stopped`: a stop request ended an earlier stage; `stop`: the checks' grace stop.
 // \return the number of new triangles (the last ones of the mesh) made by a repair.
 int validate_and_repair_mesh(const ImplicitProblem& problem, const Domain& domain,
-                             CoveringResult& result) {
+                             CoveringResult& result, bool is_stopped = false,
+                             const StopRequest& stop = {}) {
   TriangleMesh& mesh = result.mesh;
   result.validation.reset();
   if (mesh.triangle_count() == 0) {
     return 0;
   }
-  MeshValidation validation = validate(mesh, problem, domain);
+  ValidationOptions options;
+  options.stop_requested = stop;
+  MeshValidation validation = validate(mesh, problem, domain, options);
   if (validation.degenerate_triangle_count > 0) {
     if (const int removed = remove_degenerate_boundary_triangles(result, ValidationOptions());
         removed > 0) {
@@ -220,14 +238,18 @@ int validate_and_repair_mesh(const ImplicitProblem& problem, const Domain& domai
           " degenerate triangle(s); " + std::to_string(removed) +
           " of them, on the boundary and of zero area (three vertices on a straight piece of "
           "the boundary), were removed");
-      validation = validate(mesh, problem, domain);
+      validation = validate(mesh, problem, domain, options);
     }
   }
+  note_cut_short(validation, result.summary);
   if (validation.is_valid()) {
     result.validation = validation;
     return 0;
   }
-  if (validation.vertices_outside_domain.empty() &&
+  // After a stop there is no time for a repair (it projects, and validates again in full):
+  // the defects found are removed below.
+  is_stopped = is_stopped || validation.is_cut_short();
+  if (!is_stopped && validation.vertices_outside_domain.empty() &&
       (!validation.flipped_triangles.empty() || !validation.overlapping_triangle_pairs.empty()) &&
       validation.defects.size() ==
           static_cast<std::size_t>((validation.flipped_triangle_count > 0) +
@@ -332,6 +354,11 @@ int validate_and_repair_mesh(const ImplicitProblem& problem, const Domain& domai
     message << (i ? "; " : "") << places[i];
   }
   result.summary.record_failure(CoveringTermination::TriangulationFailed, message.str());
+  if (is_stopped) {
+    // What is left, judged as far as the grace allows, so that the report need not validate
+    // it again in full (minutes at large n) and says what was not judged.
+    result.validation = validate(mesh, problem, domain, options);
+  }
   return 0;
 }
 
@@ -446,7 +473,8 @@ bool note_tolerance_not_enforced(CoveringRun& run) {
 }
 
 bool validate_and_repair(CoveringRun& run) {
-  run.repaired_triangles = validate_and_repair_mesh(run.problem, run.domain, run.result);
+  run.repaired_triangles = validate_and_repair_mesh(run.problem, run.domain, run.result,
+                                                    run.is_stopped(), run.checks_stop());
   return true;
 }
 
@@ -470,7 +498,7 @@ bool refine_repaired(CoveringRun& run) {
   summary.refined_edges += refined.split_edges;
   summary.max_sampled_distance = std::max(summary.max_sampled_distance, refined.max_distance);
   if (refined.split_edges > 0) {
-    validate_and_repair_mesh(run.problem, run.domain, run.result);
+    validate_and_repair_mesh(run.problem, run.domain, run.result, false, run.checks_stop());
   }
   return true;
 }
@@ -478,9 +506,9 @@ bool refine_repaired(CoveringRun& run) {
 bool check_coverage(CoveringRun& run) {
   const CoveringContext& context = *run.context;
   detail::check_coverage(run.domain, run.options.step, run.result);
-  check_holes_covered_over(run.problem, run.domain,
-                           context.boundary_snap_fraction * context.boundary_edge_length,
-                           run.options.tolerance, run.options.corrector, run.result);
+  check_holes_covered_over(
+      run.problem, run.domain, context.boundary_snap_fraction * context.boundary_edge_length,
+      run.options.tolerance, run.options.corrector, run.checks_stop(), run.result);
   return true;
 }
 

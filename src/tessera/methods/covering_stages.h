@@ -13,6 +13,7 @@
 #include "tessera/methods/covering.h"
 #include "tessera/methods/covering_result.h"
 #include "tessera/methods/start_point.h"
+#include "tessera/methods/stop_grace.h"
 
 namespace tessera::detail {
 
@@ -51,6 +52,21 @@ struct CoveringRun {
   int triangles_before_refinement = 0;  ///< refine: the triangles of the build, clipped
   bool is_refinement_stopped = false;   ///< refine: a stop request ended the refinement
   int repaired_triangles = 0;  ///< validate: the last ones of the mesh were made by a repair
+  /// What the final checks (validation, holes covered over) poll: the stop request with the
+  /// grace options.check_seconds_after_stop (after_grace), so that after a stop they finish if
+  /// they can within it and are cut short if they cannot. One clock for all of them; made by
+  /// the first check (a run stopped before then does not ask the request again).
+  const StopRequest& checks_stop() {
+    if (!checks_stop_) {
+      checks_stop_ =
+          after_grace(is_stopped() ? StopRequest([] { return true; }) : options.stop_requested,
+                      options.check_seconds_after_stop);
+      if (!checks_stop_) {
+        checks_stop_ = [] { return false; };  // no request: never stopped
+      }
+    }
+    return checks_stop_;
+  }
 
   /// Whether a stop request ended a stage before: the termination is Interrupted, or the
   /// refinement was stopped in a run that had failed before (which keeps its first termination;
@@ -58,6 +74,9 @@ struct CoveringRun {
   bool is_stopped() const {
     return result.summary.termination == CoveringTermination::Interrupted || is_refinement_stopped;
   }
+
+ private:
+  StopRequest checks_stop_;
 };
 
 /// A stage of the run. \return whether it did its work: false if it had nothing to do (then it
@@ -106,6 +125,10 @@ bool note_tolerance_not_enforced(CoveringRun& run);
 /// a vertex outside S, are removed (with the fans that removal pinches) and the run fails with
 /// their places: the rest is a valid partial mesh. A defect is never returned as a success.
 /// Sets repaired_triangles. Always does its work (an empty mesh is valid).
+/// After a stop request (before or during it) the geometric checks poll checks_stop: cut
+/// short, the run is Interrupted and says what was not judged (MeshValidation::
+/// checks_cut_short); defects found are removed without a repair (which projects), and the
+/// mesh left is validated again, as far as the grace allows, into result.validation.
 bool validate_and_repair(CoveringRun& run);
 
 /// With a tolerance, holds the triangles made by a repair to it as refine does, and validates
@@ -114,7 +137,8 @@ bool refine_repaired(CoveringRun& run);
 
 /// The checks of a completed run: no hole (the boundary lies on ∂S) and no hole of M ∩ S
 /// covered over by a triangle (covering_checks.h); each found is the run's failure, with its
-/// place. Always does its work (a run that did not complete has nothing checked).
+/// place. Always does its work (a run that did not complete has nothing checked). The second
+/// polls checks_stop and, cut short, makes the run Interrupted.
 bool check_coverage(CoveringRun& run);
 
 /// The cubic patches of a method that has them, rebuilt for the final triangles when anything

@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include <numbers>
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -14,7 +15,6 @@ namespace tessera {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kPixels = 160;         // the depth buffer's side
 constexpr double kMaxStretch = 4.0;  // a pixel stands for at most this much surface
 
@@ -91,7 +91,7 @@ double seen_area(const PictureScene& scene, PictureAspect aspect, const ViewDire
 // A preference between directions that show about as much: both horizontal axes readable
 // (neither seen end-on).
 double preference(const ViewDirection& view) {
-  const double a = view.azimuth_degrees * kPi / 180.0;
+  const double a = view.azimuth_degrees * std::numbers::pi / 180.0;
   return 0.85 + 0.15 * std::min(1.0, 2.0 * std::min(std::abs(std::sin(a)), std::abs(std::cos(a))));
 }
 
@@ -129,7 +129,7 @@ ViewDirection best_view_direction(const PictureScene& scene, PictureAspect aspec
     return {};
   }
   const Eigen::Vector2d normal = principal.eigenvectors().col(1);
-  const double along = std::atan2(normal(0), -normal(1)) * 180.0 / kPi;  // the folds' direction
+  const double along = std::atan2(normal(0), -normal(1)) * 180.0 / std::numbers::pi;  // the folds' direction
   // Look along the folds, 30° aside so that they do not shrink to points, from above the plane
   // of the first two axes: the sheets' S shows at the near end. Of the four such directions and
   // three elevations, the one that shows the most surface.

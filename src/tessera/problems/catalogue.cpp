@@ -20,7 +20,6 @@ namespace tessera {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr double kPi = std::numbers::pi;
 
 Eigen::VectorXd vector3(double x, double y, double z) {
   Eigen::VectorXd v(3);
@@ -129,7 +128,7 @@ ProblemSetup make_sphere(const ParameterValues& values) {
   setup.domain = Domain(3);
   setup.suggested_step = 0.3 * r;
   setup.expected_euler_characteristic = 2;
-  setup.exact_area = 4.0 * kPi * r * r;
+  setup.exact_area = 4.0 * std::numbers::pi * r * r;
   return setup;
 }
 
@@ -148,7 +147,7 @@ ProblemSetup make_sphere_cut(const ParameterValues& values) {
   setup.domain.add_half_space(vector3(0, 0, 1), vector3(0, 0, cut), label.str());
   setup.suggested_step = 0.3 * r;
   setup.expected_euler_characteristic = 1;       // a spherical cap is a disk
-  setup.exact_area = 2.0 * kPi * r * (r - cut);  // Archimedes: the area of a zone is 2πr·height
+  setup.exact_area = 2.0 * std::numbers::pi * r * (r - cut);  // Archimedes: the area of a zone is 2πr·height
   return setup;
 }
 
@@ -163,7 +162,7 @@ ProblemSetup make_torus(const ParameterValues& values) {
   setup.domain = Domain(3);
   setup.suggested_step = 0.25 * r;
   setup.expected_euler_characteristic = 0;
-  setup.exact_area = 4.0 * kPi * kPi * R * r;  // Pappus: 2πr · 2πR
+  setup.exact_area = 4.0 * std::numbers::pi * std::numbers::pi * R * r;  // Pappus: 2πr · 2πR
   return setup;
 }
 

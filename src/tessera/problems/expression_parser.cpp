@@ -10,13 +10,14 @@
 #include <utility>
 
 #include "tessera/core/describe.h"
+#include "tessera/problems/detail/name_characters.h"
 
 namespace tessera {
 
 namespace {
 
-bool is_name_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
-bool is_name_char(char c) { return is_name_start(c) || (c >= '0' && c <= '9'); }
+using detail::is_name_char;
+using detail::is_name_start;
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
 // Names people carry over from other languages; a hint saves them a trip to the docs.

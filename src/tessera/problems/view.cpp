@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "tessera/core/describe.h"
+#include "tessera/problems/detail/name_characters.h"
 
 namespace tessera {
 
@@ -40,8 +41,8 @@ std::pair<std::size_t, std::size_t> trimmed_range(std::string_view text, std::si
   return {begin, end};
 }
 
-bool is_name_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
-bool is_name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+using detail::is_name_char;
+using detail::is_name_start;
 
 // Every name in an expression text with its 0-based position; numbers such as 1e-3 are skipped
 // whole so that their 'e' is not taken for a name.

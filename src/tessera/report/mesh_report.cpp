@@ -27,7 +27,8 @@ MeshReport make_report(const TriangleMesh& mesh, const ProblemSetup& setup,
   // which every caller of make_report has.
   const bool is_known = known != nullptr && known->vertex_count == mesh.vertex_count() &&
                         known->triangle_count == mesh.triangle_count();
-  report.validation = is_known ? *known : validate(mesh, *setup.problem, setup.domain);
+  report.validation =
+      is_known ? *known : validate(mesh, *setup.problem, setup.domain, options.validation);
   // Distances are Gauss–Newton projections, a few factorisations each: at large n they are
   // measured on a uniform sample (the report says how many) instead of at every point.
   QualityOptions quality;

@@ -51,6 +51,19 @@ struct StatesReport {
   std::vector<CoordinateBlock> blocks;
 };
 
+/// How a SIGINT or SIGTERM stopped `tessera mesh` (docs/stopping.md): present only then.
+struct StopReport {
+  std::string signal;    ///< "SIGTERM" or "SIGINT": the first one received
+  int signal_count = 1;  ///< received until the summary was written
+  /// The stage the first one came in: "build" (the start's projection included), "clip",
+  /// "refine", "validate", "patches" (the covering's last checks) or "report" (after it).
+  std::string stage;
+  /// What the stop left out that the run would have done, each with what it means, e.g.
+  /// "distances to M: not measured". The covering's own (the tolerance, the clipping) are in
+  /// run.message and run.notes, a validation cut short in geometry.cut_short too.
+  std::vector<std::string> left_out;
+};
+
 /// A curve on M as a report lists it: its points in the report's columns, in order along it.
 struct ReportedCurve {
   bool is_closed = false;
@@ -187,6 +200,7 @@ struct MeshReport {
   std::optional<HopfReport> hopf;            ///< present when Hopf curves were asked for
   std::optional<CoveringSummary> run;
   std::optional<ImprovementReport> improvement;  ///< present after `mesh --improve`
+  std::optional<StopReport> stop;                ///< present when a signal stopped the run
   MeshValidation validation;
   MeshQuality quality;
   std::optional<int> expected_euler_characteristic;
@@ -211,6 +225,9 @@ struct ReportOptions {
   /// A distributed run's decision to stop the measurement, taken together by every rank
   /// (QualityOptions::decide_together); empty: this process decides.
   std::function<bool(bool)> decide_together;
+  /// For the validation of a mesh whose validation is not `known`: e.g. a stop request that
+  /// cuts its geometric checks short (ValidationOptions::stop_requested).
+  ValidationOptions validation;
 };
 
 /// Validation (combinatorial and geometric: orientation along M, overlaps on M, vertices in the

@@ -40,6 +40,7 @@ nlohmann::json geometry(const MeshValidation& v) {
   }
   return {
       {"checked", v.is_geometry_checked},
+      {"cut_short", v.checks_cut_short},
       {"flipped_triangles",
        {{"count", v.flipped_triangle_count}, {"triangles", first_entries(v.flipped_triangles)}}},
       {"overlapping_triangles", {{"count", v.overlapping_pair_count}, {"pairs", pairs}}},
@@ -306,6 +307,12 @@ std::string to_json(const MeshReport& report) {
   if (report.improvement) {
     j["improvement"] = improvement_json(*report.improvement);
   }
+  if (report.stop) {
+    j["stop"] = {{"signal", report.stop->signal},
+                 {"signals", report.stop->signal_count},
+                 {"stage", report.stop->stage},
+                 {"left_out", report.stop->left_out}};
+  }
   if (report.backend) {
     j["backend"] = {{"name", report.backend->name},
                     {"ranks", report.backend->ranks},
@@ -398,6 +405,13 @@ std::string to_text(const MeshReport& report) {
       }
     }
     out << ", " << to_string(r.termination) << (r.message.empty() ? "" : ": " + r.message) << "\n";
+    if (report.stop) {
+      out << "stopped        by " << report.stop->signal << " during " << report.stop->stage;
+      for (std::size_t i = 0; i < report.stop->left_out.size(); ++i) {
+        out << (i ? "; " : "; left out: ") << report.stop->left_out[i];
+      }
+      out << "\n";
+    }
     out << components_text(r, report.ambient_dimension);
     if (r.max_sampled_distance >= 0) {
       out << "tolerance      every triangle checked: largest sampled distance to M "
@@ -574,7 +588,10 @@ std::string to_text(const MeshReport& report) {
     out << " (expected " << *report.expected_euler_characteristic << ")";
   }
   out << ", " << (v.is_orientable ? "orientable" : "non-orientable") << ", "
-      << (v.is_valid() ? "valid" : "INVALID") << "\n";
+      << (!v.is_valid()      ? "INVALID"
+          : v.is_cut_short() ? "valid as far as checked"
+                             : "valid")
+      << "\n";
   if (v.is_geometry_checked) {
     out << "geometry       " << v.flipped_triangle_count << " flipped triangle(s), "
         << v.overlapping_pair_count << " overlapping pair(s), " << v.vertex_outside_domain_count
@@ -583,26 +600,36 @@ std::string to_text(const MeshReport& report) {
       out << "; " << v.unoriented_triangle_count << " triangle(s) not oriented (DF singular)";
     }
     out << "\n";
+    for (const std::string& cut : v.checks_cut_short) {
+      out << "  cut short   " << cut << " (a stop request)\n";
+    }
   }
   for (const MeshDefect& d : v.defects) {
     out << "  defect       " << to_string(d.kind) << ": " << d.count
         << (d.examples.empty() ? "" : " (" + d.examples.front() + ")") << "\n";
   }
-  out << "on M           max |F| " << q.vertex_residual.max << " at vertices; distance to M: "
-      << "vertices " << q.vertex_distance.max << ", centroids " << q.centroid_distance.max
-      << ", edge midpoints " << q.midpoint_distance.max;
-  if (q.centroid_distance.count < q.centroid_distance.population) {
-    // The largest of K uniform samples exceeds the q-quantile with probability 1 − q^K.
-    const int samples = std::max(1, q.centroid_distance.count);
-    const double bounded = 100.0 * std::pow(0.05, 1.0 / samples);
-    std::ostringstream share;
-    share.precision(3);
-    share << bounded;
-    out << " (largest of " << q.centroid_distance.count
-        << " uniform samples of each: with 95% confidence it bounds " << share.str()
-        << "% of the points)";
+  const bool is_measured = q.vertex_residual.count > 0 || q.centroid_distance.count > 0 ||
+                           q.vertex_residual.population == 0;
+  if (!is_measured) {
+    // A stopped run's report: nothing measured, not "0".
+    out << "on M           not measured" << (report.stop ? " (the run was stopped)" : "") << "\n";
+  } else {
+    out << "on M           max |F| " << q.vertex_residual.max << " at vertices; distance to M: "
+        << "vertices " << q.vertex_distance.max << ", centroids " << q.centroid_distance.max
+        << ", edge midpoints " << q.midpoint_distance.max;
+    if (q.centroid_distance.count < q.centroid_distance.population) {
+      // The largest of K uniform samples exceeds the q-quantile with probability 1 − q^K.
+      const int samples = std::max(1, q.centroid_distance.count);
+      const double bounded = 100.0 * std::pow(0.05, 1.0 / samples);
+      std::ostringstream share;
+      share.precision(3);
+      share << bounded;
+      out << " (largest of " << q.centroid_distance.count
+          << " uniform samples of each: with 95% confidence it bounds " << share.str()
+          << "% of the points)";
+    }
+    out << "\n";
   }
-  out << "\n";
   if (q.failed_projections > 0) {
     out << "  warning      " << q.failed_projections << " points could not be projected onto M\n";
   }

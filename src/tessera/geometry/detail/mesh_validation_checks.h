@@ -5,11 +5,14 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "tessera/core/ambient_space.h"
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/geometry/mesh_topology.h"
@@ -17,6 +20,9 @@
 #include "tessera/geometry/triangle_mesh.h"
 
 namespace tessera::detail {
+
+/// An angle in degrees, for messages.
+inline double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
 constexpr int kDefectKindCount = static_cast<int>(MeshDefectKind::VertexOutsideDomain) + 1;
 
@@ -53,6 +59,27 @@ class DefectRecorder {
   std::array<MeshDefect, kDefectKindCount> defects_;
 };
 
+// ValidationOptions::stop_requested as the geometric checks poll it: once it has said stop it
+// stays stopped, and on a split mesh the ranks decide together (one reduction per poll), so
+// that every rank leaves its loop at the same place as the collective projections require.
+class CheckStop {
+ public:
+  CheckStop(const std::function<bool()>& request, const AmbientSpace& space)
+      : request_(request), space_(space) {}
+  bool is_stopped() {
+    if (!stopped_ && request_) {
+      const bool local = request_();
+      stopped_ = space_.is_distributed() ? space_.maximum(local ? 1.0 : 0.0) > 0.0 : local;
+    }
+    return stopped_;
+  }
+
+ private:
+  const std::function<bool()>& request_;
+  const AmbientSpace& space_;
+  bool stopped_ = false;
+};
+
 struct GeometricInput {
   const ImplicitProblem& problem;
   const Domain& domain;
@@ -87,16 +114,16 @@ struct MeshView {
 // The geometric checks (validate with a problem and a domain), in the order validate runs them.
 // The mathematics is in docs/validation.md.
 void check_orientation(const MeshView& view, const GeometricInput& geometry,
-                       const ValidationOptions& options, DefectRecorder& recorder,
+                       const ValidationOptions& options, CheckStop& stop, DefectRecorder& recorder,
                        MeshValidation& result);
 void check_overlaps(const MeshView& view, const GeometricInput& geometry,
-                    const ValidationOptions& options, DefectRecorder& recorder,
+                    const ValidationOptions& options, CheckStop& stop, DefectRecorder& recorder,
                     MeshValidation& result);
 // Thin triangles (an angle below 10° or above 150°) sampled on M against their nearby
 // triangles `pairs` (mesh_validation_thin.cpp); called by check_overlaps.
 void check_thin_triangles(const MeshView& view, const GeometricInput& geometry,
-                          const std::vector<std::pair<int, int>>& pairs, DefectRecorder& recorder,
-                          MeshValidation& result);
+                          const std::vector<std::pair<int, int>>& pairs, CheckStop& stop,
+                          DefectRecorder& recorder, MeshValidation& result);
 // Fans whose corners' arcs in M's tangent plane at their vertex overlap (mesh_validation_fans.cpp),
 // from check_orientation's oriented cosines and arcs (start, signed sweep) per corner.
 void check_fan_arcs(const MeshView& view,

@@ -7,7 +7,7 @@ namespace tessera::io_detail {
 
 namespace {
 
-constexpr std::string_view kFormat = "PLY";
+constexpr std::string_view kPlyHeader = "PLY";
 
 struct PlyTypeName {
   std::string_view name;
@@ -67,7 +67,7 @@ PlyHeader parse_ply_header(const std::string& content, const std::string& path) 
   std::size_t line_number = 0;
   while (true) {
     if (position >= content.size()) {
-      throw_file_error(kFormat, path, line_number, "the header has no 'end_header' line");
+      throw_file_error(kPlyHeader, path, line_number, "the header has no 'end_header' line");
     }
     std::size_t end = content.find('\n', position);
     const bool is_last = end == std::string::npos;
@@ -80,7 +80,7 @@ PlyHeader parse_ply_header(const std::string& content, const std::string& path) 
     }
     const auto tokens = split_tokens(line);
     auto fail = [&](const std::string& message) {
-      throw_file_error(kFormat, path, line_number, message);
+      throw_file_error(kPlyHeader, path, line_number, message);
     };
     if (line_number == 1) {
       if (tokens.size() != 1 || tokens[0] != "ply") {

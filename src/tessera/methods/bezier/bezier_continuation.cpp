@@ -76,7 +76,6 @@ void BezierOptions::validate() const {
 namespace detail {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // An edge whose imaginary triangle could not be realised is retried after the other edges
 // (their triangles may resolve the conflict); after this many failures the run stops.
 constexpr int kMaxEdgeFailures = 3;
@@ -467,7 +466,7 @@ bool BezierBuilder::realize(int a, int b, std::string& why) {
     if (const auto angle = worst_tangent_angle(a, *point, b)) {
       s *= std::clamp(0.95 * std::acos(options_.min_tangent_cosine) / *angle, 0.25, 0.9);
       std::ostringstream message;
-      message << "the tangent planes at the ends of a new edge differ by " << *angle * 180 / kPi
+      message << "the tangent planes at the ends of a new edge differ by " << *angle * 180 / std::numbers::pi
               << "° at " << describe_point(point->vertex.x);
       why = message.str();
       continue;
@@ -538,7 +537,7 @@ void BezierBuilder::build_initial_triangle(const StartPoint& start) {
   for (int attempt = 0; attempt < 24; ++attempt) {
     std::vector<NewPoint> points;
     bool ok = true;
-    for (double angle : {0.0, kPi / 3}) {
+    for (double angle : {0.0, std::numbers::pi / 3}) {
       const Eigen::VectorXd direction = T0 * Eigen::Vector2d(std::cos(angle), std::sin(angle));
       StepFailure failure;
       auto point = compute_point(y0 + s * direction, s, T0, failure);

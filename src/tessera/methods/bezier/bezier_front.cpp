@@ -15,7 +15,6 @@
 namespace tessera::detail {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 }  // namespace
 
@@ -163,7 +162,7 @@ double BezierBuilder::wedge_angle(int v, int u, int c, int w) const {
   const double side = angle_from_u(pc) >= 0 ? -1.0 : 1.0;
   double angle = side * angle_from_u(pw);
   if (angle < 0) {
-    angle += 2 * kPi;
+    angle += 2 * std::numbers::pi;
   }
   return angle;
 }
@@ -204,7 +203,7 @@ std::optional<int> BezierBuilder::next_on_front(int a, int b, int c) const {
 
 double BezierBuilder::front_angle(int a, int b) const {
   const int c = third_vertex(edge_triangle_.at(edge_key(a, b)), a, b);
-  double angle = 2 * kPi;
+  double angle = 2 * std::numbers::pi;
   if (const auto p = previous_on_front(a, b, c)) {
     angle = std::min(angle, wedge_angle(a, b, c, *p));
   }
@@ -212,7 +211,7 @@ double BezierBuilder::front_angle(int a, int b) const {
     angle = std::min(angle, wedge_angle(b, a, c, *q));
   }
   const auto it = failures_.find(edge_key(a, b));
-  return angle + (it == failures_.end() ? 0.0 : 4 * kPi * it->second);
+  return angle + (it == failures_.end() ? 0.0 : 4 * std::numbers::pi * it->second);
 }
 
 std::vector<int> BezierBuilder::front_vertices_near(const Eigen::VectorXd& x, double radius) const {

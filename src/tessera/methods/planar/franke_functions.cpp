@@ -12,7 +12,7 @@
 namespace tessera {
 namespace {
 
-constexpr std::array<std::pair<FrankeFunction, std::string_view>, 5> kNames = {{
+constexpr std::array<std::pair<FrankeFunction, std::string_view>, 5> kFrankeNames = {{
     {FrankeFunction::F1, "F1"},
     {FrankeFunction::F2, "F2"},
     {FrankeFunction::F7, "F7"},
@@ -130,7 +130,7 @@ T evaluate_any(FrankeFunction function, T x, T y) {
 }  // namespace
 
 std::string to_string(FrankeFunction function) {
-  for (const auto& [f, name] : kNames) {
+  for (const auto& [f, name] : kFrankeNames) {
     if (f == function) {
       return std::string(name);
     }
@@ -142,7 +142,7 @@ std::optional<FrankeFunction> parse_franke_function(std::string_view name) {
   if (name.size() != 2 || std::toupper(static_cast<unsigned char>(name[0])) != 'F') {
     return std::nullopt;
   }
-  for (const auto& [f, n] : kNames) {
+  for (const auto& [f, n] : kFrankeNames) {
     if (n[1] == name[1]) {
       return f;
     }

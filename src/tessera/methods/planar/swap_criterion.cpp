@@ -12,7 +12,7 @@
 namespace tessera {
 namespace {
 
-constexpr std::array<std::pair<CriterionKind, std::string_view>, 8> kNames = {{
+constexpr std::array<std::pair<CriterionKind, std::string_view>, 8> kCriterionNames = {{
     {CriterionKind::Delaunay, "delaunay"},
     {CriterionKind::MinimumWeight, "mwt"},
     {CriterionKind::MaxMinAngle3d, "maxmin3d"},
@@ -143,7 +143,7 @@ class NormalCriterion final : public SwapCriterion {
 }  // namespace
 
 std::string to_string(CriterionKind kind) {
-  for (const auto& [k, name] : kNames) {
+  for (const auto& [k, name] : kCriterionNames) {
     if (k == kind) {
       return std::string(name);
     }
@@ -152,7 +152,7 @@ std::string to_string(CriterionKind kind) {
 }
 
 std::optional<CriterionKind> parse_criterion(std::string_view name) {
-  for (const auto& [k, n] : kNames) {
+  for (const auto& [k, n] : kCriterionNames) {
     if (n == name) {
       return k;
     }

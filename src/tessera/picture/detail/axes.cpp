@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tessera/picture/detail/cairo_drawing.h"
 #include "tessera/picture/ticks.h"
 
 namespace tessera::picture_detail {
@@ -20,10 +21,6 @@ constexpr std::array<double, 3> kInk = {0.1, 0.1, 0.1};
 constexpr std::array<double, 3> kAxisLine = {0.25, 0.25, 0.25};
 constexpr std::array<double, 3> kPane = {0.95, 0.95, 0.96};
 constexpr std::array<double, 3> kGrid = {0.83, 0.83, 0.85};
-
-void set_rgb(cairo_t* cr, const std::array<double, 3>& rgb) {
-  cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
-}
 
 // The label `text` at `font_size` with its ink rectangle centred at `centre`. The rectangle
 // spans at least the height of the digit 0, so that labels of numbers share one baseline

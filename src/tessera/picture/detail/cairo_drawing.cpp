@@ -3,6 +3,7 @@
 
 #include <cairo-svg.h>
 
+#include <numbers>
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -17,7 +18,6 @@ namespace tessera::picture_detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kLegendRow = 18.0;     // pixels from one entry to the next
 constexpr double kLegendSample = 28.0;  // width of a line sample or swatch column
 
@@ -169,7 +169,7 @@ void draw_marker(cairo_t* cr, PointKind kind, double x, double y) {
       cairo_close_path(cr);
       break;
     case PointKind::Generic:
-      cairo_arc(cr, x, y, 0.9 * r, 0.0, 2 * kPi);
+      cairo_arc(cr, x, y, 0.9 * r, 0.0, 2 * std::numbers::pi);
       break;
   }
   const auto fill = marker_fill(kind);

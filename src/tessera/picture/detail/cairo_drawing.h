@@ -26,6 +26,11 @@ struct ContextDeleter {
 using Surface = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
 using Context = std::unique_ptr<cairo_t, ContextDeleter>;
 
+/// Sets the source colour of `cr` to `rgb` (each in [0, 1]).
+inline void set_rgb(cairo_t* cr, const std::array<double, 3>& rgb) {
+  cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
+}
+
 /// \throw InvalidArgument "<what>: cairo says <reason>" unless `status` is a success.
 void check_status(cairo_status_t status, const std::string& what);
 

@@ -4,6 +4,7 @@
 #include "tessera/picture/picture.h"
 
 #include <Eigen/Geometry>
+#include <numbers>
 #include <algorithm>
 #include <cmath>
 
@@ -11,7 +12,6 @@ namespace tessera::picture_detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct Extents {
   Eigen::Vector3d lower, upper, extent;
@@ -62,8 +62,8 @@ Camera::Camera(const Eigen::Matrix3Xd& positions, PictureAspect aspect, double a
   for (int k = 0; k < 3; ++k) {
     scale_(k) = is_box && e.extent(k) > 1e-12 * e.largest ? 1.0 / e.extent(k) : 1.0 / e.largest;
   }
-  const double a = azimuth_degrees * kPi / 180.0;
-  const double el = elevation_degrees * kPi / 180.0;
+  const double a = azimuth_degrees * std::numbers::pi / 180.0;
+  const double el = elevation_degrees * std::numbers::pi / 180.0;
   toward_eye_ =
       Eigen::Vector3d(std::cos(el) * std::cos(a), std::cos(el) * std::sin(a), std::sin(el));
   right_ = Eigen::Vector3d(-std::sin(a), std::cos(a), 0.0);

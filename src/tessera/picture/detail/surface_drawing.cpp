@@ -6,6 +6,8 @@
 #include <numeric>
 #include <vector>
 
+#include "tessera/picture/detail/cairo_drawing.h"
+
 namespace tessera::picture_detail {
 
 namespace {
@@ -31,7 +33,6 @@ Rgb mean_of(const std::array<Rgb, 3>& corners) {
   return mean;
 }
 
-void set_rgb(cairo_t* cr, const Rgb& rgb) { cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]); }
 
 void triangle_path(cairo_t* cr, const std::array<Eigen::Vector2d, 3>& p) {
   cairo_move_to(cr, p[0](0), p[0](1));
