@@ -51,6 +51,23 @@ ProgressCallback note_polls_at_refine(const int& polls, int& polls_at_refine) {
   };
 }
 
+// A run without a stop, counting the polls: all of them, and those before the refinement
+// began (the build's, the clipping's and the swaps'; the tolerance check and the final checks
+// poll after them).
+struct CountedRun {
+  CoveringResult result;
+  int whole_polls = 0;
+  int build_polls = 0;
+};
+CountedRun run_counting_polls(const ProblemSetup& setup, const CoveringMethod& method,
+                              MethodSettings settings) {
+  CountedRun run;
+  settings.stop_requested = counting_polls(run.whole_polls);
+  settings.progress = note_polls_at_refine(run.whole_polls, run.build_polls);
+  run.result = cover(setup, method, settings);
+  return run;
+}
+
 TEST_P(StopHook, StopsWithAValidPartialMesh) {
   const InterruptCase& param = GetParam();
   const ProblemSetup setup = make_catalogue_problem(param.problem);
@@ -135,14 +152,11 @@ TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
   const ProblemSetup setup = make_catalogue_problem("torus");
   const CoveringMethod& front = find_covering_method("front");
   MethodSettings settings;
-  int whole_polls = 0;
-  int build_polls = 0;
-  settings.stop_requested = counting_polls(whole_polls);
-  settings.progress = note_polls_at_refine(whole_polls, build_polls);
-  const CoveringResult built = cover(setup, front, settings);
+  const CountedRun counted = run_counting_polls(setup, front, settings);
+  const CoveringResult& built = counted.result;
+  const int build_polls = counted.build_polls;
   ASSERT_TRUE(built.summary.is_complete()) << built.summary.message;
   ASSERT_GT(build_polls, 0);
-  settings.progress = nullptr;
 
   settings.tolerance = 2e-4;  // far below the front's own accuracy: many triangles to split
   int polls = 0;
@@ -179,14 +193,11 @@ TEST(StopRequest, StopDuringTheToleranceCheckOnThreadsKeepsTheBuiltMeshValid) {
   const ProblemSetup setup = make_catalogue_problem("torus");
   const CoveringMethod& front = find_covering_method("front");
   MethodSettings settings;
-  int whole_polls = 0;
-  int build_polls = 0;
-  settings.stop_requested = counting_polls(whole_polls);
-  settings.progress = note_polls_at_refine(whole_polls, build_polls);
-  const CoveringResult built = cover(setup, front, settings);
+  const CountedRun counted = run_counting_polls(setup, front, settings);
+  const CoveringResult& built = counted.result;
+  const int build_polls = counted.build_polls;
   ASSERT_TRUE(built.summary.is_complete()) << built.summary.message;
   ASSERT_GT(build_polls, 0);
-  settings.progress = nullptr;
   settings.tolerance = 2e-4;
   int polls = 0;
   const int stop_after = build_polls;  // the check's first poll says stop
@@ -209,16 +220,13 @@ TEST(StopRequest, StopDuringClippingLeavesAValidMeshInsideTheDomain) {
   const ProblemSetup setup = make_catalogue_problem("sphere_cut");
   const CoveringMethod& atlas = find_covering_method("atlas");
   MethodSettings settings;
-  int whole_polls = 0;
-  int build_polls = 0;
-  settings.stop_requested = counting_polls(whole_polls);
-  settings.progress = note_polls_at_refine(whole_polls, build_polls);
   settings.tolerance = 0;  // the tolerance check polls too; without it only build and clip do
-  const CoveringResult whole = cover(setup, atlas, settings);
+  const CountedRun counted = run_counting_polls(setup, atlas, settings);
+  const CoveringResult& whole = counted.result;
+  const int build_polls = counted.build_polls;
   ASSERT_TRUE(whole.summary.is_complete()) << whole.summary.message;
   ASSERT_GT(whole.summary.clipped_half_spaces, 0);
   ASSERT_GT(build_polls, 0);
-  settings.progress = nullptr;
 
   // build_polls counts the polls of the build, the clipping and the swaps after it, in that
   // order (the final checks' come after). A stop after k polls lands past the build exactly
@@ -265,17 +273,14 @@ TEST(StopRequest, StopDuringTheFinalCheckCutsItShortAfterTheGrace) {
   const ProblemSetup setup = make_catalogue_problem("torus");
   const CoveringMethod& front = find_covering_method("front");
   MethodSettings settings;
-  int whole_polls = 0;
-  int build_polls = 0;
-  settings.stop_requested = counting_polls(whole_polls);
-  settings.progress = note_polls_at_refine(whole_polls, build_polls);
-  const CoveringResult whole = cover(setup, front, settings);
+  const CountedRun counted = run_counting_polls(setup, front, settings);
+  const CoveringResult& whole = counted.result;
+  const int build_polls = counted.build_polls;
   ASSERT_TRUE(whole.summary.is_complete()) << whole.summary.message;
   ASSERT_TRUE(whole.validation.has_value());
   // The check polls between blocks of vertices and of pairs of triangles, not per vertex: a
   // block is milliseconds at n = 3.
-  ASSERT_GT(whole_polls, build_polls + 3) << "the final check polls the stop request";
-  settings.progress = nullptr;
+  ASSERT_GT(counted.whole_polls, build_polls + 3) << "the final check polls the stop request";
 
   // The stop comes after the build (no tolerance: no refinement polls), at the check's second
   // poll: the orientation check has judged its first block of vertices only.
