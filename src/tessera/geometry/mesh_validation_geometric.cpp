@@ -324,6 +324,48 @@ struct OverlapOnManifold {
   double width = 0.0;     // its area / perimeter
 };
 
+// Do triangles s and t of different components cross where two sheets of M cross
+// (ValidationOptions::crossing_plane_cosine)? Only components covered apart meet that way: a
+// covering that reaches a crossing keeps to its sheet (the atlas's min_sheet_cosine), and two
+// components over one sheet lie in nearly one plane where they meet, so they are judged on M.
+bool is_sheet_crossing(const MeshView& view, int s, int t, const ValidationOptions& options) {
+  const MeshTopology& topology = view.topology;
+  if (topology.component_of(s) == topology.component_of(t)) {
+    return false;
+  }
+  const double along_s = std::abs(view.shapes.oriented_cosine[s]);  // NaN: not judged
+  const double along_t = std::abs(view.shapes.oriented_cosine[t]);
+  if (!(along_s >= options.crossing_alignment && along_t >= options.crossing_alignment)) {
+    return false;
+  }
+  // |det(U_sᵀU_t)| = |det(EᵀF)| / sqrt(det(EᵀE)·det(FᵀF)) for the edge vectors E of s, F of t.
+  const auto points = view.mesh.points();
+  const Triangle& a = view.topology.triangles()[s];
+  const Triangle& b = view.topology.triangles()[t];
+  std::array<Eigen::VectorXd, 4> edge = {
+      points.col(a[1]) - points.col(a[0]), points.col(a[2]) - points.col(a[0]),
+      points.col(b[1]) - points.col(b[0]), points.col(b[2]) - points.col(b[0])};
+  std::array<double, 10> gram;  // the upper triangle of the 4×4 Gram matrix of the edges
+  int k = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i; j < 4; ++j) {
+      gram[static_cast<std::size_t>(k++)] = edge[i].dot(edge[j]);
+    }
+  }
+  view.mesh.space().sum(gram.data(), 10);  // over the ranks of a split mesh (else nothing)
+  const auto at = [&](int i, int j) {
+    const int lo = std::min(i, j), hi = std::max(i, j);
+    return gram[static_cast<std::size_t>(lo * 4 - lo * (lo - 1) / 2 + (hi - lo))];
+  };
+  const double cross = at(0, 2) * at(1, 3) - at(0, 3) * at(1, 2);
+  const double own_s = at(0, 0) * at(1, 1) - at(0, 1) * at(0, 1);
+  const double own_t = at(2, 2) * at(3, 3) - at(2, 3) * at(2, 3);
+  if (!(own_s > 0.0 && own_t > 0.0)) {
+    return false;
+  }
+  return std::abs(cross) < options.crossing_plane_cosine * std::sqrt(own_s * own_t);
+}
+
 // Do the triangles `first` and `second` cover the same part of M near the point p of M (the
 // projection of a point where their planar projections overlap)? Both are mapped into the chart
 // Tᵀ(x − p) of M's tangent plane at p. Restricted to M near p this chart is one to one, and a
@@ -637,6 +679,10 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
         continue;
       }
       const auto [s, t] = pairs[candidate.pair];
+      if (is_sheet_crossing(view, s, t, options)) {
+        ++result.crossing_pair_count;
+        continue;
+      }
       Eigen::VectorXd p = candidate.lifted;
       if (!project_onto_manifold(geometry.problem, p, workspace) || !workspace.is_factored()) {
         continue;  // no point of M to compare at: left unjudged

@@ -47,7 +47,8 @@ nlohmann::json geometry(const MeshValidation& v) {
       {"vertices_outside_domain",
        {{"count", v.vertex_outside_domain_count},
         {"vertices", first_entries(v.vertices_outside_domain)}}},
-      {"unoriented_triangles", v.unoriented_triangle_count}};
+      {"unoriented_triangles", v.unoriented_triangle_count},
+      {"crossing_pairs", v.crossing_pair_count}};
 }
 
 nlohmann::json level_json(const LevelReport& level) {
@@ -598,6 +599,10 @@ std::string to_text(const MeshReport& report) {
         << " vertex(es) outside the domain";
     if (v.unoriented_triangle_count > 0) {
       out << "; " << v.unoriented_triangle_count << " triangle(s) not oriented (DF singular)";
+    }
+    if (v.crossing_pair_count > 0) {
+      out << "; " << v.crossing_pair_count
+          << " pair(s) of triangles where components cross (sheets of M crossing)";
     }
     out << "\n";
     for (const std::string& cut : v.checks_cut_short) {
