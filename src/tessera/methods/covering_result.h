@@ -124,6 +124,8 @@ struct CoveringSummary {
     int total() const { return curvature + not_a_graph + grading + reach + band; }
   };
   RadiusCaps radius_caps;
+  /// Where the atlas centred its charts: "disk" (Henderson's) or "hexagonal" (AtlasPlacement).
+  std::string placement;
   double min_chart_radius = 0.0;
   double max_chart_radius = 0.0;
   int singular_crossings = 0;  ///< continuation steps that crossed a singular curve of M

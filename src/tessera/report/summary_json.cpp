@@ -253,6 +253,7 @@ std::string to_json(const MeshReport& report) {
                 {"repaired_holes", r.repaired_holes}};
     if (r.charts > 0) {
       j["run"]["atlas"] = {{"charts", r.charts},
+                           {"placement", r.placement},
                            {"min_chart_radius", r.min_chart_radius},
                            {"max_chart_radius", r.max_chart_radius},
                            {"singular_crossings", r.singular_crossings},
@@ -397,7 +398,8 @@ std::string to_text(const MeshReport& report) {
     const CoveringSummary& r = *report.run;
     out << "method         " << r.method;
     if (r.charts > 0) {
-      out << ", tolerance " << r.tolerance << ", " << r.charts << " charts of radius "
+      out << (r.placement.empty() ? "" : " (" + r.placement + " placement)") << ", tolerance "
+          << r.tolerance << ", " << r.charts << " charts of radius "
           << r.min_chart_radius << " … " << r.max_chart_radius;
     } else {
       out << ", step " << r.step;
