@@ -40,6 +40,7 @@ CoveringResult run_atlas(const ProblemSetup& setup, const MethodSettings& settin
   apply_shared_settings(settings, options);
   options.placement =
       settings.atlas_placement == "hexagonal" ? AtlasPlacement::Hexagonal : AtlasPlacement::Disk;
+  options.checkpoint = settings.atlas_checkpoint;
   return cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "tessera/methods/atlas/atlas_checkpoint.h"
 #include "tessera/methods/covering_result.h"
 #include "tessera/problems/problem_setup.h"
 
@@ -28,6 +29,7 @@ struct MethodSettings {
   double check_seconds_after_stop = -1.0;
   // atlas
   std::string atlas_placement = "disk";
+  AtlasCheckpointing atlas_checkpoint;  ///< checkpoints and resuming (method atlas only)
   // front
   double front_min_gap_degrees = 0.0;
   int front_max_valence = 0;
