@@ -128,8 +128,8 @@ AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool pro
     }
     const double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
     if (progress_lines) {
-      std::fprintf(stderr, "tessera: checkpoint: %zu bytes to %s in %.3f s\n", bytes,
-                   path.c_str(), seconds);
+      std::fprintf(stderr, "tessera: checkpoint: %zu bytes to %s in %.3f s\n", bytes, path.c_str(),
+                   seconds);
     }
     *last = Clock::now();
   };
@@ -164,8 +164,8 @@ int run_resume(const ResumeCommand& resume) {
   std::error_code error;
   if (!folder.empty() && std::filesystem::current_path(error) != folder) {
     TESSERA_CHECK(chdir(folder.c_str()) == 0,
-                  "checkpoint file '" << resume.checkpoint << "': the run was started in "
-                                      << folder << ", which is gone; its relative paths "
+                  "checkpoint file '" << resume.checkpoint << "': the run was started in " << folder
+                                      << ", which is gone; its relative paths "
                                       << "cannot be resolved");
   }
   CLI::App app;
@@ -209,8 +209,7 @@ int run_resume(const ResumeCommand& resume) {
   if (!summary.empty()) {
     mesh.summary = summary;
   }
-  mesh.resume_state =
-      std::make_shared<const std::string>(file.section("atlas", resume.checkpoint));
+  mesh.resume_state = std::make_shared<const std::string>(file.section("atlas", resume.checkpoint));
   return run_mesh(mesh);
 }
 

@@ -43,9 +43,20 @@ void write_bytes(const std::string& path, const std::string& bytes) {
 const char* const kProblem = "bvp:points=200";
 
 std::vector<std::string> mesh_words(const std::string& folder) {
-  return {TESSERA_CLI,          "mesh", kProblem, "--method", "atlas", "-o", folder + "/mesh.ply",
-          "--report-samples",   "50",   "--checkpoint", folder + "/run.tsc",
-          "--checkpoint-every", "0.05", "-q"};
+  return {TESSERA_CLI,
+          "mesh",
+          kProblem,
+          "--method",
+          "atlas",
+          "-o",
+          folder + "/mesh.ply",
+          "--report-samples",
+          "50",
+          "--checkpoint",
+          folder + "/run.tsc",
+          "--checkpoint-every",
+          "0.05",
+          "-q"};
 }
 
 // Starts `words` with stdout and stderr to `log`.
@@ -70,9 +81,9 @@ pid_t spawn(std::vector<std::string> words, const std::string& log) {
 const std::string& reference_mesh() {
   static const std::string bytes = [] {
     const std::string folder = testing::temporary_directory("checkpoint_reference");
-    const testing::CommandResult run = testing::run_cli(
-        std::string("mesh ") + kProblem + " --method atlas --report-samples 50 -q -o " + folder +
-        "/mesh.ply");
+    const testing::CommandResult run =
+        testing::run_cli(std::string("mesh ") + kProblem +
+                         " --method atlas --report-samples 50 -q -o " + folder + "/mesh.ply");
     EXPECT_EQ(run.exit_code, 0) << run.output;
     return read_bytes(folder + "/mesh.ply");
   }();
@@ -110,8 +121,8 @@ TEST(CliCheckpoint, KilledRunsResumeToTheSameMesh) {
     waitpid(child, &status, 0);
     ASSERT_TRUE(WIFSIGNALED(status)) << "the run ended before the kill";
     EXPECT_FALSE(fs::exists(folder + "/mesh.ply")) << "a killed build wrote no mesh";
-    const testing::CommandResult resumed = testing::run_cli(
-        "resume " + folder + "/run.tsc -q --summary " + folder + "/summary.json");
+    const testing::CommandResult resumed =
+        testing::run_cli("resume " + folder + "/run.tsc -q --summary " + folder + "/summary.json");
     ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
     EXPECT_TRUE(read_bytes(folder + "/mesh.ply") == reference_mesh())
         << "the resumed run's mesh differs from the uninterrupted run's";

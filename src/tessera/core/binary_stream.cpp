@@ -16,8 +16,9 @@ std::uint64_t checksum64(std::string_view bytes) {
   // hundreds of MB is hashed in a fraction of a second).
   for (; i + 8 <= bytes.size(); i += 8) {
     std::uint64_t word = 0;
-    for (int b = 0; b < 8; ++b) {
-      word |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[i + b])) << (8 * b);
+    std::memcpy(&word, bytes.data() + i, 8);
+    if constexpr (std::endian::native == std::endian::big) {
+      word = __builtin_bswap64(word);
     }
     hash = (hash ^ word) * kPrime;
     hash ^= hash >> 29;
@@ -97,9 +98,8 @@ std::size_t BinaryReader::count(const char* field, std::size_t item_bytes) {
   const std::uint64_t value = u64(field);
   if (item_bytes > 0 && value > remaining() / item_bytes) {
     fail("truncated or corrupt: " + std::string(field) + " = " + std::to_string(value) +
-         " items of " +
-         std::to_string(item_bytes) + " bytes, but only " + std::to_string(remaining()) +
-         " bytes are left");
+         " items of " + std::to_string(item_bytes) + " bytes, but only " +
+         std::to_string(remaining()) + " bytes are left");
   }
   return static_cast<std::size_t>(value);
 }

@@ -31,6 +31,11 @@ class BinaryWriter {
   void matrix(const Eigen::Ref<const Eigen::MatrixXd>& m);
   void doubles(const double* values, std::size_t count);
 
+  /// Appends what `other` holds.
+  void bytes_of(const BinaryWriter& other) { bytes_ += other.bytes_; }
+  /// Room for `size` bytes in all (a large record is then not copied as it grows).
+  void reserve(std::size_t size) { bytes_.reserve(size); }
+
   const std::string& bytes() const { return bytes_; }
   std::string take() { return std::move(bytes_); }
 

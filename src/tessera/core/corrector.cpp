@@ -71,8 +71,8 @@ CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vecto
     const auto factor_here = [&] {
       const Eigen::MatrixXd reference =
           factorisations == 0 && options.first_reference != nullptr ? *options.first_reference
-          : linearization.is_factored()                            ? linearization.tangent_basis()
-                                                                   : Eigen::MatrixXd();
+          : linearization.is_factored()                             ? linearization.tangent_basis()
+                                                                    : Eigen::MatrixXd();
       ++factorisations;
       return linearization.factor(problem, x, reference.size() ? &reference : nullptr);
     };

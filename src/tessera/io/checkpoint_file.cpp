@@ -24,18 +24,35 @@ const std::string& CheckpointFile::section(const std::string& name, const std::s
 }
 
 void write_checkpoint_file(const std::string& path, const CheckpointFile& file) {
-  BinaryWriter out;
+  // The index (header, names, lengths, checksums) is checksummed as a whole at the end; each
+  // payload goes to the file from the caller's string.
+  BinaryWriter index;
+  io_detail::OutputFile out("checkpoint", path);
+  const auto emit = [&out, &index](const BinaryWriter& piece) {
+    out.bytes(piece.bytes().data(), piece.bytes().size());
+    index.bytes_of(piece);
+  };
+  BinaryWriter header;
   for (char c : kMagic) {
-    out.u8(static_cast<std::uint8_t>(c));
+    header.u8(static_cast<std::uint8_t>(c));
   }
-  out.u32(kCheckpointFormatVersion);
-  out.u32(static_cast<std::uint32_t>(file.sections.size()));
+  header.u32(kCheckpointFormatVersion);
+  header.u32(static_cast<std::uint32_t>(file.sections.size()));
+  emit(header);
   for (const auto& [name, payload] : file.sections) {
-    out.string(name);
-    out.string(payload);
+    BinaryWriter before;
+    before.string(name);
+    before.u64(payload.size());
+    emit(before);
+    out.bytes(payload.data(), payload.size());
+    BinaryWriter after;
+    after.u64(checksum64(payload));
+    emit(after);
   }
-  out.u64(checksum64(out.bytes()));
-  io_detail::write_whole_file("checkpoint", path, out.bytes());
+  BinaryWriter end;
+  end.u64(checksum64(index.bytes()));
+  out.bytes(end.bytes().data(), end.bytes().size());
+  out.close();
 }
 
 CheckpointFile read_checkpoint_file(const std::string& path) {
@@ -54,20 +71,27 @@ CheckpointFile read_checkpoint_file(const std::string& path) {
             std::to_string(kCheckpointFormatVersion) +
             ": resume it with the tessera that wrote it, or start the run again");
   }
+  std::string index(bytes.substr(0, in.offset() + 4));
   CheckpointFile file;
   const std::uint32_t count = in.u32("section count");
   for (std::uint32_t k = 0; k < count; ++k) {
+    const std::size_t begin = in.offset();
     std::string name = in.string("section name");
-    std::string payload = in.string(("section '" + name + "'").c_str());
+    const std::string field = "section '" + name + "'";
+    std::string payload = in.string(field.c_str());
+    index.append(bytes, begin, in.offset() - begin - payload.size());
+    const std::size_t checksum_at = in.offset();
+    if (in.u64((field + " checksum").c_str()) != checksum64(payload)) {
+      in.fail("corrupt: " + field + " does not match its checksum (a byte was changed or lost)");
+    }
+    index.append(bytes, checksum_at, 8);
     file.sections.emplace_back(std::move(name), std::move(payload));
   }
-  const std::size_t body = in.offset();
   const std::uint64_t stored = in.u64("checksum");
   if (in.remaining() != 0) {
     in.fail("corrupt: " + std::to_string(in.remaining()) + " bytes after the checksum");
   }
-  const std::uint64_t computed = checksum64(std::string_view(bytes).substr(0, body));
-  if (stored != computed) {
+  if (stored != checksum64(index)) {
     in.fail("corrupt: its checksum does not match its contents (a byte was changed or lost)");
   }
   return file;

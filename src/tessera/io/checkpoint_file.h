@@ -7,8 +7,10 @@
 //   8 bytes  magic "TSRCKPT\x1a"
 //   u32      format version (kCheckpointFormatVersion)
 //   u32      section count
-//   per section: u64 name length, name, u64 payload length, payload
-//   u64      checksum64 of every byte before it
+//   per section: u64 name length, name, u64 payload length, payload, u64 checksum64(payload)
+//   u64      checksum64 of the header and of every section's name, length and checksum
+// (A checksum per section, so that a payload of hundreds of MB is written straight from the
+// caller's memory, not copied into one buffer first.)
 #pragma once
 
 #include <cstdint>

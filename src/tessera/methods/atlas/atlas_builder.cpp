@@ -7,9 +7,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "tessera/core/binary_stream.h"
 #include "tessera/core/corrector.h"
 #include "tessera/core/describe.h"
-#include "tessera/core/binary_stream.h"
 #include "tessera/core/error.h"
 #include "tessera/core/point_storage.h"
 #include "tessera/core/process_memory.h"
@@ -492,7 +492,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     keep_factorisation(first, std::move(linearization), Eigen::MatrixXd());
   }
   ProgressSchedule progress_schedule;
-  int next_heap_release = chart_count() + kReleaseHeapCharts;
+  int next_heap_release = kReleaseHeapCharts;
   while ((!open_.empty() || work_.chart >= 0) && !stopped_) {
     Linearization at_center;
     int c = work_.chart;
@@ -620,8 +620,7 @@ void AtlasBuilder::place_children(int c, Linearization& at_center, CoveringSumma
       // geometry decides (the rule changed the crossing's hexagonal mesh beyond its bound).
       const bool beyond_disk =
           projected && options_.placement == AtlasPlacement::Disk &&
-          space_->tangent_coordinates(Tc, y - xc).norm() >
-              kMaxRimOvershoot * charts_[c].radius;
+          space_->tangent_coordinates(Tc, y - xc).norm() > kMaxRimOvershoot * charts_[c].radius;
       if (!projected || beyond_disk) {
         if (fraction == 1.0 && charts_[c].radius > 4.0 * min_radius_ &&
             s.norm() >= 0.99 * charts_[c].radius) {

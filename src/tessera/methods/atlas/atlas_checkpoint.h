@@ -39,7 +39,6 @@ struct AtlasCheckpointing {
   std::shared_ptr<const std::string> resume_from;
 };
 
-
 /// The version of the atlas's state; a state of another version is refused.
 inline constexpr std::uint32_t kAtlasStateVersion = 1;
 
