@@ -59,8 +59,9 @@ CheckpointFile read_checkpoint_file(const std::string& path) {
   const std::string bytes = io_detail::read_file("checkpoint", path);
   BinaryReader in(bytes, "checkpoint file '" + path + "'");
   if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0) {
-    in.fail("not a tessera checkpoint (it does not begin with the magic number TSRCKPT; "
-            "`tessera mesh --checkpoint FILE` writes them)");
+    in.fail(
+        "not a tessera checkpoint (it does not begin with the magic number TSRCKPT; "
+        "`tessera mesh --checkpoint FILE` writes them)");
   }
   for (std::size_t k = 0; k < sizeof(kMagic); ++k) {
     in.u8("magic");

@@ -80,9 +80,9 @@ std::string number(double value) {
 void AtlasBuilder::save_checkpoint() {
   BinaryWriter out;
   // The centres and the held bases are most of it (at n = 10⁴, 80 kB a chart).
-  out.reserve(static_cast<std::size_t>(chart_count()) * (8 * static_cast<std::size_t>(rows_) + 160) +
-              static_cast<std::size_t>(held_tangents_) * 16 * static_cast<std::size_t>(rows_) +
-              (1 << 16));
+  out.reserve(
+      static_cast<std::size_t>(chart_count()) * (8 * static_cast<std::size_t>(rows_) + 160) +
+      static_cast<std::size_t>(held_tangents_) * 16 * static_cast<std::size_t>(rows_) + (1 << 16));
   write_state(out);
   options_.checkpoint.save(out.take());
 }
