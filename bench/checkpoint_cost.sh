@@ -37,8 +37,9 @@ build_of() {
 }
 echo "plain:      wall $(printf %.1f "$plain") s, build s and charts: $(build_of "$work/plain.json")"
 echo "checkpoint: wall $(printf %.1f "$saved") s, build s and charts: $(build_of "$work/saved.json")"
-grep "tessera: checkpoint:" "$work/saved.log" | awk '{bytes+=$3; t+=$(NF-1); n++; if ($(NF-1)>max) max=$(NF-1)}
-  END {printf "checkpoints: %d, mean %.0f MB, total %.2f s, longest %.3f s\n", n, bytes/n/1e6, t, max}'
+sed -n 's/^tessera: checkpoint: \([0-9]*\) bytes to .* in \([0-9.]*\) s\( (its state made in \([0-9.]*\) s before)\)\{0,1\}$/\1 \2 \4/p' \
+  "$work/saved.log" | awk '{bytes+=$1; t+=$2; s+=$3; n++; if ($2>max) max=$2}
+  END {printf "checkpoints: %d, mean %.0f MB, writing %.2f s in all (longest %.3f s), making the states %.2f s in all\n", n, bytes/n/1e6, t, max, s}'
 cmp "$work/plain.ply" "$work/saved.ply" && echo "meshes: identical"
 
 kill_after=${KILL_AFTER:-$(echo "$plain / 2" | bc -l)}

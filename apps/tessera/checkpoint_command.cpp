@@ -105,9 +105,16 @@ AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool pro
   }
   using Clock = std::chrono::steady_clock;
   const auto last = std::make_shared<Clock::time_point>(Clock::now());
+  // When is_due said yes: the state is made between then and the save (--progress says both).
+  const auto due_at = std::make_shared<Clock::time_point>();
   const double every = command.checkpoint_every;
-  hooks.is_due = [last, every] {
-    return std::chrono::duration<double>(Clock::now() - *last).count() >= every;
+  hooks.is_due = [last, due_at, every] {
+    const Clock::time_point now = Clock::now();
+    if (std::chrono::duration<double>(now - *last).count() < every) {
+      return false;
+    }
+    *due_at = now;
+    return true;
   };
   // The parts that stay the same are made once.
   const auto header = std::make_shared<CheckpointFile>();
@@ -115,8 +122,14 @@ AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool pro
                       {"problem", problem_section(command.problem)},
                       {"method", "atlas"}};
   const std::string path = command.checkpoint;
-  hooks.save = [last, header, path, progress_lines](std::string state) {
+  hooks.save = [last, due_at, header, path, progress_lines](std::string state) {
     const auto begin = Clock::now();
+    // (A save at a stop or at the end of the build was not asked by is_due: its state's time
+    // is not known.)
+    const double state_seconds =
+        *due_at == Clock::time_point() ? -1.0
+                                       : std::chrono::duration<double>(begin - *due_at).count();
+    *due_at = Clock::time_point();
     CheckpointFile file = *header;
     const std::size_t bytes = state.size();
     file.sections.emplace_back("atlas", std::move(state));
@@ -128,8 +141,12 @@ AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool pro
     }
     const double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
     if (progress_lines) {
-      std::fprintf(stderr, "tessera: checkpoint: %zu bytes to %s in %.3f s\n", bytes, path.c_str(),
+      std::fprintf(stderr, "tessera: checkpoint: %zu bytes to %s in %.3f s", bytes, path.c_str(),
                    seconds);
+      if (state_seconds >= 0) {
+        std::fprintf(stderr, " (its state made in %.3f s before)", state_seconds);
+      }
+      std::fprintf(stderr, "\n");
     }
     *last = Clock::now();
   };
