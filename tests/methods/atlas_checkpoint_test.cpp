@@ -124,6 +124,34 @@ TEST(AtlasCheckpoint, Bratu2dResumesToTheSameMesh) {  // n = 146
   expect_resumes_identically("bratu2d:N=12", 60, 13);
 }
 
+// A state too large to write at a stop (it would delay the partial mesh) is not written there;
+// the note says so and the last periodic checkpoint gives the same mesh.
+TEST(AtlasCheckpoint, LargeStateIsNotWrittenAtTheStop) {
+  const ProblemSetup setup = make_catalogue_problem("torus:R=2,r=0.5");
+  AtlasOptions options = options_for(setup);
+  auto polls = std::make_shared<int>(0);
+  options.stop_requested = [polls] { return ++*polls > 200; };
+  options.checkpoint.is_due = [polls] { return *polls % 50 == 0; };
+  std::vector<std::string> saved;
+  options.checkpoint.save = [&saved](std::string state) { saved.push_back(std::move(state)); };
+  options.checkpoint.max_bytes_at_stop = 0;
+  const CoveringResult stopped =
+      cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  ASSERT_EQ(stopped.summary.termination, CoveringTermination::Interrupted);
+  EXPECT_EQ(saved.size(), 4u) << "the periodic ones only (children 50, 100, 150, 200)";
+  bool noted = false;
+  for (const std::string& note : stopped.summary.notes) {
+    noted = noted || note.find("no checkpoint was written at the stop") != std::string::npos;
+  }
+  EXPECT_TRUE(noted);
+  ASSERT_FALSE(saved.empty());
+  AtlasOptions resumed = options_for(setup);
+  resumed.checkpoint.resume_from = std::make_shared<const std::string>(saved.back());
+  expect_identical(uninterrupted(setup).mesh,
+                   cover_by_atlas(*setup.problem, setup.start, setup.domain, resumed).mesh,
+                   "resumed from the last periodic checkpoint");
+}
+
 // The state of one run given to another: refused, the message naming what differs.
 void expect_refused(const std::string& state, const ProblemSetup& setup, AtlasOptions options,
                     const std::string& named, const Eigen::VectorXd* start = nullptr) {

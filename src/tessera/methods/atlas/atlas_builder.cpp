@@ -559,8 +559,13 @@ void AtlasBuilder::place_children(int c, Linearization& at_center, CoveringSumma
       break;
     }
     if (options_.stop_requested && options_.stop_requested()) {
-      if (options_.checkpoint.save) {
+      if (options_.checkpoint.save && checkpoint_bytes() <= options_.checkpoint.max_bytes_at_stop) {
         save_checkpoint();
+      } else if (options_.checkpoint.save) {
+        summary.notes.push_back("no checkpoint was written at the stop: its " +
+                                std::to_string(std::lround(checkpoint_bytes() / 1e6)) +
+                                " MB would have delayed the mesh (max_bytes_at_stop); the last "
+                                "periodic checkpoint stands");
       }
       fail(summary, CoveringTermination::Interrupted,
            "interrupted at " + std::to_string(chart_count()) + " charts");

@@ -152,6 +152,7 @@ class AtlasBuilder {
   void report(CoveringSummary& summary);
   // Checkpoints (atlas_checkpoint.cpp).
   void save_checkpoint();
+  double checkpoint_bytes() const;  // about what save_checkpoint writes
   void write_state(BinaryWriter& out);
   void read_state(BinaryReader& in, CoveringSummary& summary);
   Eigen::VectorXd start_;

@@ -77,12 +77,15 @@ std::string number(double value) {
 
 }  // namespace
 
+double AtlasBuilder::checkpoint_bytes() const {
+  // The centres and the held bases are most of it (at n = 10⁴, 80 kB a chart).
+  return static_cast<double>(chart_count()) * (8.0 * rows_ + 160.0) +
+         static_cast<double>(held_tangents_) * 16.0 * rows_ + 65536.0;
+}
+
 void AtlasBuilder::save_checkpoint() {
   BinaryWriter out;
-  // The centres and the held bases are most of it (at n = 10⁴, 80 kB a chart).
-  out.reserve(
-      static_cast<std::size_t>(chart_count()) * (8 * static_cast<std::size_t>(rows_) + 160) +
-      static_cast<std::size_t>(held_tangents_) * 16 * static_cast<std::size_t>(rows_) + (1 << 16));
+  out.reserve(static_cast<std::size_t>(checkpoint_bytes()));
   write_state(out);
   options_.checkpoint.save(out.take());
 }
