@@ -39,4 +39,5 @@ if [ "${TESSERA_SANITIZE_ALL:-0}" != 1 ]; then
   exclude=(-E "^(${names})\$")
 fi
 cd build-asan
-ctest --output-on-failure --parallel "$(nproc)" --timeout 1800 "${exclude[@]}"
+# One thread per test, as in scripts/run-tests.sh (tests that set their own count keep it).
+TESSERA_THREADS=1 ctest --output-on-failure --parallel "$(nproc)" --timeout 1800 "${exclude[@]}"

@@ -32,9 +32,11 @@ CLI::App* add_compare_command(CLI::App& app, CompareCommand& command) {
       ->check(finite_positive());
   compare
       ->add_option("--placement", command.settings.atlas_placement,
-                   "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
-                   "vertices, then smoothed; slower)")
-      ->check(CLI::IsMember({"disk", "hexagonal"}));
+                   "atlas: 'auto' (default: hexagonal where DF is dense and there is no domain, "
+                   "disk otherwise), "
+                   "'disk' (Henderson's) or 'hexagonal' (about 30% fewer vertices, then smoothed "
+                   "on M: cheap at small n, a factorisation per vertex and pass at large n)")
+      ->check(CLI::IsMember({"auto", "disk", "hexagonal"}));
   compare->add_option("--start", command.start, "start point, comma separated");
   compare->add_option("--box", command.box,
                       "clip to a box: lower,upper for each coordinate, or name=lower:upper,…");
@@ -126,9 +128,11 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
       ->check(finite_positive());
   mesh_app
       ->add_option("--placement", mesh.settings.atlas_placement,
-                   "atlas: 'disk' (Henderson, default) or 'hexagonal' (about 30% fewer "
-                   "vertices, then smoothed; slower)")
-      ->check(CLI::IsMember({"disk", "hexagonal"}));
+                   "atlas: 'auto' (default: hexagonal where DF is dense and there is no domain, "
+                   "disk otherwise), "
+                   "'disk' (Henderson's) or 'hexagonal' (about 30% fewer vertices, then smoothed "
+                   "on M: cheap at small n, a factorisation per vertex and pass at large n)")
+      ->check(CLI::IsMember({"auto", "disk", "hexagonal"}));
   mesh_app
       ->add_option("--start", mesh.starts,
                    "start point, comma separated, e.g. 0,0,1; give it more than once to cover "

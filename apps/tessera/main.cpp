@@ -14,6 +14,7 @@
 #include "picture_command.h"
 #include "solver_backend.h"
 #include "tessera/core/error.h"
+#include "tessera/core/parallel_for.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/io/mesh_io.h"
@@ -146,6 +147,16 @@ int main(int argc, char** argv) {
                         "records, as `tessera mesh` and `improve` write it)");
   check_app->add_flag("--json", check_json, "print the report as JSON");
 
+  // Every command takes --threads (docs/threads.md): the data-parallel steps' threads.
+  int threads = 0;
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    command
+        ->add_option("--threads", threads,
+                     "threads for the data-parallel steps: the tolerance check, the validation, "
+                     "the report's distances (default: TESSERA_THREADS, OMP_NUM_THREADS or every "
+                     "core; the mesh is the same whatever the count)")
+        ->check(CLI::PositiveNumber);
+  }
   // PETSc's own options (-ksp_type gmres, -log_view, …) are PETSc's to parse (--backend petsc).
   mesh.petsc_options = tessera::app::take_petsc_options(argc, argv);
   // The command line as given, for the checkpoints of `tessera mesh --checkpoint`.
@@ -167,6 +178,7 @@ int main(int argc, char** argv) {
     return kUsageError;
   }
   try {
+    tessera::set_thread_count(threads);
     if (app.got_subcommand("mesh")) {
       return tessera::app::run_mesh(mesh);
     }

@@ -28,6 +28,7 @@
 #include "progress.h"
 #include "python_problem.h"
 #include "tessera/core/error.h"
+#include "tessera/core/parallel_for.h"
 #include "tessera/geometry/bezier_surface.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
@@ -128,6 +129,7 @@ struct MeshRequest {
   bool improve = false;
   int refine = 0;
   int report_samples = -1;
+  int threads = 0;  ///< the data-parallel steps' threads for this call; 0: thread_count()
   std::string view;
   std::string folds;  ///< the parameter plane of the fold curves (`--folds`), empty: none
   bool stability = false;  ///< `--stability`
@@ -151,6 +153,7 @@ std::string box_text(const MeshRequest& request) {
 std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& problem,
                                          MeshRequest request, const py::object& progress,
                                          bool handle_interrupt) {
+  const ThreadCountScope threads(request.threads);
   ProblemSetup setup = problem->setup();
   apply_start_and_box(setup, request.start.empty() ? "" : join_numbers(request.start),
                       box_text(request));
@@ -772,6 +775,7 @@ PYBIND11_MODULE(_tessera, module) {
       .def_readwrite("improve", &MeshRequest::improve)
       .def_readwrite("refine", &MeshRequest::refine)
       .def_readwrite("report_samples", &MeshRequest::report_samples)
+      .def_readwrite("threads", &MeshRequest::threads)
       .def_readwrite("view", &MeshRequest::view)
       .def_readwrite("folds", &MeshRequest::folds)
       .def_readwrite("stability", &MeshRequest::stability)

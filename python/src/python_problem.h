@@ -83,6 +83,7 @@ class SharedProblem final : public ImplicitProblem {
     problem_->sparse_jacobian(x, J);
   }
   std::string name() const override { return problem_->name(); }
+  bool is_thread_safe() const override { return problem_->is_thread_safe(); }
   std::vector<std::string> coordinate_names() const override {
     return problem_->coordinate_names();
   }

@@ -654,7 +654,7 @@ def mesh(
     method: Optional[str] = None,
     step: Optional[float] = None,
     tolerance: Optional[float] = None,
-    placement: str = "disk",
+    placement: str = "auto",
     start: Optional[ArrayLike] = None,
     box: Optional[Union[ArrayLike, Dict[str, Any]]] = None,
     components: str = "start",
@@ -680,6 +680,7 @@ def mesh(
     progress: Union[None, bool, Callable[[Dict[str, Any]], None]] = None,
     allow_partial: bool = False,
     handle_interrupt: bool = True,
+    threads: Optional[int] = None,
 ) -> Mesh:
     """Covers a problem's surface with a triangle mesh: ``tessera mesh``.
 
@@ -690,7 +691,8 @@ def mesh(
     tolerance: bound on the distance of every point of every triangle to M, enforced by
         bisection on M (atlas: also sizes the charts, default step/50; bezier: also limits
         the steps; front and bezier: no bound by default).
-    placement: atlas: "disk" (default) or "hexagonal".
+    placement: atlas: "auto" (default: "hexagonal" where DF is dense and the domain unbounded,
+        "disk" otherwise), "disk" (Henderson's) or "hexagonal" (about 30 % fewer vertices).
     start: start point (n values); box: lower, upper for each coordinate, or a dict of bounds
         on named coordinates, e.g. {"lambda": (5, 20), "epsilon": (0.15, None)}. Several start
         points, one per row (a list of lists or a 2-D array), cover the component of each
@@ -735,6 +737,9 @@ def mesh(
         later stage begins (docs/python.md, "Progress"); an exception it raises stops the run
         and is raised.
     allow_partial: return the mesh of a run that stopped early instead of raising.
+    threads: threads of the data-parallel steps (``--threads``; default: TESSERA_THREADS,
+        OMP_NUM_THREADS or every core). A Python problem runs on one thread whatever this says
+        (each evaluation takes the GIL); the mesh does not depend on it (docs/threads.md).
     handle_interrupt: Ctrl-C stops the run (from the main thread, while Python's SIGINT handler
         is the default one) and raises `Interrupted` carrying the valid partial mesh.
 
@@ -750,7 +755,7 @@ def mesh(
         request.method = _member("method", method, _tessera.method_names())
     request.step = _finite_positive("step", step)
     request.tolerance = _finite_positive("tolerance", tolerance)
-    request.placement = _member("placement", placement, ["disk", "hexagonal"])
+    request.placement = _member("placement", placement, ["auto", "disk", "hexagonal"])
     if start is not None and not isinstance(start, str) and np.ndim(start) == 2:
         # Several start points, one per row (``--start`` given more than once).
         rows = [_numbers(row) for row in np.asarray(start, dtype=float)]
@@ -783,6 +788,7 @@ def mesh(
     request.edge_length_factor = _in_range("edge_length_factor", edge_length_factor, 0.1, 3.0)
     request.min_tangent_cosine = _in_range("min_tangent_cosine", min_tangent_cosine, 0.01, 0.999)
     request.refine = _in_range("refine", refine, 1, 64, int)
+    request.threads = _in_range("threads", threads, 1, 100_000, int)
     core = _tessera.mesh(chosen._core, request, _progress(progress), bool(handle_interrupt))
     result = Mesh._wrap(core)
     if core.interrupted:
@@ -901,7 +907,7 @@ def compare(
     *,
     step: Optional[float] = None,
     tolerance: Optional[float] = None,
-    placement: str = "disk",
+    placement: str = "auto",
     start: Optional[ArrayLike] = None,
     box: Optional[Union[ArrayLike, Dict[str, Any]]] = None,
     max_vertices: int = 2_000_000,
@@ -910,7 +916,7 @@ def compare(
     """Every covering method on one problem, side by side: ``tessera compare``.
 
     The options are compare's (and mean what they mean for `mesh`): step, tolerance (one for
-    every method, so that the rows compare; default the atlas's step/50), placement (atlas: "disk" or "hexagonal"), start,
+    every method, so that the rows compare; default the atlas's step/50), placement (atlas: "auto", "disk" or "hexagonal"), start,
     box, max_vertices. Returns the CLI's table as a dict::
 
         {"problem": "torus", "expected_euler_characteristic": 0, "passes": True,
@@ -931,7 +937,7 @@ def compare(
     request = _tessera.MeshRequest()
     request.step = _finite_positive("step", step)
     request.tolerance = _finite_positive("tolerance", tolerance)
-    request.placement = _member("placement", placement, ["disk", "hexagonal"])
+    request.placement = _member("placement", placement, ["auto", "disk", "hexagonal"])
     request.start = _numbers(start)
     _set_box(request, box)
     request.max_vertices = _in_range("max_vertices", max_vertices, 7, 100_000_000, int)

@@ -264,6 +264,49 @@ TEST(GeometricValidation, FindsADoubledPatch) {
   expect_defect_named(validation, MeshDefectKind::OverlappingTriangles, "both cover M near (");
 }
 
+// Sheets that cross: the `crossing` problem's sphere and plane z = 0, each a component of its
+// own, pass through each other along the circle, as M does. Valid, and the pairs of triangles
+// where they cross are counted; the same plane doubled (two components on one sheet) is still
+// an overlap.
+TEST(GeometricValidation, ComponentsOnCrossingSheetsAreNotAnOverlap) {
+  const ProblemSetup crossing = make_catalogue_problem("crossing");
+  const TriangleMesh sphere = examples::icosphere(3);
+  const TriangleMesh square = examples::square_grid(12);  // [0, 1]², mapped onto [−1.5, 1.5]²
+  const auto plane_point = [&](int v) {
+    return Eigen::Vector3d(3.0 * square.point(v).x() - 1.5, 3.0 * square.point(v).y() - 1.5, 0.0);
+  };
+  TriangleMesh mesh = sphere;
+  const int offset = mesh.vertex_count();
+  for (int v = 0; v < square.vertex_count(); ++v) {
+    mesh.add_vertex(plane_point(v));
+  }
+  for (const Triangle& tri : square.triangles()) {
+    mesh.add_triangle(offset + tri[0], offset + tri[1], offset + tri[2]);
+  }
+  const MeshValidation validation = validate(mesh, *crossing.problem, Domain(), all_examples());
+  expect_geometrically_valid(validation);
+  EXPECT_EQ(validation.component_count, 2);
+  EXPECT_GT(validation.crossing_pair_count, 0) << validation.report();
+  EXPECT_NE(validation.report().find("components cross"), std::string::npos)
+      << validation.report();
+
+  // The plane's grid once more, turned by 1° about the z-axis: it covers the plane again.
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(std::numbers::pi / 180.0,
+                                                 Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const int second = mesh.vertex_count();
+  for (int v = 0; v < square.vertex_count(); ++v) {
+    mesh.add_vertex(turn * plane_point(v));
+  }
+  for (const Triangle& tri : square.triangles()) {
+    mesh.add_triangle(second + tri[0], second + tri[1], second + tri[2]);
+  }
+  const MeshValidation doubled = validate(mesh, *crossing.problem, Domain(), all_examples());
+  EXPECT_GT(doubled.overlapping_pair_count, 0) << doubled.report();
+  for (const auto& [s, t] : doubled.overlapping_triangle_pairs) {
+    EXPECT_GE(s, sphere.triangle_count()) << "only the plane's copies overlap, not the sphere";
+  }
+}
+
 // A fan that winds twice around its vertex: every triangle is oriented along M, yet the fan
 // covers M twice. Triangles sharing only that vertex overlap; the arcs of their corners there
 // prove it (check_fan_arcs).
@@ -512,6 +555,12 @@ TEST(GeometricValidation, RejectsBadOptionsAndDimensions) {
   EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
   options = {};
   options.min_tangent_cosine = 2;
+  EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
+  options = {};
+  options.crossing_plane_cosine = -0.1;
+  EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
+  options = {};
+  options.crossing_alignment = 1.5;
   EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
   auto flat_torus = make_catalogue_problem("flat_torus");
   EXPECT_THROW(validate(mesh, *flat_torus.problem, Domain()), InvalidArgument);

@@ -140,11 +140,15 @@ TEST(EveryComponentAtlas, FindsTheTorusAndTheSphereInItsHole) {
 
 // The crossing problem's two sheets, the sphere and the square of the plane z = 0 in the box,
 // each covered as a component of its own (the atlas keeps to its sheet at the crossing circle).
-// Their union crosses itself along the circle, so only each on its own is a valid mesh.
+// Their union crosses itself along the circle, as M does: valid, the crossing pairs counted.
 TEST(EveryComponentAtlas, CoversBothSheetsOfTheCrossing) {
   ProblemSetup setup = make_catalogue_problem("crossing");
   const CoveringResult result = search(setup, "atlas");
   expect_components(result, setup, {{2, 0}, {1, 1}});
+  const MeshValidation whole = validate(result.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(whole.is_valid()) << whole.report();
+  EXPECT_GT(whole.crossing_pair_count, 0) << "the sheets cross along the circle";
+  EXPECT_EQ(whole.component_count, 2);
   double area = 0.0;
   for (const ComponentRecord& component : result.summary.components) {
     area += measure_quality(component_mesh(result.mesh, component), *setup.problem).area;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tessera/core/parallel_for.h"
 #include "tessera/geometry/mesh_validation.h"
 #include "tessera/methods/covering_methods.h"
 #include "tessera/problems/catalogue.h"
@@ -48,6 +49,23 @@ ProgressCallback note_polls_at_refine(const int& polls, int& polls_at_refine) {
       polls_at_refine = polls;
     }
   };
+}
+
+// A run without a stop, counting the polls: all of them, and those before the refinement
+// began (the build's, the clipping's and the swaps'; the tolerance check and the final checks
+// poll after them).
+struct CountedRun {
+  CoveringResult result;
+  int whole_polls = 0;
+  int build_polls = 0;
+};
+CountedRun run_counting_polls(const ProblemSetup& setup, const CoveringMethod& method,
+                              MethodSettings settings) {
+  CountedRun run;
+  settings.stop_requested = counting_polls(run.whole_polls);
+  settings.progress = note_polls_at_refine(run.whole_polls, run.build_polls);
+  run.result = cover(setup, method, settings);
+  return run;
 }
 
 TEST_P(StopHook, StopsWithAValidPartialMesh) {
@@ -128,17 +146,17 @@ INSTANTIATE_TEST_SUITE_P(Methods, StopHook,
 // the tolerance holds on part of it only. The front's build does not depend on the tolerance,
 // so a run without one counts the build's polls.
 TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
+  // One thread: the request is polled before every triangle (on several, before every block of
+  // anchor groups), so that the count of polls below is exact.
+  const ThreadCountScope one(1);
   const ProblemSetup setup = make_catalogue_problem("torus");
   const CoveringMethod& front = find_covering_method("front");
   MethodSettings settings;
-  int whole_polls = 0;
-  int build_polls = 0;
-  settings.stop_requested = counting_polls(whole_polls);
-  settings.progress = note_polls_at_refine(whole_polls, build_polls);
-  const CoveringResult built = cover(setup, front, settings);
+  const CountedRun counted = run_counting_polls(setup, front, settings);
+  const CoveringResult& built = counted.result;
+  const int build_polls = counted.build_polls;
   ASSERT_TRUE(built.summary.is_complete()) << built.summary.message;
   ASSERT_GT(build_polls, 0);
-  settings.progress = nullptr;
 
   settings.tolerance = 2e-4;  // far below the front's own accuracy: many triangles to split
   int polls = 0;
@@ -149,7 +167,7 @@ TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
       << stopped.summary.message;
   EXPECT_NE(stopped.summary.message.find("tolerance check"), std::string::npos)
       << stopped.summary.message;
-  EXPECT_EQ(polls, stop_after + 1);  // not asked again after the first `true`
+  EXPECT_EQ(polls, stop_after + 1);                       // not asked again after the first `true`
   EXPECT_EQ(stopped.summary.max_sampled_distance, -1.0);  // no bound for the whole mesh
   const auto& notes = stopped.summary.notes;
   EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& note) {
@@ -168,6 +186,32 @@ TEST(StopRequest, StopDuringTheToleranceCheckKeepsTheBuiltMeshValid) {
   EXPECT_GT(refined.summary.refined_edges, 0);
 }
 
+// The same on threads: the request, polled on the calling thread before every block of anchor
+// groups, stops the check at its first poll, before any split.
+TEST(StopRequest, StopDuringTheToleranceCheckOnThreadsKeepsTheBuiltMeshValid) {
+  const ThreadCountScope two(2);
+  const ProblemSetup setup = make_catalogue_problem("torus");
+  const CoveringMethod& front = find_covering_method("front");
+  MethodSettings settings;
+  const CountedRun counted = run_counting_polls(setup, front, settings);
+  const CoveringResult& built = counted.result;
+  const int build_polls = counted.build_polls;
+  ASSERT_TRUE(built.summary.is_complete()) << built.summary.message;
+  ASSERT_GT(build_polls, 0);
+  settings.tolerance = 2e-4;
+  int polls = 0;
+  const int stop_after = build_polls;  // the check's first poll says stop
+  settings.stop_requested = [&polls, stop_after] { return ++polls > stop_after; };
+  const CoveringResult stopped = cover(setup, front, settings);
+  EXPECT_EQ(stopped.summary.termination, CoveringTermination::Interrupted)
+      << stopped.summary.message;
+  EXPECT_EQ(polls, stop_after + 1);
+  EXPECT_EQ(stopped.summary.refined_edges, 0);
+  EXPECT_EQ(stopped.mesh.vertex_count(), built.mesh.vertex_count());
+  const MeshValidation validation = validate(stopped.mesh, *setup.problem, setup.domain);
+  EXPECT_TRUE(validation.is_valid()) << validation.report();
+}
+
 // A stop during clipping (at n = 10⁵ each projection onto a face costs a factorisation; the
 // clipping of bratu2d:N=316 took minutes): no more projections, the triangles outside the faces
 // not yet clipped are removed, and the mesh is valid, inside the domain and says why its
@@ -176,16 +220,13 @@ TEST(StopRequest, StopDuringClippingLeavesAValidMeshInsideTheDomain) {
   const ProblemSetup setup = make_catalogue_problem("sphere_cut");
   const CoveringMethod& atlas = find_covering_method("atlas");
   MethodSettings settings;
-  int whole_polls = 0;
-  int build_polls = 0;
-  settings.stop_requested = counting_polls(whole_polls);
-  settings.progress = note_polls_at_refine(whole_polls, build_polls);
   settings.tolerance = 0;  // the tolerance check polls too; without it only build and clip do
-  const CoveringResult whole = cover(setup, atlas, settings);
+  const CountedRun counted = run_counting_polls(setup, atlas, settings);
+  const CoveringResult& whole = counted.result;
+  const int build_polls = counted.build_polls;
   ASSERT_TRUE(whole.summary.is_complete()) << whole.summary.message;
   ASSERT_GT(whole.summary.clipped_half_spaces, 0);
   ASSERT_GT(build_polls, 0);
-  settings.progress = nullptr;
 
   // build_polls counts the polls of the build, the clipping and the swaps after it, in that
   // order (the final checks' come after). A stop after k polls lands past the build exactly
@@ -228,21 +269,22 @@ TEST(StopRequest, StopDuringClippingLeavesAValidMeshInsideTheDomain) {
 // not judged, in its message and in the validation it returns. With a grace the check
 // finishes: the run completed, validated in full.
 TEST(StopRequest, StopDuringTheFinalCheckCutsItShortAfterTheGrace) {
+  const ThreadCountScope one(1);  // blocks of 512 vertices: the polls below are this count's
   const ProblemSetup setup = make_catalogue_problem("torus");
   const CoveringMethod& front = find_covering_method("front");
   MethodSettings settings;
-  int whole_polls = 0;
-  int build_polls = 0;
-  settings.stop_requested = counting_polls(whole_polls);
-  settings.progress = note_polls_at_refine(whole_polls, build_polls);
-  const CoveringResult whole = cover(setup, front, settings);
+  const CountedRun counted = run_counting_polls(setup, front, settings);
+  const CoveringResult& whole = counted.result;
+  const int build_polls = counted.build_polls;
   ASSERT_TRUE(whole.summary.is_complete()) << whole.summary.message;
   ASSERT_TRUE(whole.validation.has_value());
-  ASSERT_GT(whole_polls, build_polls + 100) << "the final check polls the stop request";
-  settings.progress = nullptr;
+  // The check polls between blocks of vertices and of pairs of triangles, not per vertex: a
+  // block is milliseconds at n = 3.
+  ASSERT_GT(counted.whole_polls, build_polls + 3) << "the final check polls the stop request";
 
-  // The stop comes after the build (no tolerance: no refinement polls), 10 polls into the check.
-  const int stop_after = build_polls + 10;
+  // The stop comes after the build (no tolerance: no refinement polls), at the check's second
+  // poll: the orientation check has judged its first block of vertices only.
+  const int stop_after = build_polls + 1;
   settings.check_seconds_after_stop = 0.0;
   int polls = 0;
   settings.stop_requested = [&polls, stop_after] { return ++polls > stop_after; };

@@ -3,6 +3,10 @@
 // Jacobian made by Linearization, for summaries and benchmarks.
 #pragma once
 
+#include <array>
+#include <atomic>
+#include <cmath>
+
 #include "tessera/core/ambient_space.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/jacobian_product.h"
@@ -29,7 +33,36 @@ struct WorkCounts {
   }
 };
 
+/// A count that several threads add to at once (the loops of parallel_for.h evaluate F on
+/// threads): each thread adds to a slot of its own, on its own cache line, so that counting
+/// costs no contention; the total sums the slots. Integers, so the total is exact in any order.
+class ConcurrentCount {
+ public:
+  void add(long amount) { slots_[slot()].value.fetch_add(amount, std::memory_order_relaxed); }
+  long total() const {
+    long sum = 0;
+    for (const Slot& slot : slots_) {
+      sum += slot.value.load(std::memory_order_relaxed);
+    }
+    return sum;
+  }
+
+ private:
+  static constexpr std::size_t kSlots = 64;  // threads beyond share slots (atomically still)
+  struct alignas(64) Slot {
+    std::atomic<long> value{0};
+  };
+  // This thread's slot: threads are numbered on their first count, in any counter.
+  static std::size_t slot() {
+    static std::atomic<std::size_t> next{0};
+    thread_local const std::size_t mine = next.fetch_add(1, std::memory_order_relaxed) % kSlots;
+    return mine;
+  }
+  std::array<Slot, kSlots> slots_;
+};
+
 /// Forwards to `inner` and counts calls. Methods wrap the user's problem in one of these.
+/// Thread-safe when `inner` is: the counts are ConcurrentCounts.
 class CountedProblem final : public ImplicitProblem {
  public:
   explicit CountedProblem(const ImplicitProblem& inner) : inner_(inner) {}
@@ -39,21 +72,22 @@ class CountedProblem final : public ImplicitProblem {
   int ambient_dimension() const override { return inner_.ambient_dimension(); }
   void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
                 Eigen::Ref<Eigen::VectorXd> F) const override {
-    ++function_evaluations_;
+    function_evaluations_.add(1);
     inner_.evaluate(x, F);
   }
   void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                 Eigen::Ref<Eigen::MatrixXd> J) const override {
-    ++jacobian_evaluations_;
+    jacobian_evaluations_.add(1);
     inner_.jacobian(x, J);
   }
   bool has_sparse_jacobian() const override { return inner_.has_sparse_jacobian(); }
   void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                        Eigen::SparseMatrix<double>& J) const override {
-    ++jacobian_evaluations_;
+    jacobian_evaluations_.add(1);
     inner_.sparse_jacobian(x, J);
   }
   std::string name() const override { return inner_.name(); }
+  bool is_thread_safe() const override { return inner_.is_thread_safe(); }
   std::vector<std::string> coordinate_names() const override { return inner_.coordinate_names(); }
   std::vector<CoordinateBlock> coordinate_blocks() const override {
     return inner_.coordinate_blocks();
@@ -68,21 +102,22 @@ class CountedProblem final : public ImplicitProblem {
   }
   /// Called by Linearization::factor for the evaluations of DF that a problem's own backend
   /// made without calling `jacobian` (the PETSc backend evaluates DF on distributed matrices).
-  void record_jacobian_evaluations(long count) const { jacobian_evaluations_ += count; }
+  void record_jacobian_evaluations(long count) const { jacobian_evaluations_.add(count); }
 
   /// Called by Linearization::factor with the factorisations it made for this problem and the
   /// wall time they took (evaluating DF, bordering, analysing and factoring).
   void record_factorisations(long count, double seconds) const {
-    factorisations_ += count;
-    factorisation_seconds_ += seconds;
+    factorisations_.add(count);
+    factorisation_nanoseconds_.add(std::lround(seconds * 1e9));
   }
-  double factorisation_seconds() const { return factorisation_seconds_; }
+  /// Summed over the threads that factored (CPU time, not wall time, when they overlap).
+  double factorisation_seconds() const { return 1e-9 * factorisation_nanoseconds_.total(); }
 
-  long function_evaluations() const { return function_evaluations_; }
-  long jacobian_evaluations() const { return jacobian_evaluations_; }
-  long factorisations() const { return factorisations_; }
+  long function_evaluations() const { return function_evaluations_.total(); }
+  long jacobian_evaluations() const { return jacobian_evaluations_.total(); }
+  long factorisations() const { return factorisations_.total(); }
   WorkCounts counts() const {
-    return {function_evaluations_, jacobian_evaluations_, factorisations_};
+    return {function_evaluations(), jacobian_evaluations(), factorisations()};
   }
 
  private:
@@ -91,7 +126,7 @@ class CountedProblem final : public ImplicitProblem {
    public:
     explicit CountedProducts(const CountedProblem& owner) : owner_(owner) {}
     double evaluate_jacobian_at(const Eigen::Ref<const Eigen::VectorXd>& y) const override {
-      ++owner_.jacobian_evaluations_;
+      owner_.jacobian_evaluations_.add(1);
       return owner_.inner_.as_jacobian_product()->evaluate_jacobian_at(y);
     }
     void multiply_jacobian(const Eigen::Ref<const Eigen::MatrixXd>& V,
@@ -105,10 +140,10 @@ class CountedProblem final : public ImplicitProblem {
 
   const ImplicitProblem& inner_;
   CountedProducts counted_products_{*this};
-  mutable long function_evaluations_ = 0;
-  mutable long jacobian_evaluations_ = 0;
-  mutable long factorisations_ = 0;
-  mutable double factorisation_seconds_ = 0.0;
+  mutable ConcurrentCount function_evaluations_;
+  mutable ConcurrentCount jacobian_evaluations_;
+  mutable ConcurrentCount factorisations_;
+  mutable ConcurrentCount factorisation_nanoseconds_;
 };
 
 }  // namespace tessera

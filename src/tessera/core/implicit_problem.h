@@ -40,8 +40,9 @@ struct CoordinateBlock {
 /// Problems with large n (discretised PDEs) override `has_sparse_jacobian` to return true and
 /// implement `sparse_jacobian`; the solvers then never form a dense (n-2)×n matrix.
 ///
-/// Evaluations may be called from one thread at a time per problem object; implementations
-/// should be free of side effects apart from caching.
+/// Evaluations are called from one thread at a time per problem object unless the problem says
+/// it is thread-safe (is_thread_safe); implementations should be free of side effects apart
+/// from caching.
 class ImplicitProblem {
  public:
   virtual ~ImplicitProblem() = default;
@@ -65,6 +66,15 @@ class ImplicitProblem {
   /// J = DF(x), sparse (n-2)×n, compressed column storage. The default converts `jacobian`.
   virtual void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                                Eigen::SparseMatrix<double>& J) const;
+
+  /// Whether `evaluate`, `jacobian`, `sparse_jacobian` and `make_linearization_backend` may be
+  /// called from several threads at once, each with its own arguments; then the data-parallel
+  /// steps (the tolerance check, the validation, the report's distances) run on threads
+  /// (parallel_for.h). False, the default, keeps every call on one thread: a callback into
+  /// Python (the GIL), a distributed problem (collective MPI calls) or one with a cache must
+  /// not be called concurrently. The catalogue's problems and problem files are pure functions
+  /// and say true; decorators forward their inner problem's.
+  virtual bool is_thread_safe() const { return false; }
 
   /// Short identifier, e.g. "sphere". Used in reports and file headers.
   virtual std::string name() const { return "problem"; }

@@ -33,6 +33,7 @@ class ScaledProblem final : public ImplicitProblem {
   void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& y,
                        Eigen::SparseMatrix<double>& J) const override;
   std::string name() const override { return inner_.name(); }
+  bool is_thread_safe() const override { return inner_.is_thread_safe(); }
   std::vector<std::string> coordinate_names() const override { return inner_.coordinate_names(); }
   /// The inner blocks with weight 1: in y the metric is already Euclidean.
   std::vector<CoordinateBlock> coordinate_blocks() const override;

@@ -17,6 +17,7 @@
 #include "tessera/core/error.h"
 #include "tessera/core/factorisation_cache.h"
 #include "tessera/core/linearization.h"
+#include "tessera/core/parallel_for.h"
 #include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/mesh_topology.h"
 
@@ -322,7 +323,14 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
   chord.max_contraction = 0.9;
   chord.max_iterations = 60;
   Eigen::MatrixXd tangent;
-  const auto distance = [&](const Eigen::VectorXd& x, int corner, Statistic& statistic) {
+  // Dense problems measure every point on its own (a projection from scratch), so the points
+  // are measured on threads and recorded after, in the serial order: the same statistics,
+  // to the bit, whatever the thread count. Sparse problems share the corners' factorisations
+  // in that order, on one thread (threads_for).
+  const int threads = threads_for(problem);
+  // The distance from x to M, NaN where the projection failed; `own` is the workspace of a
+  // dense problem's point (sparse ones use the shared `workspace` and `corners`).
+  const auto distance_of = [&](const Eigen::VectorXd& x, int corner, Linearization& own) -> double {
     Eigen::VectorXd y = x;
     if (is_sparse && corner >= 0) {
       const Linearization* at_corner = corners.find(corner);
@@ -346,20 +354,35 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
           }
           y = z;
         }
-        accumulate(statistic, space.distance(y, x));
-        return;
+        return space.distance(y, x);
       }
       y = x;
     }
-    if (!project_onto_manifold(problem, y, workspace)) {
-      ++quality.failed_projections;
-      return;
+    if (!project_onto_manifold(problem, y, is_sparse ? workspace : own)) {
+      return std::numeric_limits<double>::quiet_NaN();
     }
-    accumulate(statistic, space.distance(y, x));
+    return space.distance(y, x);
   };
-  for (int v = 0; v < mesh.vertex_count(); ++v) {
-    problem.evaluate(point(v), F);
-    accumulate(quality.vertex_residual, space.norm(F));
+  const auto record = [&](double value, Statistic& statistic) {
+    if (std::isnan(value)) {
+      ++quality.failed_projections;
+    } else {
+      accumulate(statistic, value);
+    }
+  };
+  const auto distance = [&](const Eigen::VectorXd& x, int corner, Statistic& statistic) {
+    record(distance_of(x, corner, workspace), statistic);
+  };
+  {
+    std::vector<double> residual(static_cast<std::size_t>(mesh.vertex_count()));
+    parallel_for(mesh.vertex_count(), threads, [&](int v) {
+      Eigen::VectorXd own_F(F.size());
+      problem.evaluate(point(v), own_F);
+      residual[static_cast<std::size_t>(v)] = space.norm(own_F);
+    });
+    for (const double r : residual) {
+      accumulate(quality.vertex_residual, r);
+    }
   }
   quality.vertex_residual.population = mesh.vertex_count();
   const MeshTopology topology(mesh);
@@ -422,6 +445,54 @@ MeshQuality quality_of(const TriangleMesh& mesh, const PointOf& point,
     const auto& edge = edges[static_cast<std::size_t>(e)];
     distance(0.5 * (point(edge[0]) + point(edge[1])), edge[0], quality.midpoint_distance);
   };
+  if (threads > 1) {
+    // Rounds in blocks: each block's points on threads, then recorded in order; the stop
+    // request and the time budget are polled between blocks, on this thread. The first block
+    // is the samples the budget always leaves.
+    // (Few blocks: each ends at a barrier, which costs a time slice on a loaded machine.)
+    const std::size_t later_blocks = 4096 * static_cast<std::size_t>(threads);
+    constexpr double kNotSampled = -1.0;          // distances are >= 0; NaN: the projection failed
+    std::vector<std::array<double, 3>> measured;  // per round: vertex, centroid, midpoint
+    for (std::size_t first = 0, block = kMinDistanceSamples; first < rounds;
+         first += block, block = later_blocks) {
+      bool stop = (first >= static_cast<std::size_t>(kMinDistanceSamples) && !has_time()) ||
+                  (options.stop_requested && options.stop_requested());
+      if (options.decide_together) {
+        stop = options.decide_together(stop);
+      }
+      if (stop) {
+        break;
+      }
+      const std::size_t size = std::min(block, rounds - first);
+      measured.assign(size, {kNotSampled, kNotSampled, kNotSampled});
+      parallel_for(static_cast<int>(size), threads, [&](int k) {
+        const std::size_t i = first + static_cast<std::size_t>(k);
+        std::array<double, 3>& out = measured[static_cast<std::size_t>(k)];
+        Linearization own;
+        if (i < vertices.size()) {
+          out[0] = distance_of(point(vertices[i]), -1, own);
+        }
+        if (i < triangles.size()) {
+          const Triangle& tri = mesh.triangle(triangles[i]);
+          out[1] = distance_of((point(tri[0]) + point(tri[1]) + point(tri[2])) / 3.0, -1, own);
+        }
+        if (i < midpoints.size()) {
+          const auto& edge = edges[static_cast<std::size_t>(midpoints[i])];
+          out[2] = distance_of(0.5 * (point(edge[0]) + point(edge[1])), -1, own);
+        }
+      });
+      for (const std::array<double, 3>& out : measured) {
+        Statistic* statistics[3] = {&quality.vertex_distance, &quality.centroid_distance,
+                                    &quality.midpoint_distance};
+        for (int kind = 0; kind < 3; ++kind) {
+          if (!(out[kind] == kNotSampled)) {
+            record(out[kind], *statistics[kind]);
+          }
+        }
+      }
+    }
+    return quality;
+  }
   for (std::size_t i = 0; i < rounds; ++i) {
     bool stop = (i >= static_cast<std::size_t>(kMinDistanceSamples) && !has_time()) ||
                 (options.stop_requested && options.stop_requested());

@@ -37,8 +37,10 @@ struct QualityOptions {
   /// the counts say what was measured and the quantile statement above holds for them. At
   /// n = 10⁵ a sample costs about a factorisation (0.3–0.5 s). Infinite: no limit.
   double max_seconds = std::numeric_limits<double>::infinity();
-  /// Polled before every distance sample; true ends the measurement with what was measured
-  /// (the counts say how much). Ctrl-C during the report at large n.
+  /// Polled before every distance sample on one thread, before every block of samples on
+  /// several (the first kMinDistanceSamples of each kind, then 4096 rounds per thread: some
+  /// 50 ms at n = 3); true ends the measurement with what was measured (the counts say how much).
+  /// Ctrl-C during the report at large n. Polled on the calling thread only.
   std::function<bool()> stop_requested;
   /// In a distributed run (every rank measuring the same samples, each a collective
   /// projection): this rank's wish to stop, spent budget or stop request, in; the decision

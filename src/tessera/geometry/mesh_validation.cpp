@@ -164,6 +164,11 @@ std::string MeshValidation::report() const {
           << (unoriented_triangle_count == 1 ? " triangle" : " triangles")
           << " not oriented: DF singular at the centroid)";
     }
+    if (crossing_pair_count > 0) {
+      out << " (" << crossing_pair_count
+          << (crossing_pair_count == 1 ? " pair" : " pairs")
+          << " of triangles where components cross: sheets of M crossing, not a double covering)";
+    }
     out << "\n";
   } else {
     out << "geometry: not checked (no problem given)\n";
@@ -525,6 +530,12 @@ MeshValidation validate(const TriangleMesh& mesh, const ImplicitProblem& problem
   TESSERA_CHECK(options.overlap_same_point_ratio >= 0,
                 "ValidationOptions::overlap_same_point_ratio = " << options.overlap_same_point_ratio
                                                                  << " must be >= 0");
+  TESSERA_CHECK(options.crossing_plane_cosine >= 0 && options.crossing_plane_cosine <= 1,
+                "ValidationOptions::crossing_plane_cosine = " << options.crossing_plane_cosine
+                                                              << " must lie in [0, 1]");
+  TESSERA_CHECK(options.crossing_alignment >= 0 && options.crossing_alignment <= 1,
+                "ValidationOptions::crossing_alignment = " << options.crossing_alignment
+                                                           << " must lie in [0, 1]");
   TESSERA_CHECK(options.domain_tolerance_ratio >= 0,
                 "ValidationOptions::domain_tolerance_ratio = " << options.domain_tolerance_ratio
                                                                << " must be >= 0");

@@ -74,6 +74,15 @@ struct ValidationOptions {
   /// on another sheet (the trough's, 5e-5 away, or the far side of a thin tube) P(q₂) stays on
   /// that sheet, a ratio near 1. 0.25 lies between the two.
   double overlap_same_point_ratio = 0.25;
+  /// Sheets of M that cross (the `crossing` problem's sphere and plane, each covered as a
+  /// component of its own by `--components all`): two triangles of different components that
+  /// both lie along M (|s| ≥ crossing_alignment, see min_tangent_cosine) and whose planes meet
+  /// at more than acos(crossing_plane_cosine) (|det(U₁ᵀU₂)| below it, U the planes' orthonormal
+  /// bases) touch where the sheets cross: M's own shape, not a part of M covered twice. Within
+  /// 18° of M each (0.95), two triangles over one sheet that turns by κh ≤ 0.5 rad between them
+  /// meet at 65° at most, below the 69.5° of 0.35 (the atlas's min_sheet_cosine).
+  double crossing_plane_cosine = 0.35;
+  double crossing_alignment = 0.95;
   /// A vertex x is outside the domain if a half-space's signed distance is below
   /// −ratio·(1 + ‖x‖∞): rounding of a point placed on a face is a few ulp of its coordinates
   /// (2e-16·‖x‖∞), so 1e-12 accepts every vertex snapped to ∂S and reports one 3.9e-7 outside.
@@ -126,6 +135,9 @@ struct MeshValidation {
   /// Triangles whose orientation could not be judged: DF is rank deficient or not finite at
   /// all three corners (e.g. on the crossing curve of two sheets). Not a defect.
   int unoriented_triangle_count = 0;
+  /// Pairs of triangles of different components that cross transversally, both along M: sheets
+  /// of M crossing (ValidationOptions::crossing_plane_cosine). Not a defect.
+  int crossing_pair_count = 0;
   /// Complete lists, ascending, so that a caller can repair locally (remove and re-fill).
   std::vector<int> flipped_triangles;
   std::vector<std::pair<int, int>> overlapping_triangle_pairs;  ///< (s, t), s < t

@@ -18,6 +18,7 @@
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
+#include "tessera/core/parallel_for.h"
 #include "tessera/geometry/detail/mesh_validation_checks.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/spatial_hash.h"
@@ -135,11 +136,31 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
   constexpr double kNearTangentTolerance = 1e-6;
   constexpr int kSharedRings = 3;
   std::vector<std::uint8_t> is_done(vertex_count, 0);
+  if (!is_sparse) {
+    // Every vertex on its own: on threads (judge_corners writes only the corners at v).
+    // By blocks, a stop request polled between them on this thread; a block is a few
+    // milliseconds at small n, fewer vertices where each is a dense factorisation of size n.
+    const int threads = threads_for(geometry.problem);
+    const int per_block = threads * (view.mesh.ambient_dimension() <= 64 ? 512 : 8);
+    for (int first = 0; first < vertex_count && !stop.is_stopped(); first += per_block) {
+      parallel_for(std::min(per_block, vertex_count - first), threads, [&](int i) {
+        const int v = first + i;
+        if (topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v]) {
+          return;
+        }
+        is_done[v] = 1;  // one writer per vertex
+        Linearization at_vertex;
+        if (at_vertex.factor(geometry.problem, points.col(v))) {
+          judge_corners(v, at_vertex.tangent_basis());
+        }
+      });
+    }
+  }
   Linearization linearization;
   Eigen::MatrixXd near_tangent;
   std::vector<int> ring;
   std::vector<int> next_ring;
-  for (int v = 0; v < vertex_count; ++v) {
+  for (int v = 0; v < vertex_count && is_sparse; ++v) {
     if (is_done[v] || topology.vertex_triangles(v).empty() || !view.is_finite_vertex[v]) {
       continue;
     }
@@ -151,9 +172,6 @@ void check_orientation(const MeshView& view, const GeometricInput& geometry,
       continue;  // DF rank deficient at the vertex: not judged there
     }
     judge_corners(v, linearization.tangent_basis());
-    if (!is_sparse) {
-      continue;
-    }
     ring.assign(1, v);
     for (int rings = 0; rings < kSharedRings; ++rings) {
       next_ring.clear();
@@ -305,6 +323,48 @@ struct OverlapOnManifold {
   double area = 0.0;      // of the overlap in the chart (M's tangent plane at `point`)
   double width = 0.0;     // its area / perimeter
 };
+
+// Do triangles s and t of different components cross where two sheets of M cross
+// (ValidationOptions::crossing_plane_cosine)? Only components covered apart meet that way: a
+// covering that reaches a crossing keeps to its sheet (the atlas's min_sheet_cosine), and two
+// components over one sheet lie in nearly one plane where they meet, so they are judged on M.
+bool is_sheet_crossing(const MeshView& view, int s, int t, const ValidationOptions& options) {
+  const MeshTopology& topology = view.topology;
+  if (topology.component_of(s) == topology.component_of(t)) {
+    return false;
+  }
+  const double along_s = std::abs(view.shapes.oriented_cosine[s]);  // NaN: not judged
+  const double along_t = std::abs(view.shapes.oriented_cosine[t]);
+  if (!(along_s >= options.crossing_alignment && along_t >= options.crossing_alignment)) {
+    return false;
+  }
+  // |det(U_sᵀU_t)| = |det(EᵀF)| / sqrt(det(EᵀE)·det(FᵀF)) for the edge vectors E of s, F of t.
+  const auto points = view.mesh.points();
+  const Triangle& a = view.topology.triangles()[s];
+  const Triangle& b = view.topology.triangles()[t];
+  std::array<Eigen::VectorXd, 4> edge = {
+      points.col(a[1]) - points.col(a[0]), points.col(a[2]) - points.col(a[0]),
+      points.col(b[1]) - points.col(b[0]), points.col(b[2]) - points.col(b[0])};
+  std::array<double, 10> gram;  // the upper triangle of the 4×4 Gram matrix of the edges
+  int k = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i; j < 4; ++j) {
+      gram[static_cast<std::size_t>(k++)] = edge[i].dot(edge[j]);
+    }
+  }
+  view.mesh.space().sum(gram.data(), 10);  // over the ranks of a split mesh (else nothing)
+  const auto at = [&](int i, int j) {
+    const int lo = std::min(i, j), hi = std::max(i, j);
+    return gram[static_cast<std::size_t>(lo * 4 - lo * (lo - 1) / 2 + (hi - lo))];
+  };
+  const double cross = at(0, 2) * at(1, 3) - at(0, 3) * at(1, 2);
+  const double own_s = at(0, 0) * at(1, 1) - at(0, 1) * at(0, 1);
+  const double own_t = at(2, 2) * at(3, 3) - at(2, 3) * at(2, 3);
+  if (!(own_s > 0.0 && own_t > 0.0)) {
+    return false;
+  }
+  return std::abs(cross) < options.crossing_plane_cosine * std::sqrt(own_s * own_t);
+}
 
 // Do the triangles `first` and `second` cover the same part of M near the point p of M (the
 // projection of a point where their planar projections overlap)? Both are mapped into the chart
@@ -458,37 +518,36 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
   std::vector<std::pair<int, int>> pairs =
       nearby_triangle_pairs(points, triangles, margins, split ? view.mesh.shared_space() : nullptr);
   std::sort(pairs.begin(), pairs.end());
-  Linearization workspace;
   // The planar test runs for every candidate pair (about ten per triangle), and at large n its
   // cost is the passes over n-vectors: the reference triangle's frame (origin, orthonormal U,
   // its own corners in U) is kept for the last two references (pairs come sorted by their first
   // triangle, which is preferred as the reference, so one of the two recurs), and so are the
-  // coordinates in it of every vertex projected so far (the other triangles of a fan share
-  // vertices).
+  // coordinates in it of the vertices projected so far (the other triangles of a fan share
+  // vertices). What is kept only saves work: each value is the same computed again.
   struct ReferenceFrame {
     int triangle = -1;
     Eigen::VectorXd origin;
     Eigen::MatrixXd U;
     Eigen::Matrix<double, 2, 3> corners;
-    std::vector<int> projected_for;  // per vertex: the triangle whose frame `projected` is in
-    std::vector<Eigen::Vector2d> projected;
+    std::vector<std::pair<int, Eigen::Vector2d>> projected;  // (vertex, its coordinates in U)
   };
-  std::array<ReferenceFrame, 2> frames;
-  for (ReferenceFrame& frame : frames) {
-    frame.projected_for.assign(static_cast<std::size_t>(view.mesh.vertex_count()), -1);
-    frame.projected.resize(static_cast<std::size_t>(view.mesh.vertex_count()));
-  }
-  int newest_frame = 0;
-  Eigen::VectorXd d(n);
-  const auto frame_of = [&](int reference) -> ReferenceFrame& {
-    for (ReferenceFrame& frame : frames) {
+  // One planar tester per block of pairs (its own frames), so that blocks run on threads.
+  struct PlanarTester {
+    std::array<ReferenceFrame, 2> frames;
+    int newest_frame = 0;
+    Eigen::VectorXd d;
+  };
+  const auto frame_of = [&](PlanarTester& tester, int reference) -> ReferenceFrame& {
+    for (ReferenceFrame& frame : tester.frames) {
       if (frame.triangle == reference) {
         return frame;
       }
     }
-    newest_frame = 1 - newest_frame;
-    ReferenceFrame& frame = frames[static_cast<std::size_t>(newest_frame)];
+    tester.newest_frame = 1 - tester.newest_frame;
+    ReferenceFrame& frame = tester.frames[static_cast<std::size_t>(tester.newest_frame)];
     frame.triangle = reference;
+    frame.projected.clear();
+    Eigen::VectorXd& d = tester.d;
     // Orthonormal basis of the reference plane from its longest edge and the apex's offset
     // from that edge (accurate for thin triangles; see triangle_area_and_longest_squared).
     const Triangle& r = triangles[reference];
@@ -521,31 +580,28 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
     }
     return frame;
   };
-  Eigen::Matrix<double, 2, 3> b;
   // Pairs the fan check (check_fan_arcs) has reported already.
   const std::set<std::pair<int, int>> known(result.overlapping_triangle_pairs.begin(),
                                             result.overlapping_triangle_pairs.end());
-  // A stop request is polled per pair: at large n the planar test's passes over n-vectors add
-  // up to seconds, and the projections onto M after it to a factorisation each.
-  std::size_t judged_pairs = 0;
-  for (const auto& [s, t] : pairs) {
-    if (stop.is_stopped()) {
-      result.checks_cut_short.push_back(
-          "overlaps on M: " + std::to_string(pairs.size() - judged_pairs) + " of " +
-          std::to_string(pairs.size()) + " pairs of nearby triangles not judged");
-      break;
-    }
-    ++judged_pairs;
+  // A pair whose projections onto the reference plane overlap beyond rounding: judged on M.
+  struct PlanarOverlapFound {
+    std::size_t pair = 0;
+    int shared = 0;          // vertices the two triangles share
+    Eigen::VectorXd lifted;  // the planar overlap's centroid, lifted into R^n
+  };
+  const auto test_in_plane = [&](PlanarTester& tester, std::size_t k,
+                                 std::vector<PlanarOverlapFound>& found) {
+    const auto [s, t] = pairs[k];
     if (known.count({std::min(view.original[s], view.original[t]),
                      std::max(view.original[s], view.original[t])}) > 0) {
-      continue;
+      return;
     }
     int shared = 0;
     for (int v : triangles[s]) {
       shared += (v == triangles[t][0] || v == triangles[t][1] || v == triangles[t][2]) ? 1 : 0;
     }
     if (shared == 3) {
-      continue;  // a duplicate, reported as such
+      return;  // a duplicate, reported as such
     }
     // Neighbours across an edge are judged too: their images touch along the edge unless the
     // pair is folded, which the orientation check decides from the corners' tangent planes and
@@ -559,50 +615,102 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
     // its frame and projections serve its next pairs too.
     const int reference = alignment(s) >= 0.9 * alignment(t) ? s : t;
     const int other = reference == s ? t : s;
-    ReferenceFrame& frame = frame_of(reference);
+    ReferenceFrame& frame = frame_of(tester, reference);
     const Eigen::VectorXd& o = frame.origin;
     const Eigen::MatrixXd& U = frame.U;
     const Eigen::Matrix<double, 2, 3>& a = frame.corners;
+    Eigen::Matrix<double, 2, 3> b;
     for (int j = 0; j < 3; ++j) {
       const int v = triangles[other][j];
-      const auto k = static_cast<std::size_t>(v);
-      if (frame.projected_for[k] != reference) {
-        const auto q = points.col(v);
-        frame.projected[k] = {(U.col(0).array() * (q - o).array()).sum(),
-                              (U.col(1).array() * (q - o).array()).sum()};
-        if (split) {
-          space.sum(frame.projected[k].data(), 2);
-        }
-        frame.projected_for[k] = reference;
+      const auto cached = std::find_if(frame.projected.begin(), frame.projected.end(),
+                                       [v](const auto& entry) { return entry.first == v; });
+      if (cached != frame.projected.end()) {
+        b.col(j) = cached->second;
+        continue;
       }
-      b.col(j) = frame.projected[k];
+      const auto q = points.col(v);
+      Eigen::Vector2d projected = {(U.col(0).array() * (q - o).array()).sum(),
+                                   (U.col(1).array() * (q - o).array()).sum()};
+      if (split) {
+        space.sum(projected.data(), 2);
+      }
+      frame.projected.emplace_back(v, projected);
+      b.col(j) = projected;
     }
     const PlanarOverlap overlap = triangle_intersection(a, b);
     const double smaller_area = std::min(shapes.area[s], shapes.area[t]);
-    if (!(overlap.area > options.overlap_area_ratio * smaller_area)) {
-      continue;
+    if (overlap.area > options.overlap_area_ratio * smaller_area) {
+      found.push_back({k, shared, lift(o, U, overlap.centroid)});
     }
-    Eigen::VectorXd p = lift(o, U, overlap.centroid);
-    if (!project_onto_manifold(geometry.problem, p, workspace) || !workspace.is_factored()) {
-      continue;  // no point of M to compare at: left unjudged
-    }
-    const OverlapOnManifold on_m =
-        overlap_on_manifold(view, geometry, triangles[s], triangles[t], p, workspace, options);
-    if (!on_m.is_overlap) {
-      continue;
-    }
-    p = on_m.point;
-    result.overlapping_triangle_pairs.emplace_back(view.original[s], view.original[t]);
-    recorder.record(MeshDefectKind::OverlappingTriangles, [&] {
-      std::ostringstream out;
-      out.precision(3);
-      out << triangle_name(view.original[s], triangles[s]) << " and "
-          << triangle_name(view.original[t], triangles[t]) << " both cover M near "
-          << describe_point(p, space) << ": overlap " << 100.0 * on_m.area / smaller_area
-          << "% of the smaller, " << on_m.width << " wide"
-          << (shared == 1 ? " (they share one vertex: a folded fan)" : "");
-      return out.str();
+  };
+  // The planar tests on threads, by blocks of pairs (a split mesh's are sums over the ranks:
+  // one thread, in order); the few pairs that overlap in the plane are then judged on M here,
+  // in the pairs' order, so that the defects are recorded as one loop records them.
+  // A stop request is polled between rounds of blocks and per pair judged on M, on this thread
+  // (CheckStop is not thread-safe, and on a split mesh every rank must poll at the same place):
+  // at large n a pair's planar test is a few passes over n-vectors, so blocks hold fewer pairs.
+  const std::size_t pairs_per_block =
+      std::clamp<std::size_t>((std::size_t{1} << 24) / static_cast<std::size_t>(std::max(n, 1)),
+                              64, 8192);
+  const std::size_t blocks = (pairs.size() + pairs_per_block - 1) / pairs_per_block;
+  const int threads = split ? 1 : thread_count();
+  std::vector<std::vector<PlanarOverlapFound>> found(blocks);
+  std::size_t tested_pairs = 0;
+  for (std::size_t round = 0; round < blocks && !stop.is_stopped();
+       round += static_cast<std::size_t>(threads)) {
+    const std::size_t round_blocks = std::min(blocks - round, static_cast<std::size_t>(threads));
+    parallel_for(static_cast<int>(round_blocks), threads, [&](int i) {
+      const std::size_t block = round + static_cast<std::size_t>(i);
+      PlanarTester tester;
+      tester.d.resize(n);
+      const std::size_t first = block * pairs_per_block;
+      for (std::size_t k = first; k < std::min(pairs.size(), first + pairs_per_block); ++k) {
+        test_in_plane(tester, k, found[block]);
+      }
     });
+    tested_pairs = std::min(pairs.size(), (round + round_blocks) * pairs_per_block);
+  }
+  std::size_t unjudged_pairs = pairs.size() - tested_pairs;
+  Linearization workspace;
+  for (const std::vector<PlanarOverlapFound>& block : found) {
+    for (const PlanarOverlapFound& candidate : block) {
+      if (stop.is_stopped()) {
+        ++unjudged_pairs;  // overlaps in the plane, not judged on M
+        continue;
+      }
+      const auto [s, t] = pairs[candidate.pair];
+      if (is_sheet_crossing(view, s, t, options)) {
+        ++result.crossing_pair_count;
+        continue;
+      }
+      Eigen::VectorXd p = candidate.lifted;
+      if (!project_onto_manifold(geometry.problem, p, workspace) || !workspace.is_factored()) {
+        continue;  // no point of M to compare at: left unjudged
+      }
+      const OverlapOnManifold on_m =
+          overlap_on_manifold(view, geometry, triangles[s], triangles[t], p, workspace, options);
+      if (!on_m.is_overlap) {
+        continue;
+      }
+      p = on_m.point;
+      const double smaller_area = std::min(shapes.area[s], shapes.area[t]);
+      result.overlapping_triangle_pairs.emplace_back(view.original[s], view.original[t]);
+      recorder.record(MeshDefectKind::OverlappingTriangles, [&] {
+        std::ostringstream out;
+        out.precision(3);
+        out << triangle_name(view.original[s], triangles[s]) << " and "
+            << triangle_name(view.original[t], triangles[t]) << " both cover M near "
+            << describe_point(p, space) << ": overlap " << 100.0 * on_m.area / smaller_area
+            << "% of the smaller, " << on_m.width << " wide"
+            << (candidate.shared == 1 ? " (they share one vertex: a folded fan)" : "");
+        return out.str();
+      });
+    }
+  }
+  if (unjudged_pairs > 0) {
+    result.checks_cut_short.push_back("overlaps on M: " + std::to_string(unjudged_pairs) + " of " +
+                                      std::to_string(pairs.size()) +
+                                      " pairs of nearby triangles not judged");
   }
   check_thin_triangles(view, geometry, pairs, stop, recorder, result);
 }

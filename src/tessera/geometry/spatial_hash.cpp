@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
 
 #include "tessera/core/error.h"
+#include "tessera/core/parallel_for.h"
 #include "tessera/geometry/principal_view.h"
 
 namespace tessera {
@@ -226,13 +228,20 @@ std::vector<std::pair<int, int>> nearby_triangle_pairs(
   // A split mesh: each rank tests its rows of the ambient boxes, and a pair is kept where no
   // rank separates it (one reduction over all candidates at the end).
   const bool split = space != nullptr && space->is_distributed();
-  std::vector<double> separated;  // per candidate pair (split meshes): ranks that separate it
-  std::vector<std::pair<int, int>> pairs;
-  std::vector<int> last_seen_by(triangle_count, -1);  // dedupes cells that share a key
-  for (int s = 0; s < triangle_count; ++s) {
-    if (level[s] < 0) {
-      continue;
+  // Dedupes the cells that share a key: per thread, the stamp of the last triangle s whose
+  // search met t, (call, s), so that no entry of an earlier call matches (kept between calls:
+  // 8 bytes a triangle per thread).
+  static std::atomic<std::uint64_t> calls{0};
+  const std::uint64_t call = calls.fetch_add(1, std::memory_order_relaxed) + 1;
+  // The partners of triangle s, appended to `found` (with each candidate's verdict in
+  // `separated` for a split mesh).
+  const auto partners_of = [&](int s, std::vector<std::pair<int, int>>& found,
+                               std::vector<double>& separated) {
+    thread_local std::vector<std::uint64_t> last_seen_by;
+    if (last_seen_by.size() < static_cast<std::size_t>(triangle_count)) {
+      last_seen_by.resize(static_cast<std::size_t>(triangle_count), 0);
     }
+    const std::uint64_t stamp = (call << 32) | static_cast<std::uint32_t>(s);
     for (int l : used_levels) {
       if (l < level[s]) {
         continue;
@@ -241,24 +250,49 @@ std::vector<std::pair<int, int>> nearby_triangle_pairs(
         for (int entry = table.first(key); entry != -1; entry = table.next(entry)) {
           const int t = table.triangle(entry);
           // Each pair once: by its member on the finer level, or by the smaller index.
-          if (level[t] != l || (level[t] == level[s] && t <= s) || last_seen_by[t] == s) {
+          std::uint64_t& seen = last_seen_by[static_cast<std::size_t>(t)];
+          if (level[t] != l || (level[t] == level[s] && t <= s) || seen == stamp) {
             continue;
           }
-          last_seen_by[t] = s;
+          seen = stamp;
           if (!boxes_overlap(boxes[s], boxes[t])) {
             continue;
           }
           const bool overlap =
               ambient_boxes_overlap(points, triangles[s], margins[s], triangles[t], margins[t]);
           if (split) {
-            pairs.emplace_back(std::min(s, t), std::max(s, t));
+            found.emplace_back(std::min(s, t), std::max(s, t));
             separated.push_back(overlap ? 0.0 : 1.0);
           } else if (overlap) {
-            pairs.emplace_back(std::min(s, t), std::max(s, t));
+            found.emplace_back(std::min(s, t), std::max(s, t));
           }
         }
       });
     }
+  };
+  // The table is only read from here on: blocks of triangles look for their partners on
+  // threads, and the blocks' pairs are joined in order, as one loop over s finds them. (A split
+  // mesh's ambient test is a sum over the ranks: one thread, in order.)
+  constexpr int kTrianglesPerBlock = 4096;
+  const int blocks = (triangle_count + kTrianglesPerBlock - 1) / kTrianglesPerBlock;
+  std::vector<std::vector<std::pair<int, int>>> block_pairs(static_cast<std::size_t>(blocks));
+  std::vector<std::vector<double>> block_separated(static_cast<std::size_t>(blocks));
+  parallel_for(blocks, split ? 1 : thread_count(), [&](int b) {
+    const int end = std::min(triangle_count, (b + 1) * kTrianglesPerBlock);
+    for (int s = b * kTrianglesPerBlock; s < end; ++s) {
+      if (level[s] >= 0) {
+        partners_of(s, block_pairs[static_cast<std::size_t>(b)],
+                    block_separated[static_cast<std::size_t>(b)]);
+      }
+    }
+  });
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<double> separated;  // per candidate pair (split meshes): ranks that separate it
+  for (int b = 0; b < blocks; ++b) {
+    const auto& found = block_pairs[static_cast<std::size_t>(b)];
+    pairs.insert(pairs.end(), found.begin(), found.end());
+    const auto& verdicts = block_separated[static_cast<std::size_t>(b)];
+    separated.insert(separated.end(), verdicts.begin(), verdicts.end());
   }
   if (split && !pairs.empty()) {
     space->sum(separated.data(), static_cast<int>(separated.size()));

@@ -18,6 +18,7 @@
 #include "tessera/core/domain.h"
 #include "tessera/core/error.h"
 #include "tessera/core/face_projection.h"
+#include "tessera/core/parallel_for.h"
 #include "tessera/core/process_memory.h"
 #include "tessera/core/scaled_problem.h"
 #include "tessera/geometry/bezier_patch.h"
@@ -277,6 +278,7 @@ class StageRunner {
     }
     summary.work_by_phase = steps_;
     summary.wall_seconds = seconds_since(clock_start_);
+    summary.threads = threads_for(problem);
     return std::move(run_.result);
   }
 
@@ -310,7 +312,7 @@ class StageRunner {
   const bool releases_heap_;
   const Clock::time_point clock_start_ = Clock::now();
   Clock::time_point step_start_ = clock_start_;
-  std::string_view open_step_;  ///< the step of the stages last run, not yet accounted
+  std::string_view open_step_;      ///< the step of the stages last run, not yet accounted
   std::string_view reported_step_;  ///< the step whose start the progress callback last heard
 
   // The start of each step after the build, with the mesh's counts then: the build reports

@@ -38,10 +38,43 @@ CoveringResult run_atlas(const ProblemSetup& setup, const MethodSettings& settin
   options.step = settings.step > 0 ? settings.step : 2.0 * setup.suggested_step;
   options.tolerance = default_tolerance(setup);
   apply_shared_settings(settings, options);
-  options.placement =
-      settings.atlas_placement == "hexagonal" ? AtlasPlacement::Hexagonal : AtlasPlacement::Disk;
   options.checkpoint = settings.atlas_checkpoint;
-  return cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  // A checkpointed run takes the disk rule under "auto": its fallback from the hexagonal
+  // placement would otherwise start a second build that a resumed run cannot tell apart.
+  const bool checkpointed = settings.atlas_checkpoint.save || settings.atlas_checkpoint.resume_from;
+  const bool automatic = settings.atlas_placement == "auto" && !checkpointed;
+  const bool hexagonal =
+      settings.atlas_placement == "hexagonal" ||
+      (automatic && !setup.problem->has_sparse_jacobian() && setup.domain.is_unbounded());
+  options.placement = hexagonal ? AtlasPlacement::Hexagonal : AtlasPlacement::Disk;
+  CoveringResult result = cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  const CoveringTermination ended = result.summary.termination;
+  if (!automatic || !hexagonal || (ended != CoveringTermination::TriangulationFailed &&
+                                   ended != CoveringTermination::ProjectionFailed)) {
+    return result;
+  }
+  // The hexagonal placement's packing is tighter than the disk rule's, and at coarse settings
+  // (charts a sixth of the sphere's radius) its polygons can leave a hole that cannot be
+  // triangulated, where the disk rule's never have in the stress campaigns: chosen
+  // automatically, it falls back to the disk rule, which keeps the run as robust as before.
+  // The first attempt's work is counted, as a step of its own.
+  const CoveringSummary first = result.summary;
+  options.placement = AtlasPlacement::Disk;
+  result = cover_by_atlas(*setup.problem, setup.start, setup.domain, options);
+  CoveringSummary& summary = result.summary;
+  summary.function_evaluations += first.function_evaluations;
+  summary.jacobian_evaluations += first.jacobian_evaluations;
+  summary.factorisations += first.factorisations;
+  summary.factorisation_seconds += first.factorisation_seconds;
+  summary.wall_seconds += first.wall_seconds;
+  PhaseWork attempt{"hexagonal attempt",
+                    {first.function_evaluations, first.jacobian_evaluations,
+                     first.factorisations},
+                    first.wall_seconds};
+  summary.work_by_phase.insert(summary.work_by_phase.begin(), attempt);
+  summary.notes.push_back("the hexagonal placement (--placement auto) ended early (" +
+                          first.message + "); covered again with the disk placement");
+  return result;
 }
 
 CoveringResult run_front(const ProblemSetup& setup, const MethodSettings& settings) {
@@ -147,7 +180,7 @@ void refuse_options_of_other_methods(const MethodSettings& given, const std::str
     TESSERA_CHECK(applies, spelled(options) << ": only for method '" << owner
                                             << "', not for method '" << method << "'");
   };
-  refuse_unless(given.atlas_placement == "disk" || method == "atlas", "--placement", "atlas");
+  refuse_unless(given.atlas_placement == "auto" || method == "atlas", "--placement", "atlas");
   refuse_unless((given.front_order == "gap" && given.front_min_gap_degrees == 0 &&
                  given.front_max_valence == 0) ||
                     method == "front",

@@ -96,6 +96,10 @@ struct CoveringSummary {
   /// own measure of one factorisation, factorisation_seconds / factorisations.
   double factorisation_seconds = 0.0;
   double wall_seconds = 0.0;
+  /// The threads the data-parallel steps ran on (threads_for: 1 for a problem that is not
+  /// thread-safe or has a sparse Jacobian). How it ran, like the times: the mesh and the other
+  /// counts are the same whatever it is.
+  int threads = 1;
   /// The same work split by pipeline step, in the order the steps ran.
   std::vector<PhaseWork> work_by_phase;
   double step = 0.0;            ///< the step (edge length) actually used
@@ -120,6 +124,8 @@ struct CoveringSummary {
     int total() const { return curvature + not_a_graph + grading + reach + band; }
   };
   RadiusCaps radius_caps;
+  /// Where the atlas centred its charts: "disk" (Henderson's) or "hexagonal" (AtlasPlacement).
+  std::string placement;
   double min_chart_radius = 0.0;
   double max_chart_radius = 0.0;
   int singular_crossings = 0;  ///< continuation steps that crossed a singular curve of M

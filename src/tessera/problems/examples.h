@@ -25,6 +25,7 @@ class Plane final : public ImplicitProblem {
   void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                 Eigen::Ref<Eigen::MatrixXd> J) const override;
   std::string name() const override { return "plane"; }
+  bool is_thread_safe() const override { return true; }  // a pure function of x
 };
 
 /// The sphere |x|² − r² = 0 in R³, centred at the origin.
@@ -39,6 +40,7 @@ class Sphere final : public ImplicitProblem {
   void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                 Eigen::Ref<Eigen::MatrixXd> J) const override;
   std::string name() const override { return "sphere"; }
+  bool is_thread_safe() const override { return true; }  // a pure function of x
   double radius() const { return radius_; }
 
  private:
@@ -62,6 +64,7 @@ class Torus final : public ImplicitProblem {
   void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                 Eigen::Ref<Eigen::MatrixXd> J) const override;
   std::string name() const override { return "torus"; }
+  bool is_thread_safe() const override { return true; }  // a pure function of x
   double major_radius() const { return major_radius_; }
   double minor_radius() const { return minor_radius_; }
 
@@ -86,6 +89,7 @@ class Equipotential final : public ImplicitProblem {
   void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                 Eigen::Ref<Eigen::MatrixXd> J) const override;
   std::string name() const override { return "equipotential"; }
+  bool is_thread_safe() const override { return true; }  // a pure function of x
 
  private:
   double level_;       // c
@@ -103,6 +107,7 @@ class WhitneyPleat final : public ImplicitProblem {
   void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                 Eigen::Ref<Eigen::MatrixXd> J) const override;
   std::string name() const override { return "whitney_pleat"; }
+  bool is_thread_safe() const override { return true; }  // a pure function of x
   std::vector<std::string> coordinate_names() const override { return {"x", "lambda", "mu"}; }
   /// x' = −F = −V'(x) for the potential V = x⁴/4 − λx²/2 − μx: the outer sheets (3x² > λ) are
   /// stable, the middle one unstable; parameters (lambda, mu).
@@ -128,6 +133,7 @@ class Trough final : public ImplicitProblem {
   void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                 Eigen::Ref<Eigen::MatrixXd> J) const override;
   std::string name() const override { return "trough"; }
+  bool is_thread_safe() const override { return true; }  // a pure function of x
 
  private:
   double a_;
@@ -155,6 +161,7 @@ class StirredTankReactor final : public ImplicitProblem {
   void jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                 Eigen::Ref<Eigen::MatrixXd> J) const override;
   std::string name() const override { return "cstr"; }
+  bool is_thread_safe() const override { return true; }  // a pure function of x
   std::vector<std::string> coordinate_names() const override { return {"x1", "x2", "Da", "B"}; }
   /// (x₁, x₂)' = (f₁, f₂), parameters (Da, B). On M, with a = x₁/(1 − x₁), D_uF has trace
   /// B x₁ − (2 + β) − a and determinant (1 + β)/(1 − x₁) − B x₁: folds where the determinant
@@ -207,6 +214,7 @@ class ArrheniusBratu final : public ImplicitProblem {
   void sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
                        Eigen::SparseMatrix<double>& J) const override;
   std::string name() const override { return "bvp"; }
+  bool is_thread_safe() const override { return true; }  // a pure function of x
   /// The heat equation u_t = u'' + λ exp(u/(1 + εu)) discretised like F: h²·u' = F, so B = h²·I
   /// and the eigenvalues are those of the discrete operator; parameters (lambda, epsilon).
   std::optional<Dynamics> dynamics() const override;

@@ -26,15 +26,26 @@ ExpressionProblem::ExpressionProblem(std::string name, std::vector<Expression> e
   if (dynamics_) {
     check_dynamics(*dynamics_, n, name_);
   }
-  gradient_.resize(n);
 }
+
+namespace {
+
+// Scratch per thread (one workspace serves any expressions, one thread at a time), so that the
+// problem is thread-safe; after a thread's first evaluation nothing is allocated.
+ExpressionWorkspace& thread_workspace() {
+  thread_local ExpressionWorkspace workspace;
+  return workspace;
+}
+
+}  // namespace
 
 void ExpressionProblem::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
                                  Eigen::Ref<Eigen::VectorXd> F) const {
   TESSERA_CHECK(F.size() == static_cast<Eigen::Index>(equations_.size()),
                 "F has size " << F.size() << ", expected " << equations_.size());
+  ExpressionWorkspace& workspace = thread_workspace();
   for (std::size_t i = 0; i < equations_.size(); ++i) {
-    F(static_cast<Eigen::Index>(i)) = equations_[i].value(x, workspace_);
+    F(static_cast<Eigen::Index>(i)) = equations_[i].value(x, workspace);
   }
 }
 
@@ -44,10 +55,13 @@ void ExpressionProblem::jacobian(const Eigen::Ref<const Eigen::VectorXd>& x,
       J.rows() == static_cast<Eigen::Index>(equations_.size()) && J.cols() == ambient_dimension(),
       "J is " << J.rows() << "×" << J.cols() << ", expected " << equations_.size() << "×"
               << ambient_dimension());
+  ExpressionWorkspace& workspace = thread_workspace();
+  thread_local Eigen::VectorXd gradient;
+  gradient.resize(ambient_dimension());
   for (std::size_t i = 0; i < equations_.size(); ++i) {
     // Rows of a column-major J are strided, so the gradient goes through a contiguous vector.
-    equations_[i].value_and_gradient(x, gradient_, workspace_);
-    J.row(static_cast<Eigen::Index>(i)) = gradient_.transpose();
+    equations_[i].value_and_gradient(x, gradient, workspace);
+    J.row(static_cast<Eigen::Index>(i)) = gradient.transpose();
   }
 }
 

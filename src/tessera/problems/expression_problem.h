@@ -15,8 +15,8 @@ namespace tessera {
 /// F(x) = (f_1(x), …, f_{n-2}(x)) with each f_i an Expression of the same n variables, and a
 /// dense Jacobian whose rows are the exact gradients ∇f_i (reverse-mode differentiation).
 ///
-/// Evaluation reuses an internal workspace, so after the first call `evaluate` and `jacobian`
-/// do not allocate; as the ImplicitProblem contract says, one thread at a time per object.
+/// Evaluation reuses a workspace per thread, so after a thread's first call `evaluate` and
+/// `jacobian` do not allocate; a pure function of x, thread-safe.
 class ExpressionProblem final : public ImplicitProblem {
  public:
   /// \param name       short identifier returned by name(), e.g. "sphere_cut".
@@ -40,6 +40,7 @@ class ExpressionProblem final : public ImplicitProblem {
   /// The variable names of the expressions, e.g. {"x1", "x2", "Da", "B"}.
   std::vector<std::string> coordinate_names() const override { return variable_names_; }
   std::optional<Dynamics> dynamics() const override { return dynamics_; }
+  bool is_thread_safe() const override { return true; }
 
   const std::vector<Expression>& equations() const { return equations_; }
 
@@ -48,9 +49,6 @@ class ExpressionProblem final : public ImplicitProblem {
   std::vector<std::string> variable_names_;
   std::vector<Expression> equations_;
   std::optional<Dynamics> dynamics_;
-  // Scratch only (the ImplicitProblem contract allows caching); never part of the state.
-  mutable ExpressionWorkspace workspace_;
-  mutable Eigen::VectorXd gradient_;
 };
 
 }  // namespace tessera

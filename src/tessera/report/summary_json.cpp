@@ -47,7 +47,8 @@ nlohmann::json geometry(const MeshValidation& v) {
       {"vertices_outside_domain",
        {{"count", v.vertex_outside_domain_count},
         {"vertices", first_entries(v.vertices_outside_domain)}}},
-      {"unoriented_triangles", v.unoriented_triangle_count}};
+      {"unoriented_triangles", v.unoriented_triangle_count},
+      {"crossing_pairs", v.crossing_pair_count}};
 }
 
 nlohmann::json level_json(const LevelReport& level) {
@@ -236,6 +237,7 @@ std::string to_json(const MeshReport& report) {
                 {"message", r.message},
                 {"step", r.step},
                 {"wall_seconds", r.wall_seconds},
+                {"threads", r.threads},
                 {"function_evaluations", r.function_evaluations},
                 {"jacobian_evaluations", r.jacobian_evaluations},
                 {"factorisations", r.factorisations},
@@ -251,6 +253,7 @@ std::string to_json(const MeshReport& report) {
                 {"repaired_holes", r.repaired_holes}};
     if (r.charts > 0) {
       j["run"]["atlas"] = {{"charts", r.charts},
+                           {"placement", r.placement},
                            {"min_chart_radius", r.min_chart_radius},
                            {"max_chart_radius", r.max_chart_radius},
                            {"singular_crossings", r.singular_crossings},
@@ -404,7 +407,8 @@ std::string to_text(const MeshReport& report) {
     const CoveringSummary& r = *report.run;
     out << "method         " << r.method;
     if (r.charts > 0) {
-      out << ", tolerance " << r.tolerance << ", " << r.charts << " charts of radius "
+      out << (r.placement.empty() ? "" : " (" + r.placement + " placement)") << ", tolerance "
+          << r.tolerance << ", " << r.charts << " charts of radius "
           << r.min_chart_radius << " … " << r.max_chart_radius;
     } else {
       out << ", step " << r.step;
@@ -440,7 +444,8 @@ std::string to_text(const MeshReport& report) {
     for (const std::string& note : r.notes) {
       out << "note           " << note << "\n";
     }
-    out << "work           " << r.wall_seconds << " s, " << r.function_evaluations
+    out << "work           " << r.wall_seconds << " s on " << r.threads
+        << (r.threads == 1 ? " thread, " : " threads, ") << r.function_evaluations
         << " evaluations of F, " << r.jacobian_evaluations << " of DF, " << r.factorisations
         << " factorisations";
     if (r.vertex_count > 0) {
@@ -609,6 +614,10 @@ std::string to_text(const MeshReport& report) {
         << " vertex(es) outside the domain";
     if (v.unoriented_triangle_count > 0) {
       out << "; " << v.unoriented_triangle_count << " triangle(s) not oriented (DF singular)";
+    }
+    if (v.crossing_pair_count > 0) {
+      out << "; " << v.crossing_pair_count
+          << " pair(s) of triangles where components cross (sheets of M crossing)";
     }
     out << "\n";
     for (const std::string& cut : v.checks_cut_short) {

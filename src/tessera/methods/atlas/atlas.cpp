@@ -107,6 +107,7 @@ void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringRe
   AtlasTriangulation triangulation = triangulate_atlas(cells);
   result.mesh = std::move(triangulation.mesh);
   summary.filled_holes = triangulation.filled_holes;
+  summary.placement = options.placement == AtlasPlacement::Hexagonal ? "hexagonal" : "disk";
   if (!triangulation.message.empty() && summary.is_complete()) {
     summary.termination = CoveringTermination::TriangulationFailed;
     summary.message = triangulation.message;

@@ -10,13 +10,19 @@
 #include <unordered_set>
 
 #include "tessera/core/error.h"
-#include "tessera/core/factorisation_cache.h"
+#include "tessera/core/face_projection.h"
 #include "tessera/core/linearization.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/methods/common/clip_to_domain.h"
+#include "tessera/methods/common/triangle_samples.h"
 
 namespace tessera {
 namespace {
+
+using detail::corner_faces;
+using detail::Gram;
+using detail::shared_faces;
+using detail::unordered_edge_key;
 
 // Sampled distances are measured to this fraction of the refinement threshold: enough to
 // decide "split or not", and a bound from above, so the decision errs towards splitting.
@@ -24,50 +30,6 @@ constexpr double kDistanceAccuracy = 0.02;
 // A sample whose two-step bound (chord_distance_bound) is below this fraction of the threshold
 // passes without a third step: most samples of a mesh sized for the tolerance lie well inside.
 constexpr double kClearPass = 0.75;
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) {
-    std::swap(a, b);
-  }
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
-}
-
-// The faces of the domain both endpoints lie on: the edge runs along their intersection.
-// `distance_a`, `distance_b`: every face's signed distance of the endpoints (Domain::
-// signed_distances, measured for all edges of a round at once).
-std::vector<int> shared_faces(const Eigen::Ref<const Eigen::VectorXd>& distance_a,
-                              const Eigen::Ref<const Eigen::VectorXd>& distance_b,
-                              double tolerance) {
-  std::vector<int> faces;
-  for (int k = 0; k < static_cast<int>(distance_a.size()); ++k) {
-    if (std::abs(distance_a(k)) <= tolerance && std::abs(distance_b(k)) <= tolerance) {
-      faces.push_back(k);
-    }
-  }
-  return faces;
-}
-
-// A boundary edge that cuts a corner of the domain: one end on face a only, the other on face b
-// only. M ∩ S reaches beyond it to the corner point M ∩ a ∩ b (isolated: M is a surface), so
-// the gap is measured there and the edge is split at that point ({a, b}); empty otherwise.
-std::vector<int> corner_faces(const Eigen::Ref<const Eigen::VectorXd>& distance_a,
-                              const Eigen::Ref<const Eigen::VectorXd>& distance_b,
-                              double tolerance) {
-  std::vector<int> on_a, on_b;
-  for (int k = 0; k < static_cast<int>(distance_a.size()); ++k) {
-    if (std::abs(distance_a(k)) <= tolerance) {
-      on_a.push_back(k);
-    }
-    if (std::abs(distance_b(k)) <= tolerance) {
-      on_b.push_back(k);
-    }
-  }
-  if (on_a.size() == 1 && on_b.size() == 1 && on_a[0] != on_b[0]) {
-    return {on_a[0], on_b[0]};
-  }
-  return {};
-}
 
 // Squared distances between pairs of mesh vertices, measured in one pass: each rank's partial
 // sums, then one reduction for all (in one process, (q − p).squaredNorm() as before, whose root
@@ -97,10 +59,6 @@ class PairLengths {
   std::vector<std::pair<int, int>> pairs_;
   std::vector<double> squared_;
 };
-
-// A triangle (a, b, c)'s Gram numbers: |b − a|², |c − a|², (b − a)·(c − a), and |c − b|² (for
-// its third edge's length to the bit).
-using Gram = std::array<double, 4>;
 
 // The Gram numbers of the triangles `which`, summed over the ranks at once, in `gram` (indexed by
 // triangle). In one process the expressions the samples used before, to the bit.
@@ -222,71 +180,33 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       candidates.push_back(t);
     }
   }
-  Linearization workspace;
-  // Gauss–Newton, and where it contracts too slowly for the method's corrector (θ above its
-  // max_contraction, typically 1/2), once more with θ up to 0.9, as the report measures: a
-  // midpoint far from a strongly curved M (cstr, an edge 0.2 long) is often first overshot,
-  // and a midpoint that can be neither measured nor projected leaves its triangle unrefined.
-  // (Only points come out of these projections, not their workspace: Gauss–Newton may keep its
-  // factorisation while it contracts, on sparse problems.)
-  CorrectorOptions corrector = options.corrector;
-  corrector.reuse_factorisation = true;
-  CorrectorOptions patient = corrector;
-  patient.max_contraction = std::max(patient.max_contraction, 0.9);
-  patient.max_iterations = std::max(patient.max_iterations, 50);
-  const auto project_patiently = [&](Eigen::VectorXd& x) {
-    const Eigen::VectorXd start = x;
-    if (project_gauss_newton(problem, x, corrector, workspace).is_success()) {
-      return true;
-    }
-    x = start;
-    return project_gauss_newton(problem, x, patient, workspace).is_success();
-  };
-  const double threshold = options.tolerance * options.sample_safety;
   // The samples of a triangle are projected with the chord iteration frozen at one of its
   // vertices, its anchor, which serves all triangles around it (a factorisation for every
   // third vertex or so, instead of several per Gauss–Newton projection: for sparse problems
   // factorisations are the cost). The chord lands on M, so its displacement bounds the
   // distance from above: the estimate errs towards splitting. It is only needed to a small
   // fraction of the threshold, which two or three chord steps give (chord_distance_bound).
-  const double accuracy = kDistanceAccuracy * threshold;
-  const double clear_below = kClearPass * threshold;
+  detail::SampleSettings settings;
+  settings.threshold = options.tolerance * options.sample_safety;
+  settings.accuracy = kDistanceAccuracy * settings.threshold;
+  settings.clear_below = kClearPass * settings.threshold;
+  settings.face_tolerance = options.face_tolerance;
+  settings.chord = options.corrector;
+  // Gauss–Newton, and where it contracts too slowly for the method's corrector (θ above its
+  // max_contraction, typically 1/2), once more with θ up to 0.9, as the report measures: a
+  // midpoint far from a strongly curved M (cstr, an edge 0.2 long) is often first overshot,
+  // and a midpoint that can be neither measured nor projected leaves its triangle unrefined.
+  settings.gauss_newton = options.corrector;
+  settings.gauss_newton.reuse_factorisation = true;
+  settings.patient = settings.gauss_newton;
+  settings.patient.max_contraction = std::max(settings.patient.max_contraction, 0.9);
+  settings.patient.max_iterations = std::max(settings.patient.max_iterations, 50);
+  const double threshold = settings.threshold;
   const bool is_sparse = problem.has_sparse_jacobian();
-  Linearization frozen;
-  int frozen_at = -1;
-  bool frozen_ok = false;
-  // Sparse problems anchor across two rings (fewer factorisations); where the anchor's chord
-  // does not contract at a point, a corner of the triangle is tried: one already factored if
-  // any (the last few are kept), else its first.
+  // Sparse problems anchor across two rings (fewer factorisations); the bisection's projections
+  // share their samples' factorisations (detail::SampleState).
   const int rings = is_sparse ? 2 : 1;
-  FactorisationCache corners(6, std::size_t{256} << 20);
-  const auto corner_of = [&](const Triangle& tri) -> const Linearization* {
-    for (int v : tri) {
-      if (const Linearization* factored = corners.find(v)) {
-        return factored->is_factored() ? factored : nullptr;
-      }
-    }
-    return corners.factor(tri[0], problem, mesh.point(tri[0]));
-  };
-  // Where the anchor's chord does not contract at a point: a corner of the triangle, and last
-  // a (patient) Gauss–Newton projection.
-  auto distance_without_anchor = [&](const Eigen::VectorXd& point, const Triangle& tri) {
-    if (frozen_at != tri[0] && frozen_at != tri[1] && frozen_at != tri[2]) {
-      const Linearization* corner = corner_of(tri);
-      const double bound = corner != nullptr
-                               ? chord_distance_bound(problem, *corner, point, accuracy,
-                                                      options.corrector, clear_below)
-                               : std::numeric_limits<double>::infinity();
-      if (std::isfinite(bound)) {
-        return bound;
-      }
-    }
-    Eigen::VectorXd x = point;
-    if (!project_patiently(x)) {
-      return std::numeric_limits<double>::infinity();
-    }
-    return space.distance(x, point);
-  };
+  detail::SampleState shared;
   // Each rank's stop request is its own: the ranks stop together if any asks.
   const auto is_stop_requested = [&] {
     if (!options.stop_requested) {
@@ -295,23 +215,11 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     const bool stop = options.stop_requested();
     return space.is_distributed() ? space.maximum(stop ? 1.0 : 0.0) > 0.0 : stop;
   };
-  // An edge's midpoint is sampled once for both triangles that share it (vertices never move,
-  // so the distance stays valid across rounds).
-  std::unordered_map<std::uint64_t, double> midpoint_distance;
-  // The largest sampled distance of triangle t to M, and where it is. `gram` holds the Gram
-  // numbers of the triangles sampled (measure_gram, one reduction per pass).
-  Eigen::VectorXd where;
-  Eigen::MatrixXd samples;
+  detail::TriangleSampler sampler(problem, domain, mesh, settings, shared, is_stop_requested);
   std::vector<Gram> gram;
-  // Boundary edges on ∂S: the mesh ends at the chord, M ∩ S at the curve M ∩ face, which bulges
-  // beyond the chord within M by its geodesic curvature·L²/8, a part of M ∩ S that no triangle
-  // covers and no sample of a triangle sees (on cstr's face Da = 0.3, 0.012 at a tolerance of
-  // 0.008). So each boundary edge on a face also samples the gap: the distance from its
-  // midpoint to M ∩ face, where its split would put the new vertex. `triangles_at_edge` counts
-  // each edge's triangles (rebuilt each round); the gaps are kept, since vertices never move.
+  // Boundary edges (for the gaps beyond ∂S, detail::TriangleSampler): each edge's triangles,
+  // rebuilt each round; none for an unbounded domain.
   std::unordered_map<std::uint64_t, int> triangles_at_edge;
-  std::unordered_map<std::uint64_t, double> boundary_gap;
-  int worst_edge = -1;  // after sample(): the edge whose gap is the worst sample, else −1
   const auto count_edges = [&] {
     triangles_at_edge.clear();
     if (domain.is_unbounded()) {
@@ -319,160 +227,9 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     }
     for (const Triangle& tri : mesh.triangles()) {
       for (int e = 0; e < 3; ++e) {
-        ++triangles_at_edge[edge_key(tri[e], tri[(e + 1) % 3])];
+        ++triangles_at_edge[unordered_edge_key(tri[e], tri[(e + 1) % 3])];
       }
     }
-  };
-  const auto gap_of = [&](int u, int v) {
-    const std::uint64_t key = edge_key(u, v);
-    if (const auto known = boundary_gap.find(key); known != boundary_gap.end()) {
-      return known->second;
-    }
-    double gap = 0.0;
-    const std::vector<int> ends = {u, v};
-    const Eigen::MatrixXd distance = domain.signed_distances(mesh.points(), ends);
-    std::vector<int> faces = shared_faces(distance.col(0), distance.col(1), options.face_tolerance);
-    if (faces.empty()) {
-      faces = corner_faces(distance.col(0), distance.col(1), options.face_tolerance);
-    }
-    if (!faces.empty() && faces.size() <= 2) {
-      const Eigen::VectorXd midpoint = 0.5 * (mesh.point(u) + mesh.point(v));
-      Eigen::VectorXd x = midpoint;
-      const double length = space.distance(mesh.point(u), mesh.point(v));
-      // A midpoint that cannot be put on M ∩ face is left to the triangle samples (its edge
-      // is then unsplittable anyway).
-      // The chord from the triangle's anchor first: at large n no factorisation at all.
-      if (project_onto_faces(problem, domain, faces, x, length, corrector, nullptr,
-                             frozen_ok ? &frozen : nullptr)) {
-        gap = space.distance(x, midpoint);
-      }
-    }
-    boundary_gap.emplace(key, gap);
-    return gap;
-  };
-  auto sample = [&](int anchor, int t) {
-    const Triangle tri = mesh.triangle(t);
-    const Eigen::VectorXd a = mesh.point(tri[0]);
-    const Eigen::VectorXd b = mesh.point(tri[1]);
-    const Eigen::VectorXd c = mesh.point(tri[2]);
-    if (anchor != frozen_at) {
-      frozen_ok = frozen.factor(problem, mesh.point(anchor));
-      frozen_at = anchor;
-    }
-    // The samples: the centroid, the midpoints not measured before and, on a surface of
-    // constant curvature the farthest point, the circumcentre (when it lies inside the
-    // triangle), which makes the estimate nearly exact.
-    samples.resize(a.size(), 5);
-    Eigen::Index count = 0;
-    samples.col(count++) = (a + b + c) / 3.0;
-    std::array<std::uint64_t, 3> new_midpoints{};
-    int new_midpoint_count = 0;
-    for (int e = 0; e < 3; ++e) {
-      const int u = tri[e];
-      const int v = tri[(e + 1) % 3];
-      if (!midpoint_distance.contains(edge_key(u, v))) {
-        new_midpoints[new_midpoint_count++] = edge_key(u, v);
-        samples.col(count++) = 0.5 * (mesh.point(u) + mesh.point(v));
-      }
-    }
-    bool has_circumcentre = false;
-    const Gram& g = gram[static_cast<std::size_t>(t)];
-    const double uu = g[0], ww = g[1], uw = g[2];
-    const double det = 2.0 * (uu * ww - uw * uw);
-    if (det > 0) {
-      const double beta = ww * (uu - uw) / det;
-      const double gamma = uu * (ww - uw) / det;
-      if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) {
-        const Eigen::VectorXd ab = b - a;
-        const Eigen::VectorXd ac = c - a;
-        samples.col(count++) = a + beta * ab + gamma * ac;
-        has_circumcentre = true;
-      }
-    }
-    // All samples are measured from the anchor in lockstep (one multi-column solve per chord
-    // step); those where its chord does not contract, another way.
-    const auto points = samples.leftCols(count);
-    std::vector<double> distance =
-        frozen_ok ? chord_distance_bounds(problem, frozen, points, accuracy, options.corrector,
-                                          clear_below)
-                  : std::vector<double>(static_cast<std::size_t>(count),
-                                        std::numeric_limits<double>::infinity());
-    for (Eigen::Index j = 0; j < count; ++j) {
-      auto& d = distance[static_cast<std::size_t>(j)];
-      if (!std::isfinite(d)) {
-        d = distance_without_anchor(points.col(j), tri);
-      }
-    }
-    for (int e = 0; e < new_midpoint_count; ++e) {
-      midpoint_distance.emplace(new_midpoints[e], distance[static_cast<std::size_t>(1 + e)]);
-    }
-    // The worst sample, the first of equals in the order centroid, midpoints, circumcentre;
-    // its point is formed once, for the worst triangle's report.
-    double worst = -1.0;
-    int worst_sample = -1;  // 0: the centroid, 1 + e: the midpoint of edge e, 4: circumcentre,
-                            // 5: between them (the model below)
-    const auto consider = [&](int which, double d) {
-      if (!(d <= worst)) {
-        worst = d;
-        worst_sample = which;
-      }
-    };
-    consider(0, distance[0]);
-    std::array<double, 3> at_midpoint{};
-    for (int e = 0; e < 3; ++e) {
-      at_midpoint[e] = midpoint_distance.at(edge_key(tri[e], tri[(e + 1) % 3]));
-      consider(1 + e, at_midpoint[e]);
-    }
-    // Between the samples: a flat triangle's distance to M vanishes at its corners and is, to
-    // leading order, quadratic in the barycentric coordinates λ (exactly so on a sphere), so
-    // the midpoints' distances a_e fix 4·Σ λ_i λ_j a_ij and the centroid's a cubic bubble
-    // b·λ₀λ₁λ₂ on top. Its largest value on a grid of the triangle (arithmetic only) bounds
-    // the distance where the samples miss it: beside the longest edge of an obtuse triangle
-    // where M's curvature varies (bezier's triangles were up to 1.3 % beyond the tolerance
-    // between these samples).
-    if (std::isfinite(distance[0]) && std::isfinite(at_midpoint[0]) &&
-        std::isfinite(at_midpoint[1]) && std::isfinite(at_midpoint[2])) {
-      const auto quadratic = [&](double l0, double l1, double l2) {
-        return 4.0 *
-               (l0 * l1 * at_midpoint[0] + l1 * l2 * at_midpoint[1] + l2 * l0 * at_midpoint[2]);
-      };
-      const double bubble = 27.0 * (distance[0] - quadratic(1.0 / 3, 1.0 / 3, 1.0 / 3));
-      constexpr int kGrid = 8;
-      double model = -1.0;
-      for (int i = 1; i < kGrid; ++i) {
-        for (int j = 1; i + j < kGrid; ++j) {
-          const double l0 = static_cast<double>(i) / kGrid;
-          const double l1 = static_cast<double>(j) / kGrid;
-          const double l2 = 1.0 - l0 - l1;
-          model = std::max(model, quadratic(l0, l1, l2) + bubble * l0 * l1 * l2);
-        }
-      }
-      consider(5, model);
-    }
-    if (has_circumcentre) {
-      consider(4, distance.back());
-    }
-    worst_edge = -1;
-    for (int e = 0; e < 3 && !triangles_at_edge.empty(); ++e) {
-      const int u = tri[e];
-      const int v = tri[(e + 1) % 3];
-      const auto uses = triangles_at_edge.find(edge_key(u, v));
-      if (uses != triangles_at_edge.end() && uses->second == 1) {
-        const double gap = gap_of(u, v);
-        if (gap > worst) {
-          worst = gap;
-          worst_sample = 1 + e;
-          worst_edge = e;
-        }
-      }
-    }
-    if (worst_sample == 0 || worst_sample == 4 || worst_sample == 5) {
-      where = points.col(worst_sample == 4 ? count - 1 : 0);  // the model's: its centroid
-    } else {
-      const int e = worst_sample - 1;
-      where = 0.5 * (mesh.point(tri[e]) + mesh.point(tri[(e + 1) % 3]));
-    }
-    return worst;
   };
   // Edges whose midpoint could not be projected: not tried again in later rounds (their
   // triangles stay candidates and end as remaining unless a neighbour's split reaches them).
@@ -487,15 +244,19 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     std::vector<std::uint8_t> is_far(mesh.triangle_count(), 0);
     count_edges();
     measure_gram(mesh, candidates, gram);
-    for (const auto& [anchor, t] : anchored(mesh, candidates, rings)) {
-      // Checked here only, where nothing of the round has changed the mesh yet: at large n
-      // the samples are minutes of chord steps, and a stopped run wants its mesh now.
-      if (is_stop_requested()) {
-        summary.interrupted = true;
-        break;
-      }
+    const std::vector<std::pair<int, int>> pairs = anchored(mesh, candidates, rings);
+    // A stop request is polled only here, where nothing of the round has changed the mesh
+    // yet: at large n the samples are minutes of chord steps, and a stopped run wants its mesh
+    // now.
+    const detail::PassSamples pass = sampler.sample(pairs, gram, triangles_at_edge, true);
+    if (pass.interrupted) {
+      summary.interrupted = true;
+      return summary;
+    }
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const int t = pairs[k].second;
       const Triangle tri = mesh.triangle(t);
-      const double worst = sample(anchor, t);
+      const double worst = pass.worst[k];
       if (worst <= threshold) {
         summary.max_distance = std::max(summary.max_distance, worst);
         continue;
@@ -512,13 +273,13 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
           longest = e;
         }
       }
-      if (worst_edge >= 0) {
-        longest = worst_edge;  // the gap beyond a boundary edge: that edge is split
+      if (pass.worst_edge[k] >= 0) {
+        longest = pass.worst_edge[k];  // the gap beyond a boundary edge: that edge is split
       }
       const int u = tri[longest];
       const int v = tri[(longest + 1) % 3];
-      if (!unsplittable.contains(edge_key(u, v)) &&
-          midpoint_of.emplace(edge_key(u, v), -1).second) {
+      if (!unsplittable.contains(unordered_edge_key(u, v)) &&
+          midpoint_of.emplace(unordered_edge_key(u, v), -1).second) {
         to_split.push_back({{u, v}, length});
       }
     }
@@ -557,7 +318,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const auto column = static_cast<Eigen::Index>(2 * i);
       std::vector<int> faces = shared_faces(face_distance.col(column),
                                             face_distance.col(column + 1), options.face_tolerance);
-      const auto uses = triangles_at_edge.find(edge_key(u, v));
+      const auto uses = triangles_at_edge.find(unordered_edge_key(u, v));
       if (faces.empty() && uses != triangles_at_edge.end() && uses->second == 1) {
         // A boundary edge across a corner of S: split at the corner point M ∩ a ∩ b.
         faces = corner_faces(face_distance.col(column), face_distance.col(column + 1),
@@ -571,26 +332,26 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
         // the endpoint's normal space, which where two sheets nearly touch (the trough) can
         // land the new vertex on the other sheet.
         const Eigen::VectorXd start = x;
-        if (frozen_at != u && is_sparse) {
-          frozen_ok = frozen.factor(problem, a);
-          frozen_at = u;
+        if (is_sparse) {
+          shared.freeze_at(problem, mesh, u);
         }
-        projected = is_sparse && frozen_ok &&
-                    project_chord(problem, frozen, x, options.corrector).is_success() &&
+        projected = is_sparse && shared.frozen_ok &&
+                    project_chord(problem, shared.frozen, x, options.corrector).is_success() &&
                     space.distance(x, start) <= length;
         if (!projected) {
           x = start;
-          projected = project_patiently(x) && space.distance(x, start) <= length;
+          projected = detail::project_patiently(problem, x, settings, shared.workspace) &&
+                      space.distance(x, start) <= length;
         }
       } else {
-        projected =
-            faces.size() <= 2 && project_onto_faces(problem, domain, faces, x, length, corrector);
+        projected = faces.size() <= 2 &&
+                    project_onto_faces(problem, domain, faces, x, length, settings.gauss_newton);
       }
       if (projected) {
-        midpoint_of[edge_key(u, v)] = mesh.add_vertex(x);
+        midpoint_of[unordered_edge_key(u, v)] = mesh.add_vertex(x);
         ++made;
       } else {
-        unsplittable.insert(edge_key(u, v));
+        unsplittable.insert(unordered_edge_key(u, v));
       }
     }
     summary.split_edges += made;
@@ -614,7 +375,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const Triangle& tri = triangles[t];
       Subdivision& sub = subdivision[t];
       for (int e = 0; e < 3; ++e) {
-        const auto it = midpoint_of.find(edge_key(tri[e], tri[(e + 1) % 3]));
+        const auto it = midpoint_of.find(unordered_edge_key(tri[e], tri[(e + 1) % 3]));
         sub.mid[e] = it == midpoint_of.end() ? -1 : it->second;
         sub.count += sub.mid[e] >= 0 ? 1 : 0;
       }
@@ -709,13 +470,15 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     double worst_remaining = -1.0;
     count_edges();
     measure_gram(mesh, candidates, gram);
-    for (const auto& [anchor, t] : anchored(mesh, candidates, rings)) {
-      const double worst = sample(anchor, t);
+    const std::vector<std::pair<int, int>> pairs = anchored(mesh, candidates, rings);
+    const detail::PassSamples pass = sampler.sample(pairs, gram, triangles_at_edge, false);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const double worst = pass.worst[k];
       summary.max_distance = std::max(summary.max_distance, worst);
       if (!(worst <= threshold)) {
         if (!(worst <= worst_remaining)) {
           worst_remaining = worst;
-          summary.worst_point = where;
+          summary.worst_point = sampler.sample_point(pairs[k].second, pass.worst_sample[k], gram);
         }
         ++summary.remaining;
       }

@@ -26,8 +26,10 @@ struct ToleranceRefinementOptions {
   /// Points within this of a domain face count as lying on it (boundary edges stay on ∂S).
   double face_tolerance = 1e-8;
   CorrectorOptions corrector;
-  /// Polled once per triangle checked; true stops the refinement between two checks, with the
-  /// mesh as valid as it was (ToleranceRefinement::interrupted). Empty: never stopped.
+  /// Polled once per triangle checked on one thread, once per block of anchor groups (1024
+  /// a thread) on several, always on the calling thread; true stops the refinement between two
+  /// checks, with the mesh as valid as it was (ToleranceRefinement::interrupted). Empty: never
+  /// stopped.
   std::function<bool()> stop_requested;
 };
 

@@ -37,6 +37,7 @@ void add_work(CoveringSummary& total, const CoveringSummary& part, bool is_first
   total.jacobian_evaluations += part.jacobian_evaluations;
   total.factorisations += part.factorisations;
   total.factorisation_seconds += part.factorisation_seconds;
+  total.threads = part.threads;  // the same problem: the same for every part
   for (const PhaseWork& phase : part.work_by_phase) {
     auto same = std::find_if(total.work_by_phase.begin(), total.work_by_phase.end(),
                              [&](const PhaseWork& p) { return p.phase == phase.phase; });
