@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "tessera/core/binary_stream.h"
@@ -466,14 +467,20 @@ void AtlasBuilder::take_center_factorisation(int c, Linearization& at_center) {
 }
 
 void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
-  // A factorisation must depend on its matrix alone, not on the object's history (KLU's
-  // refactorisation reuses the last pivots): a resumed build makes its factorisations in new
-  // objects (atlas_checkpoint.h). Measured cost: bench/RESULTS.md, "Checkpoints".
-  const FullPivotingScope full_pivoting;
+  const bool saves = static_cast<bool>(options_.checkpoint.save);
+  // With checkpoints, a factorisation must depend on its matrix alone, not on the object's
+  // history (KLU's refactorisation reuses the last pivots): a resumed build makes its
+  // factorisations in new objects (atlas_checkpoint.h). Only then: full factorisations cost a
+  // run with KLU 5–10 % of its factorisation time (bench/RESULTS.md, "Checkpoints"), and a run
+  // without checkpoints need not pay it. So a run with --checkpoint repeats any other run with
+  // --checkpoint bit for bit, and one without it up to the rounding of the pivots.
+  std::optional<FullPivotingScope> full_pivoting;
+  if (saves || options_.checkpoint.resume_from) {
+    full_pivoting.emplace();
+  }
   min_radius_ = options_.step * options_.min_radius_fraction;
   start_ = start;
   build_start_ = std::chrono::steady_clock::now();
-  const bool saves = static_cast<bool>(options_.checkpoint.save);
   if (options_.checkpoint.resume_from) {
     BinaryReader in(*options_.checkpoint.resume_from, "atlas checkpoint");
     read_state(in, summary);
