@@ -158,6 +158,14 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
   mesh_app->add_option("-o,--output", mesh.output, "mesh file: .ply, .obj, .vtk or .vtu")
       ->required();
   mesh_app->add_option("--summary", mesh.summary, "write a JSON summary to this file");
+  mesh_app->add_option("--checkpoint", mesh.checkpoint,
+                       "atlas: save the build's state to this file (.tsc) every "
+                       "--checkpoint-every seconds and when a signal stops the run; `tessera "
+                       "resume FILE` continues it to the same mesh (docs/checkpoints.md)");
+  mesh_app
+      ->add_option("--checkpoint-every", mesh.checkpoint_every,
+                   "seconds of build between two checkpoints (default 300; fractions allowed)")
+      ->check(finite_positive());
   mesh_app->add_flag("--ascii", mesh.ascii, "write ASCII instead of binary PLY");
   mesh_app->add_flag("--improve", mesh.improve,
                      "improve the mesh: edge swaps and tangential smoothing on M (as `tessera "

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "checkpoint_command.h"
 #include "cli_support.h"
 #include "compare_command.h"
 #include "ddt_command.h"
@@ -130,6 +131,8 @@ int main(int argc, char** argv) {
   tessera::app::RenderCommand render;
   tessera::app::add_improve_command(app, improve);
   tessera::app::add_render_command(app, render);
+  tessera::app::ResumeCommand resume;
+  tessera::app::add_resume_command(app, resume);
 
   std::string check_mesh;
   std::string check_problem;
@@ -156,6 +159,8 @@ int main(int argc, char** argv) {
   }
   // PETSc's own options (-ksp_type gmres, -log_view, …) are PETSc's to parse (--backend petsc).
   mesh.petsc_options = tessera::app::take_petsc_options(argc, argv);
+  // The command line as given, for the checkpoints of `tessera mesh --checkpoint`.
+  mesh.arguments.assign(argv + 1, argv + argc);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -176,6 +181,9 @@ int main(int argc, char** argv) {
     tessera::set_thread_count(threads);
     if (app.got_subcommand("mesh")) {
       return tessera::app::run_mesh(mesh);
+    }
+    if (app.got_subcommand("resume")) {
+      return tessera::app::run_resume(resume);
     }
     if (app.got_subcommand("problems")) {
       return run_problems();

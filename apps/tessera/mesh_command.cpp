@@ -10,6 +10,7 @@
 #include <iostream>
 #include <optional>
 
+#include "checkpoint_command.h"
 #include "cli_support.h"
 #include "picture_command.h"
 #include "solver_backend.h"
@@ -193,6 +194,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   const bool quiet = command.quiet || !is_root;
   // A method's own options given to another method would be ignored silently: refuse them.
   refuse_options_of_other_methods(command.settings, method.name, /*keyword_names=*/false);
+  check_checkpoint_options(command, method.name, covers_several);
   // Every option is checked before the computation starts.
   check_mesh_output(command.output);
   check_output_folder(command.summary);
@@ -274,6 +276,7 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   }
   check_distinct_outputs({{"-o", command.output},
                           {"--summary", command.summary},
+                          {"--checkpoint", command.checkpoint},
                           {"--patches", command.patches},
                           {"--states", command.states},
                           {"--states (its triangles)",
@@ -325,6 +328,8 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   const StopSignals signals(/*notify=*/!quiet);
   // Collective on the PETSc backend: every rank stops at the same vertex.
   settings.stop_requested = [&backend] { return backend.any_rank(StopSignals::is_requested()); };
+  // The atlas's checkpoints, and the state of `tessera resume` (checkpoint_command.h).
+  settings.atlas_checkpoint = make_atlas_checkpointing(command, progress_lines);
   CoveringResult result;
   if (covers_several) {
     ComponentSearchOptions search;

@@ -70,7 +70,9 @@ CorrectorSummary iterate(const ImplicitProblem& problem, Eigen::Ref<Eigen::Vecto
     minus_F = -F;
     const auto factor_here = [&] {
       const Eigen::MatrixXd reference =
-          linearization.is_factored() ? linearization.tangent_basis() : Eigen::MatrixXd();
+          factorisations == 0 && options.first_reference != nullptr ? *options.first_reference
+          : linearization.is_factored()                             ? linearization.tangent_basis()
+                                                                    : Eigen::MatrixXd();
       ++factorisations;
       return linearization.factor(problem, x, reference.size() ? &reference : nullptr);
     };

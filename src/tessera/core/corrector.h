@@ -33,6 +33,11 @@ struct CorrectorOptions {
   /// last point factored, not at the final iterate: set this only where the caller does not
   /// use the workspace afterwards. Dense problems ignore it.
   bool reuse_factorisation = false;
+  /// n×2 basis that guides the first factorisation (for sparse problems the border rows of
+  /// [J; border] are chosen from it; it also orients the basis). Null: the workspace's last
+  /// basis, if it holds one — which makes the result depend on the workspace's history; a
+  /// caller that must be reproducible from its own inputs (the atlas's checkpoints) sets it.
+  const Eigen::MatrixXd* first_reference = nullptr;
 };
 
 /// The contraction a step with a kept factorisation must reach (reuse_factorisation).

@@ -106,6 +106,14 @@ SparseLuSolver default_sparse_lu_solver() {
   return SparseLuSolver::Eigen;
 }
 
+namespace {
+thread_local bool full_pivoting = false;
+}  // namespace
+
+FullPivotingScope::FullPivotingScope() : previous_(full_pivoting) { full_pivoting = true; }
+FullPivotingScope::~FullPivotingScope() { full_pivoting = previous_; }
+bool FullPivotingScope::is_active() { return full_pivoting; }
+
 SparseLuSolver sparse_lu_solver_for(const Eigen::SparseMatrix<double>& A) {
   const char* requested = std::getenv("TESSERA_SPARSE_LU");
   if ((requested != nullptr && *requested != '\0') || !is_available(SparseLuSolver::Klu)) {

@@ -15,6 +15,23 @@
 
 namespace tessera {
 
+/// While one lives on the calling thread, every SparseLu::factorize makes a full factorisation
+/// with pivoting (KLU does not refactor with the pivot sequence of the object's last one): a
+/// factorisation then depends on the matrix alone, not on what the same object factored
+/// before. The atlas builds under one, so that a build continued from a checkpoint (whose
+/// factorisations are new objects) repeats the uninterrupted build's arithmetic bit for bit.
+class FullPivotingScope {
+ public:
+  FullPivotingScope();
+  ~FullPivotingScope();
+  FullPivotingScope(const FullPivotingScope&) = delete;
+  FullPivotingScope& operator=(const FullPivotingScope&) = delete;
+  static bool is_active();
+
+ private:
+  bool previous_;
+};
+
 /// The sparse direct solvers. Which ones a build has depends on the libraries found when it was
 /// configured (`is_available`); Eigen is always there. bench/history/RESULTS-log.md section 9
 /// compares them on tessera's bordered Jacobians.

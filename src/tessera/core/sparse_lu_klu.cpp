@@ -141,6 +141,10 @@ class KluSparseLu final : public SparseLu {
     int* outer = const_cast<int*>(A.outerIndexPtr());
     int* inner = const_cast<int*>(A.innerIndexPtr());
     double* values = const_cast<double*>(A.valuePtr());
+    if (numeric_ != nullptr && FullPivotingScope::is_active()) {
+      klu_free_numeric(&numeric_, &common_);
+      numeric_ = nullptr;
+    }
     if (numeric_ != nullptr) {
       if (klu_refactor(outer, inner, values, symbolic_.get(), numeric_, &common_) == 1 &&
           klu_rcond(symbolic_.get(), numeric_, &common_) == 1 && std::isfinite(common_.rcond) &&

@@ -270,6 +270,12 @@ class StageRunner {
     summary.jacobian_evaluations = problem.jacobian_evaluations();
     summary.factorisations = problem.factorisations();
     summary.factorisation_seconds = problem.factorisation_seconds();
+    if (summary.resumed_from) {
+      // The work of the runs before the checkpoint this one continued.
+      summary.function_evaluations += summary.resumed_from->counts.function_evaluations;
+      summary.jacobian_evaluations += summary.resumed_from->counts.jacobian_evaluations;
+      summary.factorisations += summary.resumed_from->counts.factorisations;
+    }
     summary.work_by_phase = steps_;
     summary.wall_seconds = seconds_since(clock_start_);
     summary.threads = threads_for(problem);

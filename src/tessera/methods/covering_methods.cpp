@@ -38,7 +38,11 @@ CoveringResult run_atlas(const ProblemSetup& setup, const MethodSettings& settin
   options.step = settings.step > 0 ? settings.step : 2.0 * setup.suggested_step;
   options.tolerance = default_tolerance(setup);
   apply_shared_settings(settings, options);
-  const bool automatic = settings.atlas_placement == "auto";
+  options.checkpoint = settings.atlas_checkpoint;
+  // A checkpointed run takes the disk rule under "auto": its fallback from the hexagonal
+  // placement would otherwise start a second build that a resumed run cannot tell apart.
+  const bool checkpointed = settings.atlas_checkpoint.save || settings.atlas_checkpoint.resume_from;
+  const bool automatic = settings.atlas_placement == "auto" && !checkpointed;
   const bool hexagonal =
       settings.atlas_placement == "hexagonal" ||
       (automatic && !setup.problem->has_sparse_jacobian() && setup.domain.is_unbounded());

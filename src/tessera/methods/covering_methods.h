@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "tessera/methods/atlas/atlas_checkpoint.h"
 #include "tessera/methods/covering_result.h"
 #include "tessera/problems/problem_setup.h"
 
@@ -33,7 +34,8 @@ struct MethodSettings {
   /// (each smoothing projection is a factorisation: 6× the factorisations and 1.3× the time at
   /// n = 52 already) or the domain bounded (the disk rule's row of charts snapped onto ∂S keeps
   /// the clipped boundary's angles: 18–20° against 9° on whitney_pleat and trough).
-  std::string atlas_placement = "auto";
+  std::string atlas_placement = "auto";  ///< with a checkpoint, "auto" is "disk"
+  AtlasCheckpointing atlas_checkpoint;  ///< checkpoints and resuming (method atlas only)
   // front
   double front_min_gap_degrees = 0.0;
   int front_max_valence = 0;

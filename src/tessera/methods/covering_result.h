@@ -153,6 +153,14 @@ struct CoveringSummary {
   int removed_triangles = 0;
   int repaired_holes = 0;  ///< places where removed triangles were replaced by a new triangulation
   std::vector<std::string> notes;  ///< remarks for the user, e.g. where a crossing was met
+  /// A build continued from a checkpoint (AtlasCheckpointing::resume_from): what the run had
+  /// done when the checkpoint was written. The counts above include its work.
+  struct ResumedFrom {
+    int charts = 0;              ///< charts of the atlas in the checkpoint
+    double build_seconds = 0.0;  ///< wall time of the build until then, over all earlier runs
+    WorkCounts counts;           ///< F, DF and factorisations until then (in the counts above)
+  };
+  std::optional<ResumedFrom> resumed_from;
   /// A run of several components (cover_components): each one, in the order of their vertices,
   /// and what became of each start given. Empty for a run of one start's component.
   std::vector<ComponentRecord> components;

@@ -278,6 +278,15 @@ std::string to_json(const MeshReport& report) {
                         {"wall_seconds", p.wall_seconds}});
     }
     j["run"]["work_by_phase"] = phases;
+    if (r.resumed_from) {
+      // A run continued from a checkpoint: the counts above include the work before it.
+      j["run"]["resumed_from"] = {
+          {"charts", r.resumed_from->charts},
+          {"build_seconds", r.resumed_from->build_seconds},
+          {"function_evaluations", r.resumed_from->counts.function_evaluations},
+          {"jacobian_evaluations", r.resumed_from->counts.jacobian_evaluations},
+          {"factorisations", r.resumed_from->counts.factorisations}};
+    }
     if (r.vertex_count > 0) {
       const double V = r.vertex_count;
       j["run"]["per_vertex"] = {{"function_evaluations", r.function_evaluations / V},
@@ -408,6 +417,10 @@ std::string to_text(const MeshReport& report) {
       }
     }
     out << ", " << to_string(r.termination) << (r.message.empty() ? "" : ": " + r.message) << "\n";
+    if (report.run->resumed_from) {
+      out << "resumed        from a checkpoint of " << report.run->resumed_from->charts
+          << " charts (" << report.run->resumed_from->build_seconds << " s of build)\n";
+    }
     if (report.stop) {
       out << "stopped        by " << report.stop->signal << " during " << report.stop->stage;
       for (std::size_t i = 0; i < report.stop->left_out.size(); ++i) {

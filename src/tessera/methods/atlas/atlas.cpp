@@ -86,6 +86,9 @@ void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringRe
     // Charts snapped onto ∂S can leave the clipping a configuration it refuses (seen where M
     // meets a face at a shallow angle); the second attempt does without snapping.
     options.boundary_snap = 0.0;
+    // Its checkpoints would hold another build than the first attempt's, which a resumed run
+    // starts with: a run killed now is continued from the first attempt's last checkpoint.
+    options.checkpoint = {};
   }
   CoveringSummary& summary = result.summary;
   AtlasBuilder builder(context.problem, context.domain, options);

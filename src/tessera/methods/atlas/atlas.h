@@ -9,6 +9,7 @@
 #include "tessera/core/corrector.h"
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
+#include "tessera/methods/atlas/atlas_checkpoint.h"
 #include "tessera/methods/covering.h"
 
 namespace tessera {
@@ -74,6 +75,8 @@ struct AtlasOptions : CoveringOptions {
   /// charts are factored twice (bratu2d:N=316 with 2 GiB: 256 of 422). Default: a quarter of
   /// the machine's physical memory, at least 2 GiB (default_factorisation_budget).
   double max_factorisation_bytes = default_factorisation_budget();
+  /// Checkpoints of the build and continuing from one (off by default).
+  AtlasCheckpointing checkpoint;
 
   /// \throw InvalidArgument naming the first option out of range.
   void validate() const;

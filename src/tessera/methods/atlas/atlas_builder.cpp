@@ -5,13 +5,16 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
+#include "tessera/core/binary_stream.h"
 #include "tessera/core/corrector.h"
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/core/point_storage.h"
 #include "tessera/core/process_memory.h"
+#include "tessera/core/sparse_lu.h"
 
 namespace tessera::detail {
 namespace {
@@ -39,9 +42,6 @@ constexpr int kMaxRepeatedTargets = 3;
 // Every so many charts the resident memory is sampled and, from kReleaseHeapDimension on, the
 // heap's free pages go back to the system (release_free_heap).
 constexpr int kReleaseHeapCharts = 64;
-// The note on charts held below the tolerance's radius is made from this fraction of the charts
-// on: below it they barely change the cost of the run (measured in the commit that made it).
-constexpr double kRadiusCapNoteFraction = 0.1;
 
 }  // namespace
 
@@ -428,7 +428,8 @@ void AtlasBuilder::retire_finished_charts(int c) {
 
 // The queue is first in, first out: the newest chart is processed last, so it is the one whose
 // factorisation is dropped when the budget is spent (the older ones are used sooner).
-void AtlasBuilder::keep_factorisation(int c, Linearization&& linearization) {
+void AtlasBuilder::keep_factorisation(int c, Linearization&& linearization,
+                                      const Eigen::MatrixXd& reference) {
   linearization.release_assembly();  // it waits for its solves: DF and the bordered matrix go
   const std::size_t bytes = linearization.memory_bytes();
   if (!factored_.empty() &&
@@ -437,7 +438,7 @@ void AtlasBuilder::keep_factorisation(int c, Linearization&& linearization) {
     return;  // refactored when the chart's turn comes
   }
   kept_bytes_ += bytes;
-  factored_.emplace(c, KeptFactorisation{std::move(linearization), bytes});
+  factored_.emplace(c, KeptFactorisation{std::move(linearization), bytes, reference});
   note_boundary_bytes();
 }
 
@@ -446,9 +447,44 @@ void AtlasBuilder::enqueue(int c) {
   open_.push_back(c);
 }
 
+// The factorisation at chart c's centre: the one kept since c was made, else a new one guided
+// by c's basis (its polygon's frame stays the stored basis). center_reference_ records the
+// guide, so that a resumed build makes the same factorisation.
+void AtlasBuilder::take_center_factorisation(int c, Linearization& at_center) {
+  auto found = factored_.find(c);
+  if (found != factored_.end()) {
+    at_center = std::move(found->second.linearization);
+    center_reference_ = std::move(found->second.reference);
+    kept_bytes_ -= found->second.bytes;
+    factored_.erase(found);
+  } else {
+    center_reference_ = tangent(c);
+  }
+  if (!at_center.is_factored()) {
+    at_center.factor(problem_, center(c),
+                     center_reference_.size() > 0 ? &center_reference_ : nullptr);
+  }
+}
+
 void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
+  const bool saves = static_cast<bool>(options_.checkpoint.save);
+  // With checkpoints, a factorisation must depend on its matrix alone, not on the object's
+  // history (KLU's refactorisation reuses the last pivots): a resumed build makes its
+  // factorisations in new objects (atlas_checkpoint.h). Only then: full factorisations cost a
+  // run with KLU 5–10 % of its factorisation time (bench/RESULTS.md, "Checkpoints"), and a run
+  // without checkpoints need not pay it. So a run with --checkpoint repeats any other run with
+  // --checkpoint bit for bit, and one without it up to the rounding of the pivots.
+  std::optional<FullPivotingScope> full_pivoting;
+  if (saves || options_.checkpoint.resume_from) {
+    full_pivoting.emplace();
+  }
   min_radius_ = options_.step * options_.min_radius_fraction;
-  {
+  start_ = start;
+  build_start_ = std::chrono::steady_clock::now();
+  if (options_.checkpoint.resume_from) {
+    BinaryReader in(*options_.checkpoint.resume_from, "atlas checkpoint");
+    read_state(in, summary);
+  } else {
     Linearization linearization;
     const int first = add_chart(start, -1, linearization);
     if (first < 0) {
@@ -460,162 +496,40 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       return;
     }
     enqueue(first);
-    keep_factorisation(first, std::move(linearization));
+    keep_factorisation(first, std::move(linearization), Eigen::MatrixXd());
   }
   ProgressSchedule progress_schedule;
   int next_heap_release = kReleaseHeapCharts;
-  Eigen::VectorXd y(rows_);
-  while (!open_.empty() && !stopped_) {
-    const int c = open_.front();
-    open_.pop_front();
-    charts_[c].queued = false;
-    auto found = factored_.find(c);
-    if (next_open_vertex(c) < 0) {
-      // Closed (or out of the margin) before its turn came: the neighbours placed since cut
-      // its corners away. Nothing to place, so no factorisation (re-queued charts have none
-      // kept: 15 % of the charts on bratu2d were factored again here only to find nothing).
-      if (found != factored_.end()) {
-        kept_bytes_ -= found->second.bytes;
-        give_back(std::move(found->second.linearization));
-        factored_.erase(found);
-      }
-      retire_finished_charts(c);
-      continue;
-    }
+  while ((!open_.empty() || work_.chart >= 0) && !stopped_) {
     Linearization at_center;
-    if (found != factored_.end()) {
-      at_center = std::move(found->second.linearization);
-      kept_bytes_ -= found->second.bytes;
-      factored_.erase(found);
+    int c = work_.chart;
+    if (c >= 0) {
+      // Resumed between two children of chart c: its factorisation is made again as before.
+      at_center.factor(problem_, center(c),
+                       center_reference_.size() > 0 ? &center_reference_ : nullptr);
     } else {
-      Eigen::MatrixXd T = tangent(c);
-      at_center.factor(problem_, center(c), &T);
-      // The stored basis stays the chart's frame (its polygon lives in it).
-    }
-    const Eigen::MatrixXd Tc = tangent(c);
-    const Eigen::VectorXd xc = center(c);
-    int children = 0;
-    Eigen::Vector2d last_target(std::nan(""), std::nan(""));
-    int repeats = 0;  // children in a row that did not remove their corner
-    double smallest_child = charts_[c].radius;
-    for (int vertex = next_open_vertex(c); vertex >= 0 && !stopped_; vertex = next_open_vertex(c)) {
-      if (chart_count() >= options_.max_vertices) {
-        fail(summary, CoveringTermination::VertexLimit,
-             "stopped at " + std::to_string(chart_count()) + " charts (max_vertices)");
-        break;
-      }
-      if (options_.stop_requested && options_.stop_requested()) {
-        fail(summary, CoveringTermination::Interrupted,
-             "interrupted at " + std::to_string(chart_count()) + " charts");
-        break;
-      }
-      // A chart next to much smaller ones needs about 2πR/r of them around its rim.
-      if (++children > kMaxChildrenPerChart * std::max(1.0, charts_[c].radius / smallest_child)) {
-        fail(summary, CoveringTermination::ProjectionFailed,
-             "the chart at " + describe_point(xc, *space_) +
-                 " could not be closed: its neighbours do not "
-                 "cut away the uncovered corners of its polygon");
-        break;
-      }
-      const auto& v = charts_[c].polygon.vertices()[vertex];
-      const Eigen::Vector2d direction = Eigen::Vector2d(v.s, v.t).normalized();
-      // If the last child did not remove its corner (snapping moved it away), the next one is
-      // placed where the corner asks, unsnapped.
-      const bool target_repeated = Eigen::Vector2d(v.s, v.t).isApprox(last_target, 1e-12);
-      last_target = Eigen::Vector2d(v.s, v.t);
-      repeats = target_repeated ? repeats + 1 : 0;
-      if (repeats >= kMaxRepeatedTargets && charts_[c].radius > 4.0 * min_radius_) {
-        // Neither the child aimed at the corner nor Henderson's on the rim removed it: the
-        // rim there is out of reach (bratu2d:N=32 at step 0.7: a chart of radius 0.7 at the
-        // ignition fold, whose rim child lies on another sheet, placed the same inner child
-        // 746 times before failing). Henderson's cap "where the mapping exists": shrink.
-        shrink_radius(c, kShrinkFactor * charts_[c].radius);
-        smallest_child = std::min(smallest_child, charts_[c].radius);
-        repeats = 0;
-        last_target = Eigen::Vector2d(std::nan(""), std::nan(""));
+      c = open_.front();
+      open_.pop_front();
+      charts_[c].queued = false;
+      if (next_open_vertex(c) < 0) {
+        // Closed (or out of the margin) before its turn came: the neighbours placed since cut
+        // its corners away. Nothing to place, so no factorisation (re-queued charts have none
+        // kept: 15 % of the charts on bratu2d were factored again here only to find nothing).
+        if (auto found = factored_.find(c); found != factored_.end()) {
+          kept_bytes_ -= found->second.bytes;
+          if (found->second.linearization.is_factored()) {
+            give_back(std::move(found->second.linearization));
+          }
+          factored_.erase(found);
+        }
+        retire_finished_charts(c);
         continue;
       }
-      // The new centre goes on the disk boundary towards the uncovered corner (pointOnDisk:
-      // projected orthogonally to this chart's tangent plane). Where that fails, or lands on a
-      // singular point, nearer and farther points are tried.
-      int child = -1;
-      Linearization at_child = take_spare();
-      // A corner the last child did not remove gets Henderson's placement, which always does.
-      const Eigen::Vector2d target =
-          target_repeated ? charts_[c].radius * direction : child_position(c, vertex);
-      bool shrunk = false;
-      for (double fraction : {1.0, 0.85, 1.1, 0.7, 0.5, 0.35, 0.25}) {
-        const Eigen::Vector2d s = fraction * target;
-        y = xc + Tc * s;
-        // A projection that drifted beyond the disk (Gauss–Newton, where the chord failed,
-        // may move along the tangent plane) gives a child that may not overlap this chart, so
-        // its cut cannot remove the corner: the same child came back 1800 times on bratu2d:N=10
-        // at step 0.7 (0.7503 from a chart of radius 0.7, its own radius 0.025).
-        const bool projected = project(at_center, s.norm(), y);
-        // Disk placement only: hexagonal placement aims up to 1.9 R on purpose, and its own
-        // geometry decides (the rule changed the crossing's hexagonal mesh beyond its bound).
-        const bool beyond_disk =
-            projected && options_.placement == AtlasPlacement::Disk &&
-            space_->tangent_coordinates(Tc, y - xc).norm() >
-                kMaxRimOvershoot * charts_[c].radius;
-        if (!projected || beyond_disk) {
-          if (fraction == 1.0 && charts_[c].radius > 4.0 * min_radius_ &&
-              s.norm() >= 0.99 * charts_[c].radius) {
-            // pointOnDisk fails on the chart's own disk: M is no graph over it in this
-            // direction or the corrector does not reach its rim, so the radius was too large
-            // (its measurement missed this direction). A child placed nearer would not cut
-            // the corner away; the chart is shrunk instead (Henderson's cap "where the
-            // mapping exists", applied where it was found to fail).
-            shrink_radius(c, kShrinkFactor * charts_[c].radius);
-            shrunk = true;
-            break;
-          }
-          continue;
-        }
-        if (watch_crossings_) {
-          evaluate_jacobian(y);  // also used by add_chart for the new chart's orientation
-        }
-        if (watch_crossings_ && charts_[c].orientation != 0) {
-          // Never centre a chart at or next to a singular point: its chord iteration would
-          // not converge beyond a tiny radius. σ_min falling tenfold in one step means one.
-          if (jacobian_scale() < 0.1 * charts_[c].jacobian_scale) {
-            continue;
-          }
-          const signed char across = orientation_sign(Tc);
-          if (across == 0) {
-            continue;
-          }
-          if (across != charts_[c].orientation) {
-            ++singular_crossings_;
-            if (first_crossing_.empty()) {
-              first_crossing_ = describe_point(0.5 * (xc + y), *space_);
-            }
-          }
-        }
-        if (!target_repeated) {
-          snap_to_domain_boundary(y, charts_[c].radius, at_center);
-        }
-        child = add_chart(y, c, at_child);
-        if (child >= 0) {
-          break;
-        }
-      }
-      if (shrunk) {
-        give_back(std::move(at_child));
-        smallest_child = std::min(smallest_child, charts_[c].radius);
-        continue;
-      }
-      if (child < 0) {
-        fail(summary, CoveringTermination::ProjectionFailed,
-             "no chart could be centred beyond " + describe_point(xc, *space_) +
-                 " in the direction of its uncovered corner: the corrector does not converge "
-                 "or DF is singular there");
-        break;
-      }
-      smallest_child = std::min(smallest_child, charts_[child].radius);
-      enqueue(child);
-      keep_factorisation(child, std::move(at_child));
+      take_center_factorisation(c, at_center);
+      work_ = ChartWork{c, 0, Eigen::Vector2d(std::nan(""), std::nan("")), 0, charts_[c].radius};
     }
+    place_children(c, at_center, summary);
+    work_.chart = -1;
     give_back(std::move(at_center));
     retire_finished_charts(c);
     if (chart_count() >= next_heap_release) {
@@ -633,74 +547,149 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
       options_.progress({chart_count(), 0, static_cast<int>(open_.size())});
     }
   }
-  summary.charts = chart_count();
-  if (n_ >= kReleaseHeapDimension) {
-    release_free_heap();  // what the last charts freed, before the build's final sample
+  if (saves && !stopped_) {
+    save_checkpoint();  // the complete build: a run killed after it need not build again
   }
-  summary.note_resident_memory(boundary_bytes());
-  summary.boundary_peak_bytes = boundary_peak_bytes_;
-  summary.singular_crossings = singular_crossings_;
-  summary.sheet_rejections = sheet_rejections_;
-  CoveringSummary::RadiusCaps& caps = summary.radius_caps;
-  caps.curvature = capped_[static_cast<int>(RadiusCap::Curvature)];
-  caps.not_a_graph = capped_[static_cast<int>(RadiusCap::NotAGraph)];
-  caps.grading = capped_[static_cast<int>(RadiusCap::Grading)];
-  caps.reach = capped_[static_cast<int>(RadiusCap::Reach)];
-  caps.band = capped_[static_cast<int>(RadiusCap::Band)];
-  caps.reduced_later = shrunk_charts_;
-  const int capped = caps.total();
-  // The counts are always in the summary (run.atlas.radius_caps). The note is for the few runs
-  // where they change the cost: a few charts held small (a grading step, a corner) are in every
-  // atlas and say nothing; issue 34 found the same 400 characters printed by every run.
-  if (capped > 0 && capped >= kRadiusCapNoteFraction * chart_count()) {
-    // The causes that held charts, those that did not left out.
-    std::vector<std::string> causes;
-    const auto cause = [&causes](int count, const std::string& why) {
-      if (count > 0) {
-        causes.push_back(std::to_string(count) + " " + why);
+  report(summary);
+}
+
+// Places children on the rim of chart c until its polygon has no exterior vertex left (or the
+// run stops). work_ holds the counts that decide the next child.
+void AtlasBuilder::place_children(int c, Linearization& at_center, CoveringSummary& summary) {
+  const Eigen::MatrixXd Tc = tangent(c);
+  const Eigen::VectorXd xc = center(c);
+  Eigen::VectorXd y(rows_);
+  for (int vertex = next_open_vertex(c); vertex >= 0 && !stopped_; vertex = next_open_vertex(c)) {
+    if (chart_count() >= options_.max_vertices) {
+      fail(summary, CoveringTermination::VertexLimit,
+           "stopped at " + std::to_string(chart_count()) + " charts (max_vertices)");
+      break;
+    }
+    if (options_.stop_requested && options_.stop_requested()) {
+      if (options_.checkpoint.save && checkpoint_bytes() <= options_.checkpoint.max_bytes_at_stop) {
+        save_checkpoint();
+      } else if (options_.checkpoint.save) {
+        summary.notes.push_back("no checkpoint was written at the stop: its " +
+                                std::to_string(std::lround(checkpoint_bytes() / 1e6)) +
+                                " MB would have delayed the mesh (max_bytes_at_stop); the last "
+                                "periodic checkpoint stands");
       }
-    };
-    std::ostringstream turning;
-    turning << "capped by the curvature (radius <= " << options_.max_turning_angle
-            << "/curvature: M turns within the disk)";
-    cause(caps.curvature, turning.str());
-    cause(caps.not_a_graph,
-          "where M is no graph over the larger disk or the corrector does not reach it (a thin "
-          "part or a turn of M nearby)");
-    std::ostringstream grading;
-    grading << "next to smaller charts (radii grow by at most " << options_.radius_growth - 1.0
-            << " per unit length)";
-    cause(caps.grading, grading.str());
-    cause(caps.reach, "by the reach (another part of M within the disk)");
-    cause(caps.band, "to half the width of a band of M ∩ S narrower than two radii");
-    std::ostringstream note;
-    note << capped << " of " << chart_count() << " charts ("
-         << std::lround(100.0 * capped / chart_count())
-         << "%) have a radius below the tolerance's sqrt(2*tolerance/curvature), so the mesh "
-            "is finer than the tolerance asks: ";
-    for (std::size_t i = 0; i < causes.size(); ++i) {
-      note << (i == 0 ? "" : ", ") << causes[i];
+      fail(summary, CoveringTermination::Interrupted,
+           "interrupted at " + std::to_string(chart_count()) + " charts");
+      break;
     }
-    if (shrunk_charts_ > 0) {
-      note << "; " << shrunk_charts_
-           << " radii were reduced later, where pointOnDisk failed on the disk or another part "
-              "of M came near";
+    if (options_.checkpoint.save && options_.checkpoint.is_due && options_.checkpoint.is_due()) {
+      save_checkpoint();
     }
-    summary.notes.push_back(note.str());
-  }
-  if (refactored_charts_ > 0) {
-    std::ostringstream note;
-    note << refactored_charts_ << " of " << chart_count()
-         << " charts were factored twice: the factorisations of the charts waiting on the "
-            "boundary outgrew max_factorisation_bytes ("
-         << options_.max_factorisation_bytes / (1024.0 * 1024.0) << " MB)";
-    summary.notes.push_back(note.str());
-  }
-  if (singular_crossings_ > 0) {
-    summary.notes.push_back("met a singular crossing of M (first near " + first_crossing_ +
-                            "): the atlas continued along the sheet it was on, " +
-                            std::to_string(sheet_rejections_) +
-                            " overlaps with charts of other sheets were kept apart");
+    int& children = work_.children;
+    int& repeats = work_.repeats;
+    Eigen::Vector2d& last_target = work_.last_target;
+    double& smallest_child = work_.smallest_child;
+    // A chart next to much smaller ones needs about 2πR/r of them around its rim.
+    if (++children > kMaxChildrenPerChart * std::max(1.0, charts_[c].radius / smallest_child)) {
+      fail(summary, CoveringTermination::ProjectionFailed,
+           "the chart at " + describe_point(xc, *space_) +
+               " could not be closed: its neighbours do not "
+               "cut away the uncovered corners of its polygon");
+      break;
+    }
+    const auto& v = charts_[c].polygon.vertices()[vertex];
+    const Eigen::Vector2d direction = Eigen::Vector2d(v.s, v.t).normalized();
+    // If the last child did not remove its corner (snapping moved it away), the next one is
+    // placed where the corner asks, unsnapped.
+    const bool target_repeated = Eigen::Vector2d(v.s, v.t).isApprox(last_target, 1e-12);
+    last_target = Eigen::Vector2d(v.s, v.t);
+    repeats = target_repeated ? repeats + 1 : 0;
+    if (repeats >= kMaxRepeatedTargets && charts_[c].radius > 4.0 * min_radius_) {
+      // Neither the child aimed at the corner nor Henderson's on the rim removed it: the
+      // rim there is out of reach (bratu2d:N=32 at step 0.7: a chart of radius 0.7 at the
+      // ignition fold, whose rim child lies on another sheet, placed the same inner child
+      // 746 times before failing). Henderson's cap "where the mapping exists": shrink.
+      shrink_radius(c, kShrinkFactor * charts_[c].radius);
+      smallest_child = std::min(smallest_child, charts_[c].radius);
+      repeats = 0;
+      last_target = Eigen::Vector2d(std::nan(""), std::nan(""));
+      continue;
+    }
+    // The new centre goes on the disk boundary towards the uncovered corner (pointOnDisk:
+    // projected orthogonally to this chart's tangent plane). Where that fails, or lands on a
+    // singular point, nearer and farther points are tried.
+    int child = -1;
+    Linearization at_child = take_spare();
+    // A corner the last child did not remove gets Henderson's placement, which always does.
+    const Eigen::Vector2d target =
+        target_repeated ? charts_[c].radius * direction : child_position(c, vertex);
+    bool shrunk = false;
+    for (double fraction : {1.0, 0.85, 1.1, 0.7, 0.5, 0.35, 0.25}) {
+      const Eigen::Vector2d s = fraction * target;
+      y = xc + Tc * s;
+      // A projection that drifted beyond the disk (Gauss–Newton, where the chord failed,
+      // may move along the tangent plane) gives a child that may not overlap this chart, so
+      // its cut cannot remove the corner: the same child came back 1800 times on bratu2d:N=10
+      // at step 0.7 (0.7503 from a chart of radius 0.7, its own radius 0.025).
+      const bool projected = project(at_center, s.norm(), y);
+      // Disk placement only: hexagonal placement aims up to 1.9 R on purpose, and its own
+      // geometry decides (the rule changed the crossing's hexagonal mesh beyond its bound).
+      const bool beyond_disk =
+          projected && options_.placement == AtlasPlacement::Disk &&
+          space_->tangent_coordinates(Tc, y - xc).norm() > kMaxRimOvershoot * charts_[c].radius;
+      if (!projected || beyond_disk) {
+        if (fraction == 1.0 && charts_[c].radius > 4.0 * min_radius_ &&
+            s.norm() >= 0.99 * charts_[c].radius) {
+          // pointOnDisk fails on the chart's own disk: M is no graph over it in this
+          // direction or the corrector does not reach its rim, so the radius was too large
+          // (its measurement missed this direction). A child placed nearer would not cut
+          // the corner away; the chart is shrunk instead (Henderson's cap "where the
+          // mapping exists", applied where it was found to fail).
+          shrink_radius(c, kShrinkFactor * charts_[c].radius);
+          shrunk = true;
+          break;
+        }
+        continue;
+      }
+      if (watch_crossings_) {
+        evaluate_jacobian(y);  // also used by add_chart for the new chart's orientation
+      }
+      if (watch_crossings_ && charts_[c].orientation != 0) {
+        // Never centre a chart at or next to a singular point: its chord iteration would
+        // not converge beyond a tiny radius. σ_min falling tenfold in one step means one.
+        if (jacobian_scale() < 0.1 * charts_[c].jacobian_scale) {
+          continue;
+        }
+        const signed char across = orientation_sign(Tc);
+        if (across == 0) {
+          continue;
+        }
+        if (across != charts_[c].orientation) {
+          ++singular_crossings_;
+          if (first_crossing_.empty()) {
+            first_crossing_ = describe_point(0.5 * (xc + y), *space_);
+          }
+        }
+      }
+      if (!target_repeated) {
+        snap_to_domain_boundary(y, charts_[c].radius, at_center);
+      }
+      child = add_chart(y, c, at_child);
+      if (child >= 0) {
+        break;
+      }
+    }
+    if (shrunk) {
+      give_back(std::move(at_child));
+      smallest_child = std::min(smallest_child, charts_[c].radius);
+      continue;
+    }
+    if (child < 0) {
+      fail(summary, CoveringTermination::ProjectionFailed,
+           "no chart could be centred beyond " + describe_point(xc, *space_) +
+               " in the direction of its uncovered corner: the corrector does not converge "
+               "or DF is singular there");
+      break;
+    }
+    smallest_child = std::min(smallest_child, charts_[child].radius);
+    enqueue(child);
+    keep_factorisation(child, std::move(at_child), Tc);
   }
 }
 

@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <cmath>
 #include <deque>
 #include <string>
 #include <unordered_map>
@@ -23,6 +25,11 @@
 #include "tessera/methods/atlas/chart_index.h"
 #include "tessera/methods/atlas/chart_polygon.h"
 #include "tessera/methods/covering_result.h"
+
+namespace tessera {
+class BinaryReader;
+class BinaryWriter;
+}  // namespace tessera
 
 namespace tessera::detail {
 
@@ -54,6 +61,10 @@ class AtlasBuilder {
  public:
   AtlasBuilder(const ImplicitProblem& problem, const Domain& domain, const AtlasOptions& options);
 
+  /// Builds the atlas from `start` (or continues options.checkpoint.resume_from, then `start`
+  /// must be the start of the checkpointed run).
+  /// \throw InvalidArgument if the state to resume from is corrupt or from another problem,
+  ///        start, domain or options (the message names what differs).
   void run(const Eigen::VectorXd& start, CoveringSummary& summary);
 
   int chart_count() const { return static_cast<int>(charts_.size()); }
@@ -122,6 +133,32 @@ class AtlasBuilder {
   bool same_sheet(int a, int b, const Eigen::VectorXd& offset) const;
   signed char orientation_sign(const Eigen::Ref<const Eigen::MatrixXd>& T) const;
   void enqueue(int c);
+  // The chart whose children are being placed, with what decides its next child: a checkpoint
+  // taken between two children holds it, and a resumed build continues it.
+  struct ChartWork {
+    int chart = -1;  // −1: none (between charts)
+    int children = 0;
+    Eigen::Vector2d last_target{std::nan(""), std::nan("")};
+    int repeats = 0;  // children in a row that did not remove their corner
+    double smallest_child = 0.0;
+  };
+  ChartWork work_;
+  // The tangent basis that guided the factorisation of work_.chart's centre (empty: none), so
+  // that a resumed build factors it again to the same bits (the border of a sparse problem's
+  // bordered matrix is chosen from it).
+  Eigen::MatrixXd center_reference_;
+  void take_center_factorisation(int c, Linearization& at_center);
+  void place_children(int c, Linearization& at_center, CoveringSummary& summary);
+  void report(CoveringSummary& summary);
+  // Checkpoints (atlas_checkpoint.cpp).
+  void save_checkpoint();
+  double checkpoint_bytes() const;  // about what save_checkpoint writes
+  void write_state(BinaryWriter& out);
+  void read_state(BinaryReader& in, CoveringSummary& summary);
+  Eigen::VectorXd start_;
+  std::chrono::steady_clock::time_point build_start_;
+  double seconds_before_ = 0.0;  // build time of the runs before a resumed checkpoint
+  WorkCounts counts_before_;     // and their work
   void fail(CoveringSummary& summary, CoveringTermination why, const std::string& message) {
     summary.termination = why;
     summary.message = message;
@@ -155,9 +192,13 @@ class AtlasBuilder {
   std::vector<Chart> charts_;
   std::deque<int> open_;  // charts that may have eligible exterior vertices
   // Factorisations of queued charts, at most options_.max_factorisation_bytes of them.
+  // After a resume the factorisations are not there (a cache, not saved): they are made again
+  // when the chart's turn comes, guided by the same reference basis as the first time, which
+  // gives the same bits (the same border, the same LU).
   struct KeptFactorisation {
     Linearization linearization;
     std::size_t bytes = 0;
+    Eigen::MatrixXd reference;  // the basis that guided it (the parent's); empty: none
   };
   std::unordered_map<int, KeptFactorisation> factored_;
   std::size_t kept_bytes_ = 0;
@@ -171,7 +212,7 @@ class AtlasBuilder {
     boundary_peak_bytes_ = std::max(boundary_peak_bytes_, boundary_bytes());
   }
   int refactored_charts_ = 0;  // charts whose factorisation was dropped (over the budget)
-  void keep_factorisation(int c, Linearization&& linearization);
+  void keep_factorisation(int c, Linearization&& linearization, const Eigen::MatrixXd& reference);
   // A few factorisations of processed charts, reused (fewer allocations at small n).
   std::vector<Linearization> spare_;
   void give_back(Linearization&& linearization) {

@@ -22,6 +22,9 @@ class ChartIndex {
   explicit ChartIndex(std::shared_ptr<const AmbientSpace> space);
 
   void insert(int chart, const Eigen::Ref<const Eigen::VectorXd>& center, double radius);
+  /// (chart, radius) of every insert, in order: inserting them again into a new index, with the
+  /// same refits, gives the same index (the same candidates in the same order).
+  const std::vector<std::pair<int, double>>& inserted() const { return inserted_; }
 
   /// Whether the view should be refitted now (the number of disks doubled since the last fit).
   bool refit_due() { return schedule_.due(static_cast<int>(inserted_.size())); }

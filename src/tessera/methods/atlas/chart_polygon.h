@@ -3,6 +3,7 @@
 // cut by the half-planes of its neighbours (Henderson's later "polyhedron" representation).
 #pragma once
 
+#include <utility>
 #include <vector>
 
 namespace tessera {
@@ -23,6 +24,12 @@ class ChartPolygon {
   ChartPolygon() = default;
   /// The square [−half_width, half_width]², every edge labelled kNoNeighbour.
   explicit ChartPolygon(double half_width);
+  /// A polygon as vertices() returned it (a checkpoint's).
+  static ChartPolygon from_vertices(std::vector<Vertex> vertices) {
+    ChartPolygon polygon;
+    polygon.vertices_ = std::move(vertices);
+    return polygon;
+  }
 
   /// Keeps {p : normal·p ≤ offset}; the new edge on the line gets `label`.
   /// \return true if the polygon changed.

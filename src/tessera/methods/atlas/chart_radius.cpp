@@ -300,6 +300,9 @@ bool AtlasBuilder::project(const Linearization& at_center, double distance, Eige
   CorrectorOptions full = options_.corrector;
   full.max_displacement = 0.5 * distance;
   full.reuse_factorisation = true;  // scratch_ is not used afterwards
+  // Guided by the chart's basis, not by what scratch_ held last: the projection then depends on
+  // its inputs only, which a resumed build (atlas_checkpoint.h) needs to repeat it.
+  full.first_reference = &at_center.tangent_basis();
   if (!project_gauss_newton(problem_, y, full, scratch_).is_success()) {
     return false;
   }
