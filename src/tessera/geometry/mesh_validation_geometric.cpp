@@ -322,6 +322,10 @@ struct OverlapOnManifold {
   Eigen::VectorXd point;  // a point of M that both triangles cover
   double area = 0.0;      // of the overlap in the chart (M's tangent plane at `point`)
   double width = 0.0;     // its area / perimeter
+  // A point of one triangle lies deeper between two sheets than half its distance to the other
+  // triangle (P jumps between them): the triangles reach past where projecting onto M is one
+  // to one, and `depth` is that point's distance to M.
+  double depth = 0.0;
 };
 
 // Do triangles s and t of different components cross where two sheets of M cross
@@ -441,9 +445,25 @@ OverlapOnManifold overlap_on_manifold(const MeshView& view, const GeometricInput
       return found;
     }
     const double floor = 1e-10 * (1.0 + space.maximum(p.lpNorm<Eigen::Infinity>()));
-    if (space.distance(p1, p2) >
-        options.overlap_same_point_ratio * space.distance(q1, q2) + floor) {
-      return found;  // another sheet of M (close sheets, the far side of a thin tube)
+    const double apart = space.distance(q1, q2);
+    // Another sheet of M (close sheets, the far side of a thin tube): P(q₁) and P(q₂) far apart,
+    // and each of q₁, q₂ nearer to M than to the other. A point that lies deeper than that
+    // (0.065 inside a tube of radius 0.07, 0.056 below its neighbour: a triangle that spans the
+    // tube, the stress campaign's thin_torus front case 1108) follows no sheet; its triangle
+    // covers the part of M its neighbour covers, whatever P(q₂) says.
+    const double deepest = std::max(space.distance(q1, p1), space.distance(q2, p2));
+    if (space.distance(p1, p2) > options.overlap_same_point_ratio * apart + floor) {
+      if (deepest < options.overlap_sheet_depth_ratio * apart) {
+        return found;  // another sheet
+      }
+      // No chart at p maps both triangles onto M (the distortion bound below assumes each lies
+      // along M): the two cover the same part of M as far as any projection can tell.
+      found.is_overlap = true;
+      found.point = std::move(p1);
+      found.area = chart.area;
+      found.width = chart.width();
+      found.depth = deepest;
+      return found;
     }
     // M's curvature near p from the corners' heights over the chart (height ≈ κr²/2), and the
     // larger chord error: measured at q₁, q₂, or κh²/8 for the triangles' longest edge h.
@@ -703,6 +723,10 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
             << describe_point(p, space) << ": overlap " << 100.0 * on_m.area / smaller_area
             << "% of the smaller, " << on_m.width << " wide"
             << (candidate.shared == 1 ? " (they share one vertex: a folded fan)" : "");
+        if (on_m.depth > 0.0) {
+          out << "; a point of one lies " << on_m.depth
+              << " from M, deeper than half its distance to the other: it follows no sheet of M";
+        }
         return out.str();
       });
     }
