@@ -476,6 +476,46 @@ TEST(GeometricValidation, OppositeSidesOfAThinTubeDoNotOverlap) {
   EXPECT_EQ(validate(mesh, tube, Domain(), blind).overlapping_pair_count, 0);
 }
 
+// A triangle across a thin tube (the stress campaign's thin_torus front case 1108): corners on
+// M, two on the outer equator one edge apart along the tube and one 150° around its cross-section,
+// so that its middle passes 0.06 below M, near the tube's core. Points of it project onto either
+// side of the tube, so the "another sheet" rule alone would excuse it; but those points lie
+// deeper than half their distance to the triangles it covers, so it follows no sheet of M.
+TEST(GeometricValidation, FindsATriangleAcrossAThinTube) {
+  const double r = 0.07;
+  const Torus tube(1.0, r);
+  const int m = 126;
+  const int k = 12;  // 30° a step around the cross-section
+  TriangleMesh mesh = torus_about_x_axis(1.0, r, m, k);
+  Eigen::MatrixXd points = mesh.points();
+  const int first = points.cols();
+  points.conservativeResize(Eigen::NoChange, first + 3);
+  points.col(first) = mesh.point(examples::grid_index(10, 0, k));
+  points.col(first + 1) = mesh.point(examples::grid_index(12, 0, k));
+  points.col(first + 2) = mesh.point(examples::grid_index(11, 5, k));
+  std::vector<Triangle> triangles = mesh.triangles();
+  const int across = static_cast<int>(triangles.size());
+  triangles.push_back({first, first + 1, first + 2});
+  const TriangleMesh planted(points, triangles);
+
+  const MeshValidation validation = validate(planted, tube, Domain(), all_examples());
+  bool found = false;
+  for (const auto& [s, t] : validation.overlapping_triangle_pairs) {
+    found = found || s == across || t == across;
+  }
+  EXPECT_TRUE(found) << validation.report();
+  EXPECT_NE(validation.report().find("follows no sheet of M"), std::string::npos)
+      << validation.report();
+  // Without the depth rule (the validation before case 1108), fewer pairs are found: the ones
+  // the depth rule adds are those the sheets rule excused.
+  ValidationOptions deep = all_examples();
+  deep.overlap_sheet_depth_ratio = 1e9;
+  EXPECT_LT(validate(planted, tube, Domain(), deep).overlapping_pair_count,
+            validation.overlapping_pair_count);
+  // The tube alone, whose triangles lie on its sides, stays valid with the rule.
+  expect_geometrically_valid(validate(mesh, tube, Domain()));
+}
+
 // Two concentric spheres 1e-3 apart, far less than an edge (0.035) but more than the chord
 // error (1.5e-4): the mesh covers two sheets of M, not one twice.
 TEST(GeometricValidation, ConcentricSpheresCloserThanAnEdgeDoNotOverlap) {
@@ -555,6 +595,9 @@ TEST(GeometricValidation, RejectsBadOptionsAndDimensions) {
   EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
   options = {};
   options.min_tangent_cosine = 2;
+  EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
+  options = {};
+  options.overlap_sheet_depth_ratio = 0;
   EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
   options = {};
   options.crossing_plane_cosine = -0.1;
