@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -262,6 +263,30 @@ TEST(GeometricValidation, FindsADoubledPatch) {
     EXPECT_GE(t, sphere.triangle_count()) << "and a copied one";
   }
   expect_defect_named(validation, MeshDefectKind::OverlappingTriangles, "both cover M near (");
+}
+
+// The same on a coarse mesh, where the chart's distortion bound (chord error 0.42 times a reach
+// of 0.8) exceeds the overlap's width: a face of the octahedron, copied with corners moved 0.003
+// along the sphere (the stress campaign's sphere_box front case 664 of seed 2034, two triangles of
+// edge 1 on top of each other). Judged without the chart: the point of M over the overlap is the
+// projection of a point inside each triangle.
+TEST(GeometricValidation, FindsACoarseTriangleCoveredTwice) {
+  const TriangleMesh octahedron = examples::octahedron();
+  ASSERT_TRUE(validate(octahedron, Sphere(1.0), Domain()).is_valid());
+  TriangleMesh mesh = octahedron;
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(0.003, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Triangle face = octahedron.triangle(0);
+  std::array<int, 3> copy{};
+  for (int k = 0; k < 3; ++k) {
+    copy[k] = mesh.add_vertex(rotation * Eigen::Vector3d(octahedron.point(face[k])));
+  }
+  mesh.add_triangle(copy[0], copy[1], copy[2]);
+  const MeshValidation validation = validate(mesh, Sphere(1.0), Domain(), all_examples());
+  EXPECT_EQ(validation.overlapping_pair_count, 1) << validation.report();
+  ASSERT_EQ(validation.overlapping_triangle_pairs.size(), 1u);
+  EXPECT_EQ(validation.overlapping_triangle_pairs[0],
+            std::make_pair(0, octahedron.triangle_count()));
 }
 
 // Sheets that cross: the `crossing` problem's sphere and plane z = 0, each a component of its
