@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -264,6 +265,30 @@ TEST(GeometricValidation, FindsADoubledPatch) {
   expect_defect_named(validation, MeshDefectKind::OverlappingTriangles, "both cover M near (");
 }
 
+// The same on a coarse mesh, where the chart's distortion bound (chord error 0.42 times a reach
+// of 0.8) exceeds the overlap's width: a face of the octahedron, copied with corners moved 0.003
+// along the sphere (the stress campaign's sphere_box front case 664 of seed 2034, two triangles of
+// edge 1 on top of each other). Judged without the chart: the point of M over the overlap is the
+// projection of a point inside each triangle.
+TEST(GeometricValidation, FindsACoarseTriangleCoveredTwice) {
+  const TriangleMesh octahedron = examples::octahedron();
+  ASSERT_TRUE(validate(octahedron, Sphere(1.0), Domain()).is_valid());
+  TriangleMesh mesh = octahedron;
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(0.003, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Triangle face = octahedron.triangle(0);
+  std::array<int, 3> copy{};
+  for (int k = 0; k < 3; ++k) {
+    copy[k] = mesh.add_vertex(rotation * Eigen::Vector3d(octahedron.point(face[k])));
+  }
+  mesh.add_triangle(copy[0], copy[1], copy[2]);
+  const MeshValidation validation = validate(mesh, Sphere(1.0), Domain(), all_examples());
+  EXPECT_EQ(validation.overlapping_pair_count, 1) << validation.report();
+  ASSERT_EQ(validation.overlapping_triangle_pairs.size(), 1u);
+  EXPECT_EQ(validation.overlapping_triangle_pairs[0],
+            std::make_pair(0, octahedron.triangle_count()));
+}
+
 // Sheets that cross: the `crossing` problem's sphere and plane z = 0, each a component of its
 // own, pass through each other along the circle, as M does. Valid, and the pairs of triangles
 // where they cross are counted; the same plane doubled (two components on one sheet) is still
@@ -476,6 +501,46 @@ TEST(GeometricValidation, OppositeSidesOfAThinTubeDoNotOverlap) {
   EXPECT_EQ(validate(mesh, tube, Domain(), blind).overlapping_pair_count, 0);
 }
 
+// A triangle across a thin tube (the stress campaign's thin_torus front case 1108): corners on
+// M, two on the outer equator one edge apart along the tube and one 150° around its cross-section,
+// so that its middle passes 0.06 below M, near the tube's core. Points of it project onto either
+// side of the tube, so the "another sheet" rule alone would excuse it; but those points lie
+// deeper than half their distance to the triangles it covers, so it follows no sheet of M.
+TEST(GeometricValidation, FindsATriangleAcrossAThinTube) {
+  const double r = 0.07;
+  const Torus tube(1.0, r);
+  const int m = 126;
+  const int k = 12;  // 30° a step around the cross-section
+  TriangleMesh mesh = torus_about_x_axis(1.0, r, m, k);
+  Eigen::MatrixXd points = mesh.points();
+  const int first = points.cols();
+  points.conservativeResize(Eigen::NoChange, first + 3);
+  points.col(first) = mesh.point(examples::grid_index(10, 0, k));
+  points.col(first + 1) = mesh.point(examples::grid_index(12, 0, k));
+  points.col(first + 2) = mesh.point(examples::grid_index(11, 5, k));
+  std::vector<Triangle> triangles = mesh.triangles();
+  const int across = static_cast<int>(triangles.size());
+  triangles.push_back({first, first + 1, first + 2});
+  const TriangleMesh planted(points, triangles);
+
+  const MeshValidation validation = validate(planted, tube, Domain(), all_examples());
+  bool found = false;
+  for (const auto& [s, t] : validation.overlapping_triangle_pairs) {
+    found = found || s == across || t == across;
+  }
+  EXPECT_TRUE(found) << validation.report();
+  EXPECT_NE(validation.report().find("follows no sheet of M"), std::string::npos)
+      << validation.report();
+  // Without the depth rule (the validation before case 1108), fewer pairs are found: the ones
+  // the depth rule adds are those the sheets rule excused.
+  ValidationOptions deep = all_examples();
+  deep.overlap_sheet_depth_ratio = 1e9;
+  EXPECT_LT(validate(planted, tube, Domain(), deep).overlapping_pair_count,
+            validation.overlapping_pair_count);
+  // The tube alone, whose triangles lie on its sides, stays valid with the rule.
+  expect_geometrically_valid(validate(mesh, tube, Domain()));
+}
+
 // Two concentric spheres 1e-3 apart, far less than an edge (0.035) but more than the chord
 // error (1.5e-4): the mesh covers two sheets of M, not one twice.
 TEST(GeometricValidation, ConcentricSpheresCloserThanAnEdgeDoNotOverlap) {
@@ -555,6 +620,9 @@ TEST(GeometricValidation, RejectsBadOptionsAndDimensions) {
   EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
   options = {};
   options.min_tangent_cosine = 2;
+  EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
+  options = {};
+  options.overlap_sheet_depth_ratio = 0;
   EXPECT_THROW(validate(mesh, Sphere(1.0), Domain(), options), InvalidArgument);
   options = {};
   options.crossing_plane_cosine = -0.1;

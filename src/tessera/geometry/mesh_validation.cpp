@@ -527,6 +527,9 @@ MeshValidation validate(const TriangleMesh& mesh, const ImplicitProblem& problem
   TESSERA_CHECK(
       options.overlap_area_ratio >= 0,
       "ValidationOptions::overlap_area_ratio = " << options.overlap_area_ratio << " must be >= 0");
+  TESSERA_CHECK(options.overlap_sheet_depth_ratio > 0,
+                "ValidationOptions::overlap_sheet_depth_ratio = "
+                    << options.overlap_sheet_depth_ratio << " must be > 0");
   TESSERA_CHECK(options.overlap_same_point_ratio >= 0,
                 "ValidationOptions::overlap_same_point_ratio = " << options.overlap_same_point_ratio
                                                                  << " must be >= 0");

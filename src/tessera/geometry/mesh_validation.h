@@ -74,6 +74,10 @@ struct ValidationOptions {
   /// on another sheet (the trough's, 5e-5 away, or the far side of a thin tube) P(q₂) stays on
   /// that sheet, a ratio near 1. 0.25 lies between the two.
   double overlap_same_point_ratio = 0.25;
+  /// ... and they are taken for two sheets only if each of q₁, q₂ lies nearer to M than this
+  /// fraction of |q₁ − q₂|: a triangle whose points sink deeper between the sheets than that
+  /// (one that spans a thin tube) follows neither, and covers what its neighbour covers.
+  double overlap_sheet_depth_ratio = 0.5;
   /// Sheets of M that cross (the `crossing` problem's sphere and plane, each covered as a
   /// component of its own by `--components all`): two triangles of different components that
   /// both lie along M (|s| ≥ crossing_alignment, see min_tangent_cosine) and whose planes meet

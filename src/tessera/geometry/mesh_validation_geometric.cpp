@@ -322,6 +322,10 @@ struct OverlapOnManifold {
   Eigen::VectorXd point;  // a point of M that both triangles cover
   double area = 0.0;      // of the overlap in the chart (M's tangent plane at `point`)
   double width = 0.0;     // its area / perimeter
+  // A point of one triangle lies deeper between two sheets than half its distance to the other
+  // triangle (P jumps between them): the triangles reach past where projecting onto M is one
+  // to one, and `depth` is that point's distance to M.
+  double depth = 0.0;
 };
 
 // Do triangles s and t of different components cross where two sheets of M cross
@@ -364,6 +368,71 @@ bool is_sheet_crossing(const MeshView& view, int s, int t, const ValidationOptio
     return false;
   }
   return std::abs(cross) < options.crossing_plane_cosine * std::sqrt(own_s * own_t);
+}
+
+// The chart's distortion bound grows with the chord error times the overlap's reach, so for
+// coarse triangles (chord error a tenth of M's radius) it exceeds the width even of two triangles
+// that cover the same part of M (stress campaign seed 2034, sphere_box front case 664: two
+// triangles of edge 1 whose corners lie 0.003 apart). Where the chart's overlap lies deep inside
+// both triangles (its centroid at barycentric coordinates ≥ kDeepInside in each), the pair is
+// judged without the chart instead: y = P(q₁) is covered by both if each triangle has a point x
+// with x − y normal to M at y, inside the triangle, whose projection P(x) is y (not a point of
+// another sheet). Such an x projects onto y exactly, so no distortion enters.
+constexpr double kDeepInside = 0.1;
+// Inside a triangle by more than rounding: its smallest barycentric coordinate.
+constexpr double kInsideMargin = 1e-3;
+// P(x) returns to y up to Gauss–Newton's O(κ|x − y|²) (its steps are normal to M only to first
+// order); from the far side of a thin tube it lands about |x − y| away. A test of its own,
+// independent of overlap_same_point_ratio, so that each test on M keeps other sheets apart alone.
+constexpr double kFootReturnRatio = 0.25;
+
+// The point x = x₀ + E·w of triangle `tri` with Tᵀ(x − y) = 0 (T: M's tangent basis at y), and
+// its smallest barycentric coordinate; -1 where the triangle's plane contains a normal of M.
+double normal_foot(const MeshView& view, const Triangle& tri, const Eigen::VectorXd& y,
+                   const Eigen::MatrixXd& T, Eigen::VectorXd& foot) {
+  const auto points = view.mesh.points();
+  Eigen::Matrix<double, 2, 3> image;
+  for (int k = 0; k < 3; ++k) {
+    image.col(k) = T.transpose() * (points.col(tri[k]) - y);
+  }
+  view.mesh.space().sum(image.data(), 6);
+  Eigen::Matrix2d edges;
+  edges.col(0) = image.col(1) - image.col(0);
+  edges.col(1) = image.col(2) - image.col(0);
+  const double scale = edges.cwiseAbs().maxCoeff();
+  if (!(std::abs(edges.determinant()) > 1e-12 * scale * scale)) {
+    return -1.0;
+  }
+  const Eigen::Vector2d w = edges.inverse() * (-image.col(0));
+  foot = points.col(tri[0]) + w.x() * (points.col(tri[1]) - points.col(tri[0])) +
+         w.y() * (points.col(tri[2]) - points.col(tri[0]));
+  return std::min({1.0 - w.x() - w.y(), w.x(), w.y()});
+}
+
+// y (a point of M) is the projection of a point inside each triangle (see kDeepInside).
+bool projects_from_both(const MeshView& view, const GeometricInput& geometry,
+                        const Triangle& first, const Triangle& second, Eigen::VectorXd y,
+                        Linearization& workspace) {
+  if (!project_onto_manifold(geometry.problem, y, workspace)) {
+    return false;  // leaves the workspace at y: DF and M's tangent basis there
+  }
+  const Eigen::MatrixXd T = workspace.tangent_basis();
+  const AmbientSpace& space = view.mesh.space();
+  const double floor = 1e-10 * (1.0 + space.maximum(y.lpNorm<Eigen::Infinity>()));
+  for (const Triangle* tri : {&first, &second}) {
+    Eigen::VectorXd foot;
+    if (!(normal_foot(view, *tri, y, T, foot) > kInsideMargin)) {
+      return false;
+    }
+    // y is a point of M nearest to the foot; P(foot) = y unless a nearer sheet takes it.
+    Eigen::VectorXd projected = foot;
+    if (!project_onto_manifold(geometry.problem, projected, workspace) ||
+        space.distance(projected, y) >
+            kFootReturnRatio * space.distance(foot, y) + floor) {
+      return false;
+    }
+  }
+  return true;
 }
 
 // Do the triangles `first` and `second` cover the same part of M near the point p of M (the
@@ -411,7 +480,7 @@ OverlapOnManifold overlap_on_manifold(const MeshView& view, const GeometricInput
     }
     // The lift of c onto a triangle: x₀ + E·w with Tᵀ(x₀ + E·w − p) = c.
     const auto lift_onto = [&](const Eigen::Matrix<double, 2, 3>& image, const Triangle& tri,
-                               Eigen::VectorXd& q) {
+                               Eigen::VectorXd& q, double& inner) {
       Eigen::Matrix2d edges;
       edges.col(0) = image.col(1) - image.col(0);
       edges.col(1) = image.col(2) - image.col(0);
@@ -421,12 +490,14 @@ OverlapOnManifold overlap_on_manifold(const MeshView& view, const GeometricInput
         return false;  // the triangle stands across M at p (a flipped triangle if anything)
       }
       const Eigen::Vector2d w = edges.inverse() * (chart.centroid - image.col(0));
+      inner = std::min({1.0 - w.x() - w.y(), w.x(), w.y()});
       q = points.col(tri[0]) + w.x() * (points.col(tri[1]) - points.col(tri[0])) +
           w.y() * (points.col(tri[2]) - points.col(tri[0]));
       return true;
     };
     Eigen::VectorXd q1, q2;
-    if (!lift_onto(a, first, q1) || !lift_onto(b, second, q2)) {
+    double inner1 = 0.0, inner2 = 0.0;
+    if (!lift_onto(a, first, q1, inner1) || !lift_onto(b, second, q2, inner2)) {
       return found;
     }
     Eigen::VectorXd p1 = q1, p2 = q2;
@@ -441,9 +512,25 @@ OverlapOnManifold overlap_on_manifold(const MeshView& view, const GeometricInput
       return found;
     }
     const double floor = 1e-10 * (1.0 + space.maximum(p.lpNorm<Eigen::Infinity>()));
-    if (space.distance(p1, p2) >
-        options.overlap_same_point_ratio * space.distance(q1, q2) + floor) {
-      return found;  // another sheet of M (close sheets, the far side of a thin tube)
+    const double apart = space.distance(q1, q2);
+    // Another sheet of M (close sheets, the far side of a thin tube): P(q₁) and P(q₂) far apart,
+    // and each of q₁, q₂ nearer to M than to the other. A point that lies deeper than that
+    // (0.065 inside a tube of radius 0.07, 0.056 below its neighbour: a triangle that spans the
+    // tube, the stress campaign's thin_torus front case 1108) follows no sheet; its triangle
+    // covers the part of M its neighbour covers, whatever P(q₂) says.
+    const double deepest = std::max(space.distance(q1, p1), space.distance(q2, p2));
+    if (space.distance(p1, p2) > options.overlap_same_point_ratio * apart + floor) {
+      if (deepest < options.overlap_sheet_depth_ratio * apart) {
+        return found;  // another sheet
+      }
+      // No chart at p maps both triangles onto M (the distortion bound below assumes each lies
+      // along M): the two cover the same part of M as far as any projection can tell.
+      found.is_overlap = true;
+      found.point = std::move(p1);
+      found.area = chart.area;
+      found.width = chart.width();
+      found.depth = deepest;
+      return found;
     }
     // M's curvature near p from the corners' heights over the chart (height ≈ κr²/2), and the
     // larger chord error: measured at q₁, q₂, or κh²/8 for the triangles' longest edge h.
@@ -477,7 +564,9 @@ OverlapOnManifold overlap_on_manifold(const MeshView& view, const GeometricInput
       distortion += chord_error * curvature * chart.reach;
     }
     const double rounding = 1e-12 * (1.0 + space.maximum(p.lpNorm<Eigen::Infinity>()));
-    if (!(chart.width() > distortion + rounding)) {
+    if (!(chart.width() > distortion + rounding) &&
+        !(std::min(inner1, inner2) >= kDeepInside &&
+          projects_from_both(view, geometry, first, second, p1, workspace))) {
       return found;
     }
     found.is_overlap = true;
@@ -703,6 +792,10 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
             << describe_point(p, space) << ": overlap " << 100.0 * on_m.area / smaller_area
             << "% of the smaller, " << on_m.width << " wide"
             << (candidate.shared == 1 ? " (they share one vertex: a folded fan)" : "");
+        if (on_m.depth > 0.0) {
+          out << "; a point of one lies " << on_m.depth
+              << " from M, deeper than half its distance to the other: it follows no sheet of M";
+        }
         return out.str();
       });
     }

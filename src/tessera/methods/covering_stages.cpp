@@ -292,62 +292,80 @@ int validate_and_repair_mesh(const ImplicitProblem& problem, const Domain& domai
             (defect.examples.empty() ? "" : ", e.g. " + defect.examples.front()));
     return 0;
   }
-  std::vector<bool> keep(mesh.triangle_count(), true);
+  // Dropping triangles can expose a defect the dropped ones hid (a fan that overlaps itself once
+  // its flipped triangle is gone: stress seed 2034, cstr bezier case 965), so the check and the
+  // drop repeat, a few rounds at most, unless a stop left no time for another check.
+  constexpr int kDropRounds = 3;
   std::vector<std::string> places;
-  auto drop = [&](int t, const char* why) {
-    if (keep[t]) {
-      keep[t] = false;
-      if (places.size() < 3) {
-        places.push_back(std::string(why) + " triangle " + describe_triangle(mesh, t));
+  int removed = 0;
+  const MeshValidation found = validation;
+  for (int round = 0; round < kDropRounds; ++round) {
+    std::vector<bool> keep(mesh.triangle_count(), true);
+    auto drop = [&](int t, const char* why) {
+      if (keep[t]) {
+        keep[t] = false;
+        if (places.size() < 3) {
+          places.push_back(std::string(why) + " triangle " + describe_triangle(mesh, t));
+        }
       }
+    };
+    for (int t : validation.flipped_triangles) {
+      drop(t, "a flipped");
     }
-  };
-  for (int t : validation.flipped_triangles) {
-    drop(t, "a flipped");
-  }
-  for (const auto& [s, t] : validation.overlapping_triangle_pairs) {
-    drop(s, "an overlapping");
-    drop(t, "an overlapping");
-  }
-  if (!validation.vertices_outside_domain.empty()) {
-    std::vector<bool> outside(mesh.vertex_count(), false);
-    for (int v : validation.vertices_outside_domain) {
-      outside[v] = true;
+    for (const auto& [s, t] : validation.overlapping_triangle_pairs) {
+      drop(s, "an overlapping");
+      drop(t, "an overlapping");
     }
-    for (int t = 0; t < mesh.triangle_count(); ++t) {
-      for (int v : mesh.triangle(t)) {
-        if (outside[v]) {
-          drop(t, "a");
-          break;
+    if (!validation.vertices_outside_domain.empty()) {
+      std::vector<bool> outside(mesh.vertex_count(), false);
+      for (int v : validation.vertices_outside_domain) {
+        outside[v] = true;
+      }
+      for (int t = 0; t < mesh.triangle_count(); ++t) {
+        for (int v : mesh.triangle(t)) {
+          if (outside[v]) {
+            drop(t, "a");
+            break;
+          }
         }
       }
     }
-  }
-  const int before = mesh.triangle_count();
-  // Dropping triangles can pinch a vertex (two fans left meeting there): the fans are judged
-  // on what is kept, and the largest kept.
-  std::vector<int> kept_index;
-  std::vector<Triangle> kept_triangles;
-  for (int t = 0; t < before; ++t) {
-    if (keep[t]) {
-      kept_index.push_back(t);
-      kept_triangles.push_back(mesh.triangle(t));
+    const int before = mesh.triangle_count();
+    // Dropping triangles can pinch a vertex (two fans left meeting there): the fans are judged
+    // on what is kept, and the largest kept.
+    std::vector<int> kept_index;
+    std::vector<Triangle> kept_triangles;
+    for (int t = 0; t < before; ++t) {
+      if (keep[t]) {
+        kept_index.push_back(t);
+        kept_triangles.push_back(mesh.triangle(t));
+      }
+    }
+    const std::vector<bool> kept_fans = keep_largest_fans(mesh.vertex_count(), kept_triangles);
+    for (std::size_t k = 0; k < kept_index.size(); ++k) {
+      keep[kept_index[k]] = kept_fans[k];
+    }
+    keep_patches(result, keep);
+    mesh.keep_triangles(keep);
+    // keep_largest_fans repeats until no vertex is pinched, so the topology is sound; the
+    // geometry is judged again below.
+    removed += before - mesh.triangle_count();
+    if (is_stopped || round + 1 == kDropRounds || mesh.triangle_count() == 0) {
+      break;
+    }
+    validation = validate(mesh, problem, domain, options);
+    if (validation.is_cut_short() || (validation.flipped_triangles.empty() &&
+                                      validation.overlapping_triangle_pairs.empty() &&
+                                      validation.vertices_outside_domain.empty())) {
+      result.validation = validation;
+      break;
     }
   }
-  const std::vector<bool> kept_fans = keep_largest_fans(mesh.vertex_count(), kept_triangles);
-  for (std::size_t k = 0; k < kept_index.size(); ++k) {
-    keep[kept_index[k]] = kept_fans[k];
-  }
-  keep_patches(result, keep);
-  mesh.keep_triangles(keep);
-  // A drop can pinch a vertex again; keep_largest_fans repeats until none is left, so one
-  // more pass over the kept triangles only confirms.
-  const int removed = before - mesh.triangle_count();
   result.summary.removed_triangles += removed;
   std::ostringstream message;
-  message << "the final check found " << validation.flipped_triangle_count
-          << " flipped triangle(s), " << validation.overlapping_pair_count
-          << " overlapping pair(s) and " << validation.vertex_outside_domain_count
+  message << "the final check found " << found.flipped_triangle_count
+          << " flipped triangle(s), " << found.overlapping_pair_count
+          << " overlapping pair(s) and " << found.vertex_outside_domain_count
           << " vertex(es) outside the domain; " << removed
           << " triangle(s) were removed, leaving holes: ";
   for (std::size_t i = 0; i < places.size(); ++i) {
