@@ -119,7 +119,7 @@ std::optional<RecordedProblem> find_recorded_problem(const std::vector<std::stri
   std::string box;
   for (const auto& comment : comments) {
     if (comment.rfind(kProblem, 0) == 0 && !recorded) {
-      recorded = RecordedProblem{trimmed(comment.substr(kProblem.size())), "", comment};
+      recorded = RecordedProblem{trimmed(comment.substr(kProblem.size())), "", comment, ""};
     } else if (comment.rfind(kProblemFileHash, 0) == 0) {
       hash = trimmed(comment.substr(kProblemFileHash.size()));
       const bool is_hash =
@@ -140,11 +140,11 @@ std::optional<RecordedProblem> find_recorded_problem(const std::vector<std::stri
       // "tessera mesh SPEC, method M": SPEC may hold commas (torus:R=2,r=0.5).
       const auto method = comment.rfind(", method ");
       if (method != std::string::npos && method > 13) {
-        return RecordedProblem{trimmed(comment.substr(13, method - 13)), "", comment};
+        return RecordedProblem{trimmed(comment.substr(13, method - 13)), "", comment, ""};
       }
     } else if (comment.rfind("tessera improve ", 0) == 0) {
       if (const auto specification = improve_problem(comment)) {
-        return RecordedProblem{*specification, "", comment};
+        return RecordedProblem{*specification, "", comment, ""};
       }
     }
   }

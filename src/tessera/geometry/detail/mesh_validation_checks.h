@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Internal to geometry/mesh_validation*.cpp: what the combinatorial pass (mesh_validation.cpp)
-// hands to the geometric checks (mesh_validation_geometric.cpp).
+// hands to the geometric checks (mesh_validation_geometric.cpp: orientation and domain;
+// mesh_validation_overlaps.cpp: overlaps).
 #pragma once
 
 #include <array>
