@@ -95,7 +95,7 @@ bool is_sheet_crossing(const MeshView& view, int s, int t, const ValidationOptio
 // judged without the chart instead: y = P(q₁) is covered by both if each triangle has a point x
 // with x − y normal to M at y, inside the triangle, whose projection P(x) is y (not a point of
 // another sheet). Such an x projects onto y exactly, so no distortion enters.
-constexpr double kDeepInside = 0.1;
+constexpr double kDeepInside = 0.02;
 // Inside a triangle by more than rounding: its smallest barycentric coordinate.
 constexpr double kInsideMargin = 1e-3;
 // P(x) returns to y up to Gauss–Newton's O(κ|x − y|²) (its steps are normal to M only to first
