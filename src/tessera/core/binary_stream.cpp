@@ -55,6 +55,9 @@ void BinaryWriter::matrix(const Eigen::Ref<const Eigen::MatrixXd>& m) {
 }
 
 void BinaryWriter::doubles(const double* values, std::size_t count) {
+  if (count == 0) {
+    return;  // values may be null
+  }
   if constexpr (std::endian::native == std::endian::little) {
     bytes_.append(reinterpret_cast<const char*>(values), count * sizeof(double));
   } else {
@@ -127,6 +130,9 @@ Eigen::MatrixXd BinaryReader::matrix(const char* field, Eigen::Index rows, Eigen
 }
 
 void BinaryReader::doubles(const char* field, double* values, std::size_t count) {
+  if (count == 0) {
+    return;  // an empty matrix's data() may be null, which memcpy must not get
+  }
   if (count > remaining() / sizeof(double)) {
     need(field, count * sizeof(double));
   }
