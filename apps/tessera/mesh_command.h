@@ -54,6 +54,9 @@ struct MeshCommand {
   std::vector<std::string> arguments;
   /// Set by `tessera resume`: the atlas's state to continue (AtlasCheckpointing::resume_from).
   std::shared_ptr<const std::string> resume_state;
+  /// Set by `tessera extend`: resume_state is continued into a larger box
+  /// (AtlasCheckpointing::extend).
+  bool extend = false;
   std::string backend = "serial";          ///< --backend: serial or petsc (solver_backend.h)
   std::vector<std::string> petsc_options;  ///< PETSc's own options from the command line
 };

@@ -27,13 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
 void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
@@ -59,24 +52,6 @@ std::vector<std::string> mesh_words(const std::string& folder) {
           "-q"};
 }
 
-// Starts `words` with stdout and stderr to `log`.
-pid_t spawn(std::vector<std::string> words, const std::string& log) {
-  const pid_t child = fork();
-  if (child == 0) {
-    const int out = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(out, STDOUT_FILENO);
-    dup2(out, STDERR_FILENO);
-    std::vector<char*> argv;
-    for (std::string& word : words) {
-      argv.push_back(word.data());
-    }
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  return child;
-}
-
 // The mesh of the run with checkpoints that is never stopped, made once. (A run without
 // --checkpoint may differ from it by the rounding of KLU's pivots, which a checkpointed run
 // makes afresh in every factorisation: docs/checkpoints.md.)
@@ -87,7 +62,7 @@ const std::string& reference_mesh() {
         std::string("mesh ") + kProblem + " --method atlas --report-samples 50 -q -o " + folder +
         "/mesh.ply --checkpoint " + folder + "/run.tsc --checkpoint-every 1000");
     EXPECT_EQ(run.exit_code, 0) << run.output;
-    return read_bytes(folder + "/mesh.ply");
+    return testing::read_file_bytes(folder + "/mesh.ply");
   }();
   return bytes;
 }
@@ -112,8 +87,8 @@ TEST(CliCheckpoint, KilledRunsResumeToTheSameMesh) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const std::string folder =
         testing::temporary_directory("checkpoint_kill_" + std::to_string(seed));
-    const pid_t child = spawn(mesh_words(folder), folder + "/log.txt");
-    ASSERT_TRUE(wait_for_file(folder + "/run.tsc", child)) << read_bytes(folder + "/log.txt");
+    const pid_t child = testing::spawn(mesh_words(folder), folder + "/log.txt", folder + "/log.txt");
+    ASSERT_TRUE(wait_for_file(folder + "/run.tsc", child)) << testing::read_file_bytes(folder + "/log.txt");
     // A pseudo-random moment after the first checkpoint, between checkpoints or in one.
     std::mt19937 random(seed);
     std::this_thread::sleep_for(
@@ -126,9 +101,9 @@ TEST(CliCheckpoint, KilledRunsResumeToTheSameMesh) {
     const testing::CommandResult resumed =
         testing::run_cli("resume " + folder + "/run.tsc -q --summary " + folder + "/summary.json");
     ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
-    EXPECT_TRUE(read_bytes(folder + "/mesh.ply") == reference_mesh())
+    EXPECT_TRUE(testing::read_file_bytes(folder + "/mesh.ply") == reference_mesh())
         << "the resumed run's mesh differs from the uninterrupted run's";
-    const nlohmann::json run = nlohmann::json::parse(read_bytes(folder + "/summary.json"))["run"];
+    const nlohmann::json run = nlohmann::json::parse(testing::read_file_bytes(folder + "/summary.json"))["run"];
     killed_in_build += run["resumed_from"]["charts"].get<int>() < run["atlas"]["charts"].get<int>();
   }
   EXPECT_GE(killed_in_build, 3) << "most kills must come during the build for the test to mean it";
@@ -139,23 +114,23 @@ TEST(CliCheckpoint, SigtermThenResumeGivesTheSameMeshAndCountsTheWork) {
   std::vector<std::string> words = mesh_words(folder);
   words.push_back("--summary");
   words.push_back(folder + "/summary.json");
-  const pid_t child = spawn(words, folder + "/log.txt");
+  const pid_t child = testing::spawn(words, folder + "/log.txt", folder + "/log.txt");
   ASSERT_TRUE(wait_for_file(folder + "/run.tsc", child));
   std::this_thread::sleep_for(std::chrono::milliseconds(150));
   kill(child, SIGTERM);
   int status = 0;
   waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status)) << read_bytes(folder + "/log.txt");
+  ASSERT_TRUE(WIFEXITED(status)) << testing::read_file_bytes(folder + "/log.txt");
   ASSERT_EQ(WEXITSTATUS(status), 1) << "a stopped run ends as stopped early";
-  const nlohmann::json stopped = nlohmann::json::parse(read_bytes(folder + "/summary.json"));
+  const nlohmann::json stopped = nlohmann::json::parse(testing::read_file_bytes(folder + "/summary.json"));
   ASSERT_EQ(stopped["stop"]["stage"], "build") << stopped.dump(1);
   const int charts_at_stop = stopped["run"]["atlas"]["charts"];
 
   const testing::CommandResult resumed =
       testing::run_cli("resume " + folder + "/run.tsc -q --summary " + folder + "/resumed.json");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
-  EXPECT_TRUE(read_bytes(folder + "/mesh.ply") == reference_mesh());
-  const nlohmann::json summary = nlohmann::json::parse(read_bytes(folder + "/resumed.json"));
+  EXPECT_TRUE(testing::read_file_bytes(folder + "/mesh.ply") == reference_mesh());
+  const nlohmann::json summary = nlohmann::json::parse(testing::read_file_bytes(folder + "/resumed.json"));
   ASSERT_TRUE(summary["run"].contains("resumed_from")) << summary["run"].dump(1);
   EXPECT_EQ(summary["run"]["resumed_from"]["charts"], charts_at_stop);
   EXPECT_GT(summary["run"]["function_evaluations"].get<long>(),
@@ -177,7 +152,7 @@ TEST(CliCheckpoint, DamagedCheckpointsAreRefused) {
   const testing::CommandResult run = testing::run_cli(
       "mesh sphere -q -o " + folder + "/mesh.ply --checkpoint " + folder + "/run.tsc");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const std::string good = read_bytes(folder + "/run.tsc");
+  const std::string good = testing::read_file_bytes(folder + "/run.tsc");
   ASSERT_GT(good.size(), 100u);
   write_bytes(folder + "/truncated.tsc", good.substr(0, good.size() * 2 / 3));
   expect_refused(folder + "/truncated.tsc", "truncated");
@@ -197,7 +172,7 @@ TEST(CliCheckpoint, DamagedCheckpointsAreRefused) {
   const testing::CommandResult resumed =
       testing::run_cli("resume " + folder + "/run.tsc -q -o " + folder + "/again.ply");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
-  EXPECT_TRUE(read_bytes(folder + "/again.ply") == read_bytes(folder + "/mesh.ply"));
+  EXPECT_TRUE(testing::read_file_bytes(folder + "/again.ply") == testing::read_file_bytes(folder + "/mesh.ply"));
 }
 
 TEST(CliCheckpoint, ChangedProblemFileIsRefused) {
@@ -208,9 +183,9 @@ TEST(CliCheckpoint, ChangedProblemFileIsRefused) {
       "mesh " + problem + " -q -o " + folder + "/mesh.ply --checkpoint " + folder + "/run.tsc");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   std::ofstream(problem, std::ios::app) << "# changed\n";
-  const std::string mesh = read_bytes(folder + "/mesh.ply");
+  const std::string mesh = testing::read_file_bytes(folder + "/mesh.ply");
   expect_refused(folder + "/run.tsc", "changed since");
-  EXPECT_TRUE(read_bytes(folder + "/mesh.ply") == mesh) << "the original mesh is untouched";
+  EXPECT_TRUE(testing::read_file_bytes(folder + "/mesh.ply") == mesh) << "the original mesh is untouched";
 }
 
 TEST(CliCheckpoint, OtherMethodsAreRefused) {

@@ -36,6 +36,7 @@ struct MethodSettings {
   /// the clipped boundary's angles: 18–20° against 9° on whitney_pleat and trough).
   std::string atlas_placement = "auto";  ///< with a checkpoint, "auto" is "disk"
   AtlasCheckpointing atlas_checkpoint;  ///< checkpoints and resuming (method atlas only)
+  double atlas_chart_tolerance = 0.0;   ///< AtlasOptions::chart_tolerance (0: the tolerance)
   // front
   double front_min_gap_degrees = 0.0;
   int front_max_valence = 0;

@@ -155,6 +155,7 @@ class AtlasBuilder {
   double checkpoint_bytes() const;  // about what save_checkpoint writes
   void write_state(BinaryWriter& out);
   void read_state(BinaryReader& in, CoveringSummary& summary);
+  void reopen_for_extension(CoveringSummary& summary);  // AtlasCheckpointing::extend
   Eigen::VectorXd start_;
   std::chrono::steady_clock::time_point build_start_;
   double seconds_before_ = 0.0;  // build time of the runs before a resumed checkpoint

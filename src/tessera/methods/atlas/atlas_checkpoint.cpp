@@ -68,6 +68,30 @@ bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return true;
 }
 
+// Empty if the domain {x : b_k·(x − p_k) ≥ 0 for all k} contains the old one; else which of
+// its faces does not. A sufficient test, exact for boxes: each face must be parallel to one of
+// the old domain's, with the old face on its inner side (the old domain may be bounded in
+// directions the new one is not). In one process (the checkpoint's domain is whole).
+std::string face_not_containing(const Domain& domain, const std::vector<HalfSpace>& old_faces) {
+  for (std::size_t k = 0; k < domain.half_spaces().size(); ++k) {
+    const HalfSpace& face = domain.half_spaces()[k];
+    bool inside = false;
+    for (const HalfSpace& old : old_faces) {
+      const bool parallel = old.normal.size() == face.normal.size() &&
+                            (old.normal - face.normal).lpNorm<Eigen::Infinity>() <= 1e-12;
+      if (parallel && face.normal.dot(old.point - face.point) >= 0) {
+        inside = true;
+        break;
+      }
+    }
+    if (!inside) {
+      return "its face " + (face.label.empty() ? std::to_string(k) : "'" + face.label + "'") +
+             " cuts into the old domain or bounds a direction the old one did not";
+    }
+  }
+  return "";
+}
+
 std::string number(double value) {
   std::ostringstream text;
   text.precision(17);
@@ -242,15 +266,25 @@ void AtlasBuilder::read_state(BinaryReader& in, CoveringSummary& summary) {
             " there, " + describe_point(start_, *space_) + " here): give the same --start");
   }
   const std::size_t faces = in.count("domain", 16);
+  std::vector<HalfSpace> old_faces(faces);
   bool same_domain = faces == domain_.half_spaces().size();
   for (std::size_t k = 0; k < faces; ++k) {
-    const Eigen::MatrixXd normal = in.matrix("domain normal");
-    const Eigen::MatrixXd point = in.matrix("domain point");
+    old_faces[k].normal = in.matrix("domain normal", rows_, 1);
+    old_faces[k].point = in.matrix("domain point", rows_, 1);
     same_domain = same_domain &&
-                  same_bits(normal, Eigen::MatrixXd(domain_.half_spaces()[k].normal)) &&
-                  same_bits(point, Eigen::MatrixXd(domain_.half_spaces()[k].point));
+                  same_bits(Eigen::MatrixXd(old_faces[k].normal),
+                            Eigen::MatrixXd(domain_.half_spaces()[k].normal)) &&
+                  same_bits(Eigen::MatrixXd(old_faces[k].point),
+                            Eigen::MatrixXd(domain_.half_spaces()[k].point));
   }
-  if (!same_domain) {
+  if (options_.checkpoint.extend) {
+    const std::string outside = face_not_containing(domain_, old_faces);
+    if (!outside.empty()) {
+      in.fail("this run's domain (" + domain_.describe() +
+              ") does not contain the checkpoint's: " + outside +
+              "; `extend` continues an atlas into a larger region only");
+    }
+  } else if (!same_domain) {
     in.fail("its domain (--box) differs from this run's (" + domain_.describe() + ")");
   }
   const auto options = decisive_options(options_);
@@ -389,4 +423,63 @@ void AtlasBuilder::read_state(BinaryReader& in, CoveringSummary& summary) {
   }
 }
 
+// A finished (or stopped) build continued into a larger domain: the eligibility of every chart
+// is judged again against the new domain, and each chart with a corner still uncovered is
+// queued, in chart order (deterministic). Closed charts stay as they are.
+void AtlasBuilder::reopen_for_extension(CoveringSummary& summary) {
+  int reopened = 0;
+  for (int c = 0; c < chart_count(); ++c) {
+    charts_[c].eligible = -1;
+  }
+  for (int c = 0; c < chart_count(); ++c) {
+    if (!charts_[c].queued && c != work_.chart && next_open_vertex(c) >= 0) {
+      enqueue(c);
+      ++reopened;
+    }
+  }
+  summary.notes.push_back("extended the checkpoint's atlas of " + std::to_string(chart_count()) +
+                          " charts into " + domain_.describe() + ": " +
+                          std::to_string(reopened) +
+                          " of its charts had corners left open and were continued");
+}
+
 }  // namespace tessera::detail
+
+namespace tessera {
+
+AtlasStateHeader read_atlas_state_header(const std::string& state) {
+  BinaryReader in(state, "atlas checkpoint");
+  const std::uint32_t version = in.u32("version");
+  if (version != kAtlasStateVersion) {
+    in.fail("the atlas's state has format version " + std::to_string(version) +
+            "; this tessera reads version " + std::to_string(kAtlasStateVersion));
+  }
+  AtlasStateHeader header;
+  header.problem = in.string("problem name");
+  header.dimension = in.i32("n");
+  const int rows = in.i32("rows");
+  in.matrix("start", rows, 1);
+  for (int k = 0; k < detail::kFingerprintPoints; ++k) {
+    in.u8("fingerprint");
+    in.matrix("fingerprint");
+  }
+  const std::size_t faces = in.count("domain", 16);
+  for (std::size_t k = 0; k < faces; ++k) {
+    in.matrix("domain normal", rows, 1);
+    in.matrix("domain point", rows, 1);
+  }
+  const std::size_t options = in.count("options", 9);
+  for (std::size_t k = 0; k < options; ++k) {
+    const std::string name = in.string("option name");
+    const double value = in.f64("option value");
+    if (name == "tolerance") {
+      header.tolerance = value;
+    } else if (name == "step") {
+      header.step = value;
+    }
+  }
+  header.charts = in.i32("chart count");
+  return header;
+}
+
+}  // namespace tessera
