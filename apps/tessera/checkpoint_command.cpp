@@ -167,6 +167,12 @@ struct CheckpointedRun {
 // line again. \throw InvalidArgument naming what is wrong.
 CheckpointedRun load_checkpointed_run(const std::string& path) {
   const CheckpointFile file = read_checkpoint_file(path);
+  for (const auto& section : file.sections) {
+    TESSERA_CHECK(section.first != "python",
+                  "checkpoint file '" << path
+                                      << "' was written by Python's tessera.mesh(checkpoint=...): "
+                                         "continue it with tessera.resume or tessera.extend");
+  }
   const std::string& method = file.section("method", path);
   TESSERA_CHECK(method == "atlas", "checkpoint file '" << path << "' is of method '" << method
                                                        << "': checkpoints are supported for "

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "checkpoints.h"
 #include "ddt.h"
 #include "handles.h"
 #include "interrupt_handler.h"
@@ -138,6 +139,7 @@ struct MeshRequest {
   std::string level;       ///< `--level FUNCTIONAL=VALUE`, empty: none
   std::string diagram;     ///< `--diagram` picture path (implies hopf), empty: none
   bool wants_patches = false;
+  CheckpointRequest checkpoint;  ///< checkpoint=, and what resume/extend continue
 };
 
 // As `tessera mesh --diagram`: the fold curves (where the view holds the dynamics' parameters),
@@ -215,7 +217,16 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
     level_set = parse_level_option(request.level, *setup.problem);
   }
 
+  if (request.checkpoint.is_used()) {
+    // As `tessera mesh --checkpoint` (apps/tessera/checkpoint_command.cpp).
+    TESSERA_CHECK(method.name == "atlas", "checkpoint: checkpoints are supported for method "
+                                          "'atlas', not yet for '"
+                                              << method.name << "'");
+    TESSERA_CHECK(!covers_several, "checkpoint: checkpoints are for runs of one start's "
+                                   "component (not components='all' or several starts)");
+  }
   MethodSettings settings = request.settings;
+  settings.atlas_checkpoint = make_python_checkpointing(request.checkpoint);
   // A progress callable that raises stops the run; its exception is raised afterwards.
   ProgressReporter reporter(progress);
   settings.progress = reporter.callback();
@@ -818,7 +829,26 @@ PYBIND11_MODULE(_tessera, module) {
       .def_property(
           "min_tangent_cosine",
           [](const MeshRequest& r) { return r.settings.bezier_min_tangent_cosine; },
-          [](MeshRequest& r, double v) { r.settings.bezier_min_tangent_cosine = v; });
+          [](MeshRequest& r, double v) { r.settings.bezier_min_tangent_cosine = v; })
+      .def_property(
+          "chart_tolerance", [](const MeshRequest& r) { return r.settings.atlas_chart_tolerance; },
+          [](MeshRequest& r, double v) { r.settings.atlas_chart_tolerance = v; })
+      .def_property(
+          "checkpoint", [](const MeshRequest& r) { return r.checkpoint.path; },
+          [](MeshRequest& r, const std::string& v) { r.checkpoint.path = v; })
+      .def_property(
+          "checkpoint_every", [](const MeshRequest& r) { return r.checkpoint.every; },
+          [](MeshRequest& r, double v) { r.checkpoint.every = v; })
+      .def_property(
+          "checkpoint_record", [](const MeshRequest& r) { return r.checkpoint.record; },
+          [](MeshRequest& r, const std::string& v) { r.checkpoint.record = v; })
+      .def_property(
+          "resume_state", [](const MeshRequest& r) { return py::bytes(r.checkpoint.resume_state); },
+          [](MeshRequest& r, const py::bytes& v) { r.checkpoint.resume_state = std::string(v); })
+      .def_property(
+          "extend", [](const MeshRequest& r) { return r.checkpoint.extend; },
+          [](MeshRequest& r, bool v) { r.checkpoint.extend = v; });
+  register_checkpoint_functions(module);
 
   module.def("mesh", &mesh_problem, py::arg("problem"), py::arg("request"), py::arg("progress"),
              py::arg("handle_interrupt"));

@@ -29,6 +29,8 @@ from . import _interpreter_check  # noqa: F401
 import numpy as np
 
 from . import _tessera
+from . import _checkpoints
+from ._checkpoints import extend, resume  # noqa: F401
 
 __all__ = [
     "ComputationFailed",
@@ -45,6 +47,8 @@ __all__ = [
     "problems",
     "read",
     "from_meshio",
+    "resume",
+    "extend",
 ]
 __version__ = "0.1.0"
 
@@ -681,6 +685,10 @@ def mesh(
     allow_partial: bool = False,
     handle_interrupt: bool = True,
     threads: Optional[int] = None,
+    chart_tolerance: Optional[float] = None,
+    checkpoint: Optional[Union[str, "os.PathLike[str]"]] = None,
+    checkpoint_every: float = 300.0,
+    _continue: Optional[tuple] = None,
 ) -> Mesh:
     """Covers a problem's surface with a triangle mesh: ``tessera mesh``.
 
@@ -742,6 +750,11 @@ def mesh(
         (each evaluation takes the GIL); the mesh does not depend on it (docs/threads.md).
     handle_interrupt: Ctrl-C stops the run (from the main thread, while Python's SIGINT handler
         is the default one) and raises `Interrupted` carrying the valid partial mesh.
+    chart_tolerance: atlas: size the charts for this tolerance (>= tolerance) and reach
+        ``tolerance`` by refinement alone (``--chart-tolerance``; what `extend` does).
+    checkpoint, checkpoint_every: atlas: save the build's state to this .tsc file every
+        ``checkpoint_every`` seconds (default 300), at a stop (Ctrl-C) and when the build ends;
+        `resume` continues it to the same mesh, `extend` grows it (docs/checkpoints.md).
 
     Returns a `Mesh` whose ``summary`` is the JSON summary of ``tessera mesh --summary``.
     Raises ValueError for bad input (before any computation), `ComputationFailed` (with
@@ -749,6 +762,7 @@ def mesh(
     `Interrupted` on Ctrl-C; an exception raised by a Python problem's F or J as it is.
     The GIL is released while C++ works (Python problems take it for each evaluation).
     """
+    arguments = dict(locals())  # (first: the call's arguments, for the checkpoint's record)
     chosen = _problem(problem)
     request = _tessera.MeshRequest()
     if method is not None:
@@ -789,6 +803,13 @@ def mesh(
     request.min_tangent_cosine = _in_range("min_tangent_cosine", min_tangent_cosine, 0.01, 0.999)
     request.refine = _in_range("refine", refine, 1, 64, int)
     request.threads = _in_range("threads", threads, 1, 100_000, int)
+    request.chart_tolerance = _finite_positive("chart_tolerance", chart_tolerance)
+    if checkpoint is not None:
+        request.checkpoint = os.fspath(checkpoint)
+        request.checkpoint_every = _finite_positive("checkpoint_every", checkpoint_every)
+        request.checkpoint_record = _checkpoints.record(problem, chosen, arguments)
+    if _continue is not None:
+        request.resume_state, request.extend = _continue
     core = _tessera.mesh(chosen._core, request, _progress(progress), bool(handle_interrupt))
     result = Mesh._wrap(core)
     if core.interrupted:
