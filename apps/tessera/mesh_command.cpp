@@ -452,8 +452,13 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   ReportOptions report_options;
   report_options.samples = command.report_samples;
   report_options.measure_distances = false;
+  const double factorisation_seconds =
+      result.summary.factorisations > 0
+          ? result.summary.factorisation_seconds / static_cast<double>(result.summary.factorisations)
+          : 0.0;
   report_options.validation.stop_requested =
-      after_grace([] { return StopSignals::is_requested(); });
+      after_grace([] { return StopSignals::is_requested(); },
+                  grace_before_items(kCheckSecondsAfterStop, factorisation_seconds));
   // The problem's known topology and area are those of the first start's component.
   const bool has_several_components = result.summary.components.size() > 1;
   const auto only_known_of_one_component = [&](MeshReport& made) {

@@ -58,9 +58,14 @@ struct CoveringRun {
   /// the first check (a run stopped before then does not ask the request again).
   const StopRequest& checks_stop() {
     if (!checks_stop_) {
+      // Each check on M costs about a factorisation (its mean so far).
+      const long factorisations = problem.factorisations();
+      const double item_seconds =
+          factorisations > 0 ? problem.factorisation_seconds() / static_cast<double>(factorisations)
+                             : 0.0;
       checks_stop_ =
           after_grace(is_stopped() ? StopRequest([] { return true; }) : options.stop_requested,
-                      options.check_seconds_after_stop);
+                      grace_before_items(options.check_seconds_after_stop, item_seconds));
       if (!checks_stop_) {
         checks_stop_ = [] { return false; };  // no request: never stopped
       }

@@ -21,4 +21,12 @@ inline constexpr double kCheckSecondsAfterStop = 2.0;
 /// \pre grace_seconds >= 0.
 StopRequest after_grace(StopRequest request, double grace_seconds = kCheckSecondsAfterStop);
 
+/// The grace for checks whose items (a projection, a factorisation) take about `item_seconds`
+/// each: an item begun later than this would end past `grace_seconds`, so none is begun then.
+/// At n = 10⁵ a factorisation takes 1–5 s, as long as the grace itself or longer, and the checks
+/// then stop at once; at small n this is the grace.
+inline double grace_before_items(double grace_seconds, double item_seconds) {
+  return grace_seconds > item_seconds ? grace_seconds - item_seconds : 0.0;
+}
+
 }  // namespace tessera
