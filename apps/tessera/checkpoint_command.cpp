@@ -78,10 +78,11 @@ void check_checkpoint_options(const MeshCommand& command, const std::string& met
   if (command.checkpoint.empty()) {
     return;
   }
-  TESSERA_CHECK(method == "atlas", "--checkpoint " << command.checkpoint
-                                                   << ": checkpoints are supported for --method "
-                                                      "atlas, not yet for '"
-                                                   << method << "'");
+  TESSERA_CHECK(method == "atlas" || method == "front",
+                "--checkpoint " << command.checkpoint
+                                << ": checkpoints are supported for --method atlas and front, not "
+                                   "yet for '"
+                                << method << "'");
   TESSERA_CHECK(!covers_several, "--checkpoint " << command.checkpoint
                                                  << ": checkpoints are for runs of one start's "
                                                     "component (not --components all or several "
@@ -97,8 +98,14 @@ void check_checkpoint_options(const MeshCommand& command, const std::string& met
                                    "summary is replaced by one)");
 }
 
-AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool progress_lines) {
-  AtlasCheckpointing hooks;
+namespace {
+
+// The hooks of either method (AtlasCheckpointing, FrontCheckpointing: the same members); the
+// state goes to the file's section named `method`.
+template <typename Hooks>
+Hooks make_checkpointing(const MeshCommand& command, const std::string& method,
+                         bool progress_lines) {
+  Hooks hooks;
   hooks.resume_from = command.resume_state;
   if (command.checkpoint.empty()) {
     return hooks;
@@ -120,9 +127,9 @@ AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool pro
   const auto header = std::make_shared<CheckpointFile>();
   header->sections = {{"command", command_section(command)},
                       {"problem", problem_section(command.problem)},
-                      {"method", "atlas"}};
+                      {"method", method}};
   const std::string path = command.checkpoint;
-  hooks.save = [last, due_at, header, path, progress_lines](std::string state) {
+  hooks.save = [last, due_at, header, path, method, progress_lines](std::string state) {
     const auto begin = Clock::now();
     // (A save at a stop or at the end of the build was not asked by is_due: its state's time
     // is not known.)
@@ -132,7 +139,7 @@ AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool pro
     *due_at = Clock::time_point();
     CheckpointFile file = *header;
     const std::size_t bytes = state.size();
-    file.sections.emplace_back("atlas", std::move(state));
+    file.sections.emplace_back(method, std::move(state));
     try {
       write_checkpoint_file(path, file);
     } catch (const std::exception& error) {
@@ -153,13 +160,23 @@ AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool pro
   return hooks;
 }
 
+}  // namespace
+
+AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool progress_lines) {
+  return make_checkpointing<AtlasCheckpointing>(command, "atlas", progress_lines);
+}
+
+FrontCheckpointing make_front_checkpointing(const MeshCommand& command, bool progress_lines) {
+  return make_checkpointing<FrontCheckpointing>(command, "front", progress_lines);
+}
+
 int run_resume(const ResumeCommand& resume) {
   const CheckpointFile file = read_checkpoint_file(resume.checkpoint);
   const std::string& method = file.section("method", resume.checkpoint);
-  TESSERA_CHECK(method == "atlas", "checkpoint file '" << resume.checkpoint << "' is of method '"
-                                                       << method
-                                                       << "': checkpoints are supported for "
-                                                          "--method atlas");
+  TESSERA_CHECK(method == "atlas" || method == "front",
+                "checkpoint file '" << resume.checkpoint << "' is of method '" << method
+                                    << "': checkpoints are supported for --method atlas and "
+                                       "front");
   // The original command line, parsed again in the folder it was given in (its relative paths
   // name the same files); the paths given here are taken from this folder.
   BinaryReader command(file.section("command", resume.checkpoint),
@@ -199,6 +216,13 @@ int run_resume(const ResumeCommand& resume) {
                           "': its command line does not parse: " + e.what());
   }
   mesh.arguments.assign(words.begin() + 1, words.end());
+  // The state is the method's: a command line of another method would read it as its own.
+  const std::string command_method =
+      mesh.method.empty() ? covering_methods().front().name : mesh.method;
+  TESSERA_CHECK(command_method == method, "checkpoint file '"
+                                              << resume.checkpoint << "' holds a state of --method "
+                                              << method << ", but its command line runs --method "
+                                              << command_method);
   // The problem file must be the one the checkpoint was made from.
   BinaryReader problem(file.section("problem", resume.checkpoint),
                        "checkpoint file '" + resume.checkpoint + "', its problem");
@@ -215,7 +239,7 @@ int run_resume(const ResumeCommand& resume) {
                                    << resume.checkpoint << "' was written (" << size
                                    << " bytes then, " << now.size
                                    << " now, or other contents): resuming would continue an "
-                                      "atlas of another problem");
+                                      "build of another problem");
   }
   mesh.checkpoint = checkpoint;
   mesh.quiet = mesh.quiet || resume.quiet;
@@ -226,7 +250,7 @@ int run_resume(const ResumeCommand& resume) {
   if (!summary.empty()) {
     mesh.summary = summary;
   }
-  mesh.resume_state = std::make_shared<const std::string>(file.section("atlas", resume.checkpoint));
+  mesh.resume_state = std::make_shared<const std::string>(file.section(method, resume.checkpoint));
   return run_mesh(mesh);
 }
 
