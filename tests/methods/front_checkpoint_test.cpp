@@ -10,7 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
+#include <map>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -193,6 +195,76 @@ void expect_every_stop_resumes(const Case& c, int stride) {
     ++stops;
   }
   EXPECT_GT(stops, 20);
+}
+
+// The state a resumed build saves after its first step is the uninterrupted build's after the
+// same step, byte for byte, but for the build time and the work counts (a resumed run projects
+// its start again), 32 bytes together: whatever a resume failed to restore shows there, whether
+// or not it changed the mesh of these runs. Every `stride`-th step.
+void expect_resumed_states_continue(const Case& c, int stride) {
+  SCOPED_TRACE(c.problem + (c.order == FrontOrder::Fifo ? ", FIFO" : ""));
+  const ProblemSetup setup = setup_of(c);
+  // The uninterrupted build's state after steps stride, 2·stride, …, and after the step past
+  // each (the front's states are large at n = 202: only these are kept).
+  std::map<int, std::string> states;
+  {
+    FrontOptions options = options_for(c, setup);
+    auto steps = std::make_shared<int>(0);
+    options.checkpoint.is_due = [steps] { return ++*steps > 0; };
+    options.checkpoint.save = [&states, steps, stride](std::string state) {
+      if (*steps % stride <= 1 && !states.contains(*steps)) {  // (not the end's save)
+        states[*steps] = std::move(state);
+      }
+    };
+    ASSERT_TRUE(triangulate_by_front(*setup.problem, setup.start, setup.domain, options)
+                    .summary.is_complete());
+  }
+  int compared = 0;
+  for (const auto& [step, state] : states) {
+    if (step % stride != 0 || !states.contains(step + 1)) {
+      continue;
+    }
+    const std::string& next = states.at(step + 1);
+    FrontOptions options = options_for(c, setup);
+    auto polls = std::make_shared<int>(0);
+    options.stop_requested = [polls] { return ++*polls > 1; };
+    std::string resumed_next;
+    options.checkpoint.is_due = [] { return true; };
+    options.checkpoint.save = [&resumed_next](std::string saved) {
+      if (resumed_next.empty()) {
+        resumed_next = std::move(saved);
+      }
+    };
+    options.checkpoint.resume_from = std::make_shared<const std::string>(state);
+    triangulate_by_front(*setup.problem, setup.start, setup.domain, options);
+    ASSERT_EQ(resumed_next.size(), next.size()) << "after step " << step + 1;
+    std::size_t first = next.size();
+    std::size_t last = 0;
+    for (std::size_t k = 0; k < next.size(); ++k) {
+      if (next[k] != resumed_next[k]) {
+        first = std::min(first, k);
+        last = k;
+      }
+    }
+    EXPECT_TRUE(first == next.size() || last - first < 32)
+        << "after step " << step + 1 << ": bytes " << first << " to " << last
+        << " of " << next.size() << " differ, more than the build time and the work counts";
+    ++compared;
+  }
+  EXPECT_GT(compared, 10);
+}
+
+TEST(FrontCheckpoint, ResumedStatesContinueTheUninterruptedOnes) {
+  expect_resumed_states_continue({"sphere"}, 1);
+  expect_resumed_states_continue({"sphere", 0.0, FrontOrder::Fifo}, 1);
+  expect_resumed_states_continue({"tests/stress/problems/sphere_box.tsr", 0.3}, 1);
+  expect_resumed_states_continue({"tests/stress/problems/sphere_box.tsr", 0.15}, 1);
+  expect_resumed_states_continue({"torus"}, 5);
+  expect_resumed_states_continue({"bratu2d:N=8", 0.4}, 5);
+}
+
+TEST(FrontCheckpoint, ResumedStatesOfBvpContinueTheUninterruptedOnes) {  // n = 202, sparse
+  expect_resumed_states_continue({"bvp:points=200"}, 250);
 }
 
 TEST(FrontCheckpoint, EveryStopOfTheSphereResumesToTheSameMesh) {
