@@ -42,8 +42,8 @@ mkdir -p bench/results
     "(BUILD_SECONDS=$build_seconds${SECOND_SIGNAL:+, SECOND_SIGNAL=$SECOND_SIGNAL})," \
     "$(date -u +%Y-%m-%d), $(git rev-parse --short HEAD), load $(cut -d' ' -f1-3 /proc/loadavg)"
   echo
-  echo "| stage signalled | s into the run | stage in summary | mesh on disk s | summary on disk s | exited s | exit | signals | termination | vertices | checks cut short |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| stage signalled | s into the run | stage in summary | mesh on disk s | summary on disk s | exited s | exit | signals | termination | vertices | checks cut short | checkpoint written s |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 } | tee -a bench/results/stop_latency.md
 for stage in "${stages[@]}"; do
   rm -f "$work/mesh.ply" "$work/summary.json"
@@ -62,7 +62,7 @@ for stage in "${stages[@]}"; do
     sleep 0.05
   done
   if [ "$reached" = no ]; then
-    echo "| $stage | (the run ended before it) | | | | | | | | | |" | tee -a bench/results/stop_latency.md
+    echo "| $stage | (the run ended before it) | | | | | | | | | | |" | tee -a bench/results/stop_latency.md
     wait "$pid" || true
     pid=""
     continue
@@ -90,10 +90,18 @@ for stage in "${stages[@]}"; do
   exited=$(since "$signalled")
   [ -z "$mesh_at" ] && [ -e "$work/mesh.ply" ] && mesh_at=$exited
   [ -z "$summary_at" ] && grep -q '"stop":' "$work/summary.json" 2>/dev/null && summary_at=$exited
+  # With --checkpoint FILE: when FILE was last written, against the signal (a stop in the build
+  # writes it before the mesh; after the build it was written when the build ended).
+  checkpoint_at=none
+  for ((k = 0; k + 1 < ${#options[@]}; ++k)); do
+    if [ "${options[k]}" = --checkpoint ] && [ -e "${options[k + 1]}" ]; then
+      checkpoint_at=$(echo "$(stat -c %.9Y "${options[k + 1]}") - $signalled" | bc -l)
+    fi
+  done
   /usr/bin/python3 - "$stage" "$into" "${mesh_at:-none}" "${summary_at:-none}" "$exited" "$code" \
-    "$work/summary.json" <<'PY' | tee -a bench/results/stop_latency.md
+    "$work/summary.json" "$checkpoint_at" <<'PY' | tee -a bench/results/stop_latency.md
 import json, os, sys
-stage, into, mesh, summary, exited, code, path = sys.argv[1:]
+stage, into, mesh, summary, exited, code, path, checkpoint = sys.argv[1:]
 def seconds(text):
     return "not written" if text == "none" else f"{float(text):.1f}"
 s = json.load(open(path)) if os.path.exists(path) else {}
@@ -102,6 +110,7 @@ cut = s.get("geometry", {}).get("cut_short", [])
 print(f"| {stage} | {float(into):.0f} | {stop.get('stage', '-')} | {seconds(mesh)} | "
       f"{seconds(summary)} | {float(exited):.1f} | {code} | {stop.get('signals', '-')} | "
       f"{s.get('run', {}).get('termination', '-')} | {s.get('counts', {}).get('vertices', '-')} | "
-      f"{'; '.join(cut) if cut else 'none'} |")
+      f"{'; '.join(cut) if cut else 'none'} | "
+      f"{'-' if checkpoint == 'none' else (f'{float(checkpoint):.1f}' if float(checkpoint) > 0 else 'before the signal')} |")
 PY
 done

@@ -163,24 +163,44 @@ Hooks make_checkpointing(const MeshCommand& command, const std::string& method,
 }  // namespace
 
 AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool progress_lines) {
-  return make_checkpointing<AtlasCheckpointing>(command, "atlas", progress_lines);
+  AtlasCheckpointing hooks = make_checkpointing<AtlasCheckpointing>(command, "atlas", progress_lines);
+  hooks.extend = command.extend;
+  return hooks;
 }
 
 FrontCheckpointing make_front_checkpointing(const MeshCommand& command, bool progress_lines) {
   return make_checkpointing<FrontCheckpointing>(command, "front", progress_lines);
 }
 
-int run_resume(const ResumeCommand& resume) {
-  const CheckpointFile file = read_checkpoint_file(resume.checkpoint);
-  const std::string& method = file.section("method", resume.checkpoint);
+namespace {
+
+// A checkpoint's run: its command line parsed again (in the folder it was given in, which
+// becomes the working folder), its method and the method's state.
+struct CheckpointedRun {
+  MeshCommand mesh;
+  std::string method;  // "atlas" or "front"
+  std::shared_ptr<const std::string> state;
+};
+
+// Reads the checkpoint, checks it (the file, the problem file's hash) and parses its command
+// line again. \throw InvalidArgument naming what is wrong.
+CheckpointedRun load_checkpointed_run(const std::string& path) {
+  const CheckpointFile file = read_checkpoint_file(path);
+  for (const auto& section : file.sections) {
+    TESSERA_CHECK(section.first != "python",
+                  "checkpoint file '" << path
+                                      << "' was written by Python's tessera.mesh(checkpoint=...): "
+                                         "continue it with tessera.resume or tessera.extend");
+  }
+  const std::string& method = file.section("method", path);
   TESSERA_CHECK(method == "atlas" || method == "front",
-                "checkpoint file '" << resume.checkpoint << "' is of method '" << method
+                "checkpoint file '" << path << "' is of method '" << method
                                     << "': checkpoints are supported for --method atlas and "
                                        "front");
   // The original command line, parsed again in the folder it was given in (its relative paths
-  // name the same files); the paths given here are taken from this folder.
-  BinaryReader command(file.section("command", resume.checkpoint),
-                       "checkpoint file '" + resume.checkpoint + "', its command");
+  // name the same files).
+  BinaryReader command(file.section("command", path),
+                       "checkpoint file '" + path + "', its command");
   const std::string folder = command.string("folder");
   std::vector<std::string> words = {"tessera"};
   const std::size_t count = command.count("arguments", 8);
@@ -188,44 +208,40 @@ int run_resume(const ResumeCommand& resume) {
     words.push_back(command.string("argument"));
   }
   TESSERA_CHECK(words.size() >= 2 && words[1] == "mesh",
-                "checkpoint file '" << resume.checkpoint << "' holds no `tessera mesh` command");
-  const auto absolute = [](const std::string& path) {
-    return path.empty() ? path : std::filesystem::absolute(path).string();
-  };
-  const std::string checkpoint = absolute(resume.checkpoint);
-  const std::string output = absolute(resume.output);
-  const std::string summary = absolute(resume.summary);
+                "checkpoint file '" << path << "' holds no `tessera mesh` command");
   std::error_code error;
   if (!folder.empty() && std::filesystem::current_path(error) != folder) {
     TESSERA_CHECK(chdir(folder.c_str()) == 0,
-                  "checkpoint file '" << resume.checkpoint << "': the run was started in " << folder
+                  "checkpoint file '" << path << "': the run was started in " << folder
                                       << ", which is gone; its relative paths "
                                       << "cannot be resolved");
   }
-  CLI::App app;
-  MeshCommand mesh;
-  add_mesh_command(app, mesh);
-  std::vector<char*> argv;
-  for (std::string& word : words) {
-    argv.push_back(word.data());
+  CheckpointedRun run;
+  {
+    CLI::App app;
+    add_mesh_command(app, run.mesh);
+    std::vector<char*> argv;
+    for (std::string& word : words) {
+      argv.push_back(word.data());
+    }
+    try {
+      app.parse(static_cast<int>(argv.size()), argv.data());
+    } catch (const CLI::ParseError& e) {
+      throw InvalidArgument("checkpoint file '" + path +
+                            "': its command line does not parse: " + e.what());
+    }
   }
-  try {
-    app.parse(static_cast<int>(argv.size()), argv.data());
-  } catch (const CLI::ParseError& e) {
-    throw InvalidArgument("checkpoint file '" + resume.checkpoint +
-                          "': its command line does not parse: " + e.what());
-  }
-  mesh.arguments.assign(words.begin() + 1, words.end());
+  run.mesh.arguments.assign(words.begin() + 1, words.end());
   // The state is the method's: a command line of another method would read it as its own.
   const std::string command_method =
-      mesh.method.empty() ? covering_methods().front().name : mesh.method;
+      run.mesh.method.empty() ? covering_methods().front().name : run.mesh.method;
   TESSERA_CHECK(command_method == method, "checkpoint file '"
-                                              << resume.checkpoint << "' holds a state of --method "
-                                              << method << ", but its command line runs --method "
+                                              << path << "' holds a state of --method " << method
+                                              << ", but its command line runs --method "
                                               << command_method);
   // The problem file must be the one the checkpoint was made from.
-  BinaryReader problem(file.section("problem", resume.checkpoint),
-                       "checkpoint file '" + resume.checkpoint + "', its problem");
+  BinaryReader problem(file.section("problem", path),
+                       "checkpoint file '" + path + "', its problem");
   problem.string("specification");  // (the command line holds it too)
   const std::string problem_file = problem.string("problem file");
   if (!problem_file.empty()) {
@@ -235,22 +251,148 @@ int run_resume(const ResumeCommand& resume) {
                   "problem file '" << problem_file << "' of the checkpoint is gone");
     const FileFingerprint now = fingerprint_file(problem_file);
     TESSERA_CHECK(now.size == size && now.checksum == hash,
-                  "problem file '" << problem_file << "' changed since checkpoint '"
-                                   << resume.checkpoint << "' was written (" << size
-                                   << " bytes then, " << now.size
+                  "problem file '" << problem_file << "' changed since checkpoint '" << path
+                                   << "' was written (" << size << " bytes then, " << now.size
                                    << " now, or other contents): resuming would continue an "
                                       "build of another problem");
   }
-  mesh.checkpoint = checkpoint;
-  mesh.quiet = mesh.quiet || resume.quiet;
-  mesh.progress = mesh.progress || resume.progress;
+  run.method = method;
+  run.state = std::make_shared<const std::string>(file.section(method, path));
+  return run;
+}
+
+std::string absolute_path(const std::string& path) {
+  return path.empty() ? path : std::filesystem::absolute(path).string();
+}
+
+// The options of `resume` and `extend` that replace the original run's.
+void apply_run_overrides(MeshCommand& mesh, const std::string& output, const std::string& summary,
+                         bool quiet, bool progress) {
+  mesh.quiet = mesh.quiet || quiet;
+  mesh.progress = mesh.progress || progress;
   if (!output.empty()) {
     mesh.output = output;
   }
   if (!summary.empty()) {
     mesh.summary = summary;
   }
-  mesh.resume_state = std::make_shared<const std::string>(file.section(method, resume.checkpoint));
+}
+
+// Removes every occurrence of the option (each of `names`, with its value as the next word or
+// after '=', or glued to a one-letter name as in -t1e-3) and appends `name value`.
+void replace_option(std::vector<std::string>& words, const std::vector<std::string>& names,
+                    const std::string& value) {
+  std::vector<std::string> kept;
+  for (std::size_t k = 0; k < words.size(); ++k) {
+    const std::string& word = words[k];
+    bool matched = false;
+    for (const std::string& name : names) {
+      if (word == name) {
+        ++k;  // its value
+        matched = true;
+      } else if (word.rfind(name + "=", 0) == 0 ||
+                 (name.size() == 2 && word.size() > 2 && word.rfind(name, 0) == 0)) {
+        matched = true;
+      }
+    }
+    if (!matched) {
+      kept.push_back(word);
+    }
+  }
+  kept.push_back(names.front());
+  kept.push_back(value);
+  words = std::move(kept);
+}
+
+std::string shortest(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+}  // namespace
+
+int run_resume(const ResumeCommand& resume) {
+  // (Paths given here are relative to this folder; the run's to the one it was started in.)
+  const std::string checkpoint = absolute_path(resume.checkpoint);
+  const std::string output = absolute_path(resume.output);
+  const std::string summary = absolute_path(resume.summary);
+  CheckpointedRun run = load_checkpointed_run(resume.checkpoint);
+  MeshCommand& mesh = run.mesh;
+  mesh.checkpoint = checkpoint;
+  apply_run_overrides(mesh, output, summary, resume.quiet, resume.progress);
+  mesh.resume_state = run.state;
+  return run_mesh(mesh);
+}
+
+CLI::App* add_extend_command(CLI::App& app, ExtendCommand& command) {
+  auto* extend = app.add_subcommand(
+      "extend",
+      "continue the atlas of a `tessera mesh --checkpoint FILE` run into a larger --box, or "
+      "refine it to a finer --tolerance, keeping what it has (docs/checkpoints.md)");
+  extend->add_option("checkpoint", command.checkpoint, "the checkpoint file (.tsc)")->required();
+  extend->add_option("--box", command.box,
+                     "the larger box, in the syntax of `tessera mesh --box`; it must contain "
+                     "the run's box");
+  extend
+      ->add_option("--tolerance,-t", command.tolerance,
+                   "a finer tolerance: the atlas's charts are kept and every triangle is "
+                   "bisected on M until it meets it")
+      ->check(CLI::PositiveNumber);
+  extend->add_option("-o,--output", command.output,
+                     "mesh file instead of the original run's (default: its -o)");
+  extend->add_option("--summary", command.summary,
+                     "summary file instead of the original run's (default: its --summary)");
+  extend->add_option("--checkpoint", command.new_checkpoint,
+                     "the extended run's checkpoints go here (.tsc) instead of replacing FILE's");
+  extend->add_flag("--quiet,-q", command.quiet, "print nothing but errors");
+  extend->add_flag("--progress", command.progress, "progress as lines on stderr");
+  return extend;
+}
+
+int run_extend(const ExtendCommand& extend) {
+  TESSERA_CHECK(!extend.box.empty() || extend.tolerance > 0,
+                "tessera extend " << extend.checkpoint
+                                  << ": give a larger --box, a finer --tolerance, or both");
+  const std::string checkpoint =
+      absolute_path(extend.new_checkpoint.empty() ? extend.checkpoint : extend.new_checkpoint);
+  const std::string output = absolute_path(extend.output);
+  const std::string summary = absolute_path(extend.summary);
+  if (!extend.new_checkpoint.empty()) {
+    TESSERA_CHECK(std::filesystem::path(checkpoint).extension() == ".tsc",
+                  "--checkpoint " << extend.new_checkpoint
+                                  << ": a checkpoint file must end in .tsc");
+  }
+  CheckpointedRun run = load_checkpointed_run(extend.checkpoint);
+  TESSERA_CHECK(run.method == "atlas", "tessera extend " << extend.checkpoint
+                                                         << ": extend continues an atlas; this "
+                                                            "checkpoint is of --method "
+                                                         << run.method << " (resume it instead)");
+  MeshCommand& mesh = run.mesh;
+  const AtlasStateHeader header = read_atlas_state_header(*run.state);
+  std::vector<std::string>& words = mesh.arguments;
+  if (!extend.box.empty()) {
+    // The containment is checked where the state is read (AtlasCheckpointing::extend).
+    mesh.box = extend.box;
+    replace_option(words, {"--box"}, extend.box);
+  }
+  if (extend.tolerance > 0) {
+    // The charts stay as they were sized; the refinement alone meets the finer tolerance.
+    const double before = mesh.settings.tolerance > 0 ? mesh.settings.tolerance : header.tolerance;
+    TESSERA_CHECK(extend.tolerance < before,
+                  "tessera extend --tolerance " << extend.tolerance
+                                                << " is not finer than the run's " << before
+                                                << ": its mesh meets that already (a coarser "
+                                                   "mesh needs a new run)");
+    mesh.settings.tolerance = extend.tolerance;
+    mesh.settings.atlas_chart_tolerance = header.tolerance;
+    replace_option(words, {"--tolerance", "-t"}, shortest(extend.tolerance));
+    replace_option(words, {"--chart-tolerance"}, shortest(header.tolerance));
+  }
+  mesh.checkpoint = checkpoint;
+  apply_run_overrides(mesh, output, summary, extend.quiet, extend.progress);
+  mesh.resume_state = run.state;
+  mesh.extend = true;
   return run_mesh(mesh);
 }
 

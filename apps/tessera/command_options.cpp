@@ -127,6 +127,11 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommand& mesh) {
                    "default)")
       ->check(finite_positive());
   mesh_app
+      ->add_option("--chart-tolerance", mesh.settings.atlas_chart_tolerance,
+                   "atlas: size the charts for this tolerance (>= --tolerance) and reach "
+                   "--tolerance by refinement alone (what `tessera extend --tolerance` does)")
+      ->check(finite_positive());
+  mesh_app
       ->add_option("--placement", mesh.settings.atlas_placement,
                    "atlas: 'auto' (default: hexagonal where DF is dense and there is no domain, "
                    "disk otherwise), "

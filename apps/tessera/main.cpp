@@ -133,6 +133,8 @@ int main(int argc, char** argv) {
   tessera::app::add_render_command(app, render);
   tessera::app::ResumeCommand resume;
   tessera::app::add_resume_command(app, resume);
+  tessera::app::ExtendCommand extend;
+  tessera::app::add_extend_command(app, extend);
 
   std::string check_mesh;
   std::string check_problem;
@@ -184,6 +186,9 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("resume")) {
       return tessera::app::run_resume(resume);
+    }
+    if (app.got_subcommand("extend")) {
+      return tessera::app::run_extend(extend);
     }
     if (app.got_subcommand("problems")) {
       return run_problems();

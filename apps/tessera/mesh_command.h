@@ -55,6 +55,9 @@ struct MeshCommand {
   /// Set by `tessera resume`: the method's state to continue (AtlasCheckpointing or
   /// FrontCheckpointing::resume_from).
   std::shared_ptr<const std::string> resume_state;
+  /// Set by `tessera extend`: resume_state is continued into a larger box
+  /// (AtlasCheckpointing::extend).
+  bool extend = false;
   std::string backend = "serial";          ///< --backend: serial or petsc (solver_backend.h)
   std::vector<std::string> petsc_options;  ///< PETSc's own options from the command line
 };

@@ -19,16 +19,23 @@ from __future__ import annotations
 
 import json
 import math
-import numbers
 import os
 import warnings
-from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Union
 
 # First: under another interpreter, says which one the compiled module was built for.
 from . import _interpreter_check  # noqa: F401
 import numpy as np
 
 from . import _tessera
+from . import _checkpoints
+from ._checkpoints import extend, resume  # noqa: F401
+from ._meshes import Mesh, from_meshio, read  # noqa: F401 (the package's)
+from ._problems import ArrayLike, Dynamics, Problem, ProblemLike, _numbers, _problem
+
+# The classes are the package's: their repr and help say tessera.Problem, not the submodule.
+for _class in (Dynamics, Problem, Mesh):
+    _class.__module__ = __name__
 
 __all__ = [
     "ComputationFailed",
@@ -45,11 +52,10 @@ __all__ = [
     "problems",
     "read",
     "from_meshio",
+    "resume",
+    "extend",
 ]
 __version__ = "0.1.0"
-
-ArrayLike = Union[np.ndarray, Sequence[float]]
-ProblemLike = Union["Problem", str, "os.PathLike[str]"]
 
 
 class ComputationFailed(RuntimeError):
@@ -81,516 +87,6 @@ def _raise_interrupted(error: Interrupted, count: int) -> None:
     if count > 1:
         _tessera.raise_with_pending_interrupt(error)
     raise error
-
-
-# ---------------------------------------------------------------------------------------------
-# Problems
-
-
-def _finite_difference_jacobian(F: Callable[[np.ndarray], Any], n: int) -> Callable:
-    # Central differences, h ~ eps^(1/3) relative: about 1e-10 accurate for smooth F.
-    def J(x: np.ndarray) -> np.ndarray:
-        columns = []
-        for i in range(n):
-            h = 6e-6 * (1.0 + abs(x[i]))
-            forward = x.copy()
-            backward = x.copy()
-            forward[i] += h
-            backward[i] -= h
-            columns.append((np.atleast_1d(F(forward)) - np.atleast_1d(F(backward))) / (2 * h))
-        return np.stack(columns, axis=1)
-
-    return J
-
-
-class Dynamics:
-    """What a problem's equations are the right-hand side of: B·u' = sign·F(u, p).
-
-    M is then the surface of steady states, and ``mesh(..., stability=True)`` says which are
-    stable (every eigenvalue μ of sign·D_uF·v = μ·B·v with Re μ < 0)::
-
-        tessera.Dynamics(parameters=("lambda", "mu"), sign=-1)
-
-    parameters: the two coordinates p, by name or by index (0 … n-1); the state u is the other
-        n-2 coordinates in their order, and equation i of F is row i of B.
-    sign: 1 (B·u' = F as written) or -1 (B·u' = -F, e.g. F = ∇V of a potential V that the
-        dynamics descend, as for Whitney's pleat).
-    mass: B. None: the identity; n-2 numbers: its diagonal (each >= 0; 0 marks an algebraic
-        equation); an (n-2, n-2) array or a scipy.sparse matrix: all of it.
-
-    `Problem` takes one as ``dynamics=``, or a dict with the same keys; the shapes and names are
-    checked against the problem there. ``Problem.dynamics`` is the problem's, for any problem
-    (parameters as names).
-    """
-
-    def __init__(self, parameters: Sequence[Union[str, int]], sign: float = 1,
-                 mass: Optional[Any] = None):
-        if isinstance(parameters, str) or not hasattr(parameters, "__len__") or \
-                len(parameters) != 2:
-            raise ValueError(f"dynamics.parameters must be two coordinates (names or indices), "
-                             f"got {parameters!r}")
-        for parameter in parameters:
-            if not isinstance(parameter, (str, numbers.Integral)) or isinstance(parameter, bool):
-                raise ValueError(f"dynamics.parameters: {parameter!r} is neither a coordinate "
-                                 f"name nor an index")
-        if sign not in (1, -1):
-            raise ValueError(f"dynamics.sign must be 1 or -1, got {sign!r}")
-        self.parameters = tuple(parameters)
-        self.sign = int(sign)
-        self.mass = None if mass is None else (mass if _is_scipy_sparse(mass)
-                                               else np.asarray(mass, dtype=float))
-
-    @classmethod
-    def _from(cls, value: Union["Dynamics", Mapping[str, Any]]) -> "Dynamics":
-        if isinstance(value, Dynamics):
-            return value
-        if not isinstance(value, Mapping):
-            raise TypeError(f"dynamics must be a tessera.Dynamics or a dict with the keys "
-                            f"parameters, sign, mass; not {type(value).__name__}")
-        unknown = [key for key in value if key not in ("parameters", "sign", "mass")]
-        if unknown:
-            raise ValueError(f"dynamics: unknown key {unknown[0]!r} (keys: parameters, sign, "
-                             f"mass)")
-        if "parameters" not in value:
-            raise ValueError("dynamics: 'parameters' is required: the two coordinates that are "
-                             "the dynamics' parameters")
-        return cls(**value)
-
-    def _core(self, n: int, names: Sequence[str]) -> Any:
-        """The C++ dynamics of a problem in R^n with these coordinate names."""
-        indices = []
-        for parameter in self.parameters:
-            if isinstance(parameter, str):
-                if parameter not in names:
-                    raise ValueError(f"dynamics.parameters: {parameter!r} is not a coordinate "
-                                     f"(coordinates: {', '.join(names)})")
-                index = list(names).index(parameter)
-            else:
-                index = int(parameter)
-                if not 0 <= index < n:
-                    raise ValueError(f"dynamics.parameters: index {index} is not a coordinate "
-                                     f"index (0 … {n - 1})")
-            if index in indices:
-                raise ValueError(f"dynamics.parameters: coordinate {names[index]!r} is given "
-                                 f"twice; the two parameters must differ")
-            indices.append(index)
-        core = _tessera.Dynamics()
-        core.parameters = indices
-        core.sign = float(self.sign)
-        m = n - 2
-        if self.mass is None:
-            return core
-        shape = tuple(self.mass.shape)
-        if shape == (m,):
-            diagonal = self.mass
-            bad = [i for i in range(m) if not (math.isfinite(diagonal[i]) and diagonal[i] >= 0)]
-            if bad:
-                raise ValueError(f"dynamics.mass[{bad[0]}] = {diagonal[bad[0]]!r} must be a "
-                                 f"finite number >= 0 (0: an algebraic equation)")
-            core.mass_diagonal = diagonal
-        elif shape == (m, m):
-            import scipy.sparse
-
-            matrix = scipy.sparse.csc_matrix(self.mass, dtype=float)
-            if not np.isfinite(matrix.data).all():
-                raise ValueError("dynamics.mass has entries that are not finite")
-            core.mass_matrix = matrix
-        else:
-            raise ValueError(f"dynamics.mass has shape {shape}, expected ({m},) (the diagonal of "
-                             f"B, one entry per equation) or ({m}, {m}) for n = {n}")
-        return core
-
-    @classmethod
-    def _wrap(cls, core: Any, names: Sequence[str]) -> "Dynamics":
-        mass = None
-        if core.mass_diagonal.size:
-            mass = core.mass_diagonal
-        elif core.mass_matrix.shape[0]:
-            mass = core.mass_matrix
-        return cls((names[core.parameters[0]], names[core.parameters[1]]), int(core.sign), mass)
-
-    def __repr__(self) -> str:
-        if self.mass is None:
-            mass = ""
-        elif _is_scipy_sparse(self.mass) or self.mass.size > 8:  # large B: its shape only
-            mass = f", mass=<{'sparse' if _is_scipy_sparse(self.mass) else 'array'} of shape " \
-                   f"{self.mass.shape}>"
-        else:
-            mass = f", mass={self.mass!r}"
-        return f"tessera.Dynamics(parameters={self.parameters!r}, sign={self.sign}{mass})"
-
-
-class Problem:
-    """An implicitly defined surface M = {x in R^n : F(x) = 0}, F: R^n -> R^(n-2).
-
-    Written in Python::
-
-        p = tessera.Problem(n=3, F=lambda x: [x @ x - 1], J=lambda x: [2 * x], start=[0, 0, 1])
-
-    F(x) returns n-2 numbers (a number is fine for n = 3). J(x) returns DF(x) as an (n-2, n)
-    array, or as a scipy.sparse matrix for large n: the solvers then use sparse LU and never
-    form a dense matrix (``sparse`` says which form the solvers ask for; by default the form
-    that J returns at ``start``). Without J, central finite differences (dense, n + 1 calls).
-    x is a fresh float64 array on every call. F and J run with the GIL held, one call at a time;
-    an exception they raise ends the run and is raised by `mesh`.
-
-    ``step`` is the suggested edge length (the CLI's problem-file ``step``), ``box`` a list of
-    lower, upper for each coordinate, ``blocks`` named coordinate ranges as (name, first, size[,
-    weight]) tuples (docs/problem-files.md), ``euler_characteristic`` and ``area`` what is known
-    of the component of M through ``start`` (used by `check`). ``dynamics`` says what F is the
-    right-hand side of (a `Dynamics`, or a dict {"parameters": ("a", "b"), "sign": 1, "mass":
-    ...}), which ``mesh(..., stability=True)`` needs.
-
-    Catalogue entries and problem files: `Problem.from_catalogue`, `Problem.from_file`,
-    `Problem.from_text`, `Problem.from_equations`.
-    """
-
-    def __init__(
-        self,
-        n: int,
-        F: Callable[[np.ndarray], Any],
-        J: Optional[Callable[[np.ndarray], Any]] = None,
-        start: Optional[ArrayLike] = None,
-        *,
-        sparse: Optional[bool] = None,
-        name: str = "python",
-        coordinate_names: Optional[Sequence[str]] = None,
-        blocks: Optional[Sequence[tuple]] = None,
-        box: Optional[ArrayLike] = None,
-        step: float = 0.1,
-        euler_characteristic: Optional[int] = None,
-        area: Optional[float] = None,
-        dynamics: Optional[Union[Dynamics, Mapping[str, Any]]] = None,
-    ):
-        if start is None:
-            raise ValueError("Problem: start is required (a point near M, n values)")
-        start_array = np.asarray(start, dtype=float).ravel()
-        if J is None:
-            J = _finite_difference_jacobian(F, int(n))
-            sparse = False
-        names = list(coordinate_names or [])
-        core_dynamics = None
-        if dynamics is not None:
-            core_dynamics = Dynamics._from(dynamics)._core(
-                int(n), names or _tessera.default_coordinate_names(int(n)))
-        if sparse is None:
-            sparse = _is_scipy_sparse(J(start_array.copy()))
-        self._core = _tessera.Problem.from_python(
-            int(n), F, J, bool(sparse), name, names, list(blocks or []), start_array,
-            _numbers(box), float(step), euler_characteristic, area, core_dynamics)
-
-    @classmethod
-    def _wrap(cls, core: Any) -> "Problem":
-        problem = cls.__new__(cls)
-        problem._core = core
-        return problem
-
-    @classmethod
-    def from_catalogue(cls, name: str, **parameters: float) -> "Problem":
-        """A catalogue entry (`problems()`), e.g. ``Problem.from_catalogue("torus", R=2)``;
-        ``"torus:R=2"`` is the same."""
-        specification = name
-        if parameters:
-            specification += ":" + ",".join(f"{key}={value!r}" for key, value in parameters.items())
-        return cls._wrap(_tessera.Problem.resolve(specification))
-
-    @classmethod
-    def from_file(cls, path: Union[str, "os.PathLike[str]"], **parameters: float) -> "Problem":
-        """A problem file (.tsr, docs/problem-files.md); keyword arguments replace the file's
-        parameters by name."""
-        return cls._wrap(_tessera.Problem.from_file(os.fspath(path), _parameters(parameters)))
-
-    @classmethod
-    def from_text(cls, text: str, source_name: str = "<text>", **parameters: float) -> "Problem":
-        """Problem-file text (docs/problem-files.md); messages name ``source_name``."""
-        return cls._wrap(_tessera.Problem.from_text(text, source_name, _parameters(parameters)))
-
-    @classmethod
-    def from_equations(
-        cls,
-        variables: Sequence[str],
-        equations: Sequence[str],
-        start: ArrayLike,
-        *,
-        parameters: Optional[Mapping[str, float]] = None,
-        box: Optional[ArrayLike] = None,
-        step: Optional[float] = None,
-        name: str = "equations",
-    ) -> "Problem":
-        """Expression strings, compiled and differentiated exactly by tessera (no Python runs
-        during the computation), e.g.
-        ``Problem.from_equations("x y z", ["x^2 + y^2 + z^2 - 1"], [0, 0, 1])``."""
-        if isinstance(variables, str):
-            variables = variables.split()
-        lines = [f"name {name}", "variables " + " ".join(variables)]
-        lines += [f"parameter {key} = {value!r}" for key, value in (parameters or {}).items()]
-        lines += [f"equation {equation}" for equation in equations]
-        lines.append("start " + " ".join(repr(float(v)) for v in np.asarray(start).ravel()))
-        if step is not None:
-            lines.append(f"step {float(step)!r}")
-        box_values = _numbers(box)
-        for i in range(len(box_values) // 2):
-            name_i = variables[i] if i < len(variables) else f"x{i}"
-            lines.append(f"box {name_i} {box_values[2 * i]!r} {box_values[2 * i + 1]!r}")
-        if len(box_values) % 2 or (box_values and len(box_values) != 2 * len(variables)):
-            raise ValueError(f"box has {len(box_values)} values, expected {2 * len(variables)} "
-                             f"(lower,upper for each of the {len(variables)} coordinates)")
-        return cls.from_text("\n".join(lines) + "\n", f"<{name}>")
-
-    @property
-    def n(self) -> int:
-        """The dimension of the ambient space."""
-        return self._core.n
-
-    @property
-    def name(self) -> str:
-        return self._core.name
-
-    @property
-    def coordinate_names(self) -> List[str]:
-        return self._core.coordinate_names
-
-    @property
-    def start(self) -> np.ndarray:
-        """The start point (n,) near M; `mesh` projects it onto M first."""
-        return self._core.start
-
-    @property
-    def suggested_step(self) -> float:
-        return self._core.suggested_step
-
-    @property
-    def description(self) -> str:
-        return self._core.description
-
-    @property
-    def expected_euler_characteristic(self) -> Optional[int]:
-        return self._core.expected_euler_characteristic
-
-    @property
-    def exact_area(self) -> Optional[float]:
-        return self._core.exact_area
-
-    @property
-    def has_sparse_jacobian(self) -> bool:
-        return self._core.has_sparse_jacobian
-
-    @property
-    def dynamics(self) -> Optional[Dynamics]:
-        """The dynamics F is the right-hand side of (parameters by name), None if it declares
-        none: a Python problem's ``dynamics=``, a problem file's ``dynamics`` line, a catalogue
-        problem's own."""
-        core = self._core.dynamics
-        return None if core is None else Dynamics._wrap(core, self.coordinate_names)
-
-    def F(self, x: ArrayLike) -> np.ndarray:
-        """F(x), (n-2,), evaluated by tessera (for any problem, catalogue ones too)."""
-        return self._core.F(np.asarray(x, dtype=float))
-
-    def J(self, x: ArrayLike) -> np.ndarray:
-        """DF(x) as a dense (n-2, n) array."""
-        return self._core.J(np.asarray(x, dtype=float))
-
-    def __repr__(self) -> str:
-        return f"tessera.Problem({self._core.argument!r}, n={self.n})"
-
-
-def _is_scipy_sparse(value: Any) -> bool:
-    return hasattr(value, "tocsc") and hasattr(value, "nnz")
-
-
-def _numbers(values: Optional[ArrayLike]) -> List[float]:
-    if values is None:
-        return []
-    if isinstance(values, str):
-        raise ValueError(f"expected numbers, got the string {values!r}")
-    return [float(v) for v in np.asarray(values, dtype=float).ravel()]
-
-
-def _parameters(parameters: Mapping[str, float]) -> Dict[str, float]:
-    return {str(key): float(value) for key, value in parameters.items()}
-
-
-def _problem(problem: ProblemLike) -> Problem:
-    if isinstance(problem, Problem):
-        return problem
-    if isinstance(problem, (str, os.PathLike)):
-        return Problem._wrap(_tessera.Problem.resolve(os.fspath(problem)))
-    raise TypeError(f"problem must be a tessera.Problem, a catalogue name or a problem file, "
-                    f"not {type(problem).__name__}")
-
-
-# ---------------------------------------------------------------------------------------------
-# Meshes
-
-
-class Mesh:
-    """A triangle mesh with vertices in R^n, and what was learnt making it.
-
-    ``vertices`` (N, n) float64 and ``triangles`` (T, 3) int32 are read-only NumPy views of the
-    C++ storage (no copy; they keep the mesh alive); ``np.array(m.vertices)`` copies. A Mesh
-    never changes: `improve` returns a new one.
-    """
-
-    def __init__(self, vertices: ArrayLike, triangles: ArrayLike):
-        """A mesh from arrays (copied once): vertices (N, n), triangles (T, 3) indices."""
-        self._core = _tessera.Mesh.from_arrays(np.asarray(vertices), np.asarray(triangles))
-        self._summary: Optional[Dict[str, Any]] = None
-
-    @classmethod
-    def _wrap(cls, core: Any) -> "Mesh":
-        mesh = cls.__new__(cls)
-        mesh._core = core
-        mesh._summary = None
-        return mesh
-
-    @property
-    def vertices(self) -> np.ndarray:
-        """(N, n) float64, row j is vertex j; a read-only view of the C++ storage."""
-        return self._core.vertices
-
-    @property
-    def triangles(self) -> np.ndarray:
-        """(T, 3) int32 vertex indices, oriented; a read-only view of the C++ storage."""
-        return self._core.triangles
-
-    @property
-    def summary(self) -> Dict[str, Any]:
-        """The summary as a dict: for `mesh`, the JSON of ``tessera mesh --summary``
-        (docs/summary-json.md); for `improve` and `ddt`, their CLI summaries; {} otherwise."""
-        if self._summary is None:
-            self._summary = json.loads(self._core.summary_json)
-        return self._summary
-
-    @property
-    def fold_curves(self) -> List[np.ndarray]:
-        """The fold curves of ``mesh(..., folds="P,Q")``: one (m, k) array per curve, its points
-        in order in the mesh's view (``summary["folds"]["columns"]``); cusps and counts are in
-        ``summary["folds"]``. Empty without ``folds``."""
-        folds = self.summary.get("folds")
-        if folds is None:
-            return []
-        return [np.asarray(curve["points"], dtype=float) for curve in folds["curves"]]
-
-    @property
-    def unstable_count(self) -> Optional[np.ndarray]:
-        """mesh(..., stability=True): (N,) int32, the unstable eigenvalues at each vertex (0:
-        stable, -1: the eigenvalues failed there, see ``summary["stability"]["failures"]``);
-        None without stability."""
-        return self._core.unstable_count if self._core.has_stability else None
-
-    @property
-    def leading_real_part(self) -> Optional[np.ndarray]:
-        """mesh(..., stability=True): (N,) float64, the largest real part among each vertex's
-        computed eigenvalues (NaN where they failed); None without stability."""
-        return self._core.leading_real_part if self._core.has_stability else None
-
-    @property
-    def stability_certain(self) -> Optional[np.ndarray]:
-        """mesh(..., stability=True): (N,) bool, whether ``unstable_count`` counts every
-        eigenvalue (dense problems, symmetric sparse ones) or only the computed ones; None
-        without stability."""
-        return self._core.stability_certain if self._core.has_stability else None
-
-    @property
-    def eigenvalues(self) -> Optional[List[np.ndarray]]:
-        """mesh(..., stability=True): per vertex, its computed eigenvalues (complex128, by
-        decreasing real part; all of them for dense problems, ``eigenvalues`` nearest 0 for
-        sparse ones); None without stability."""
-        return self._core.eigenvalues if self._core.has_stability else None
-
-    @property
-    def hopf_curves(self) -> List[np.ndarray]:
-        """mesh(..., hopf=True): one (m, k) array per Hopf curve, its points in order, in the
-        columns ``summary["hopf"]["columns"]``: the mesh's view, the dynamics' parameters not in
-        it, then omega (the imaginary part of the crossing pair ±iω) and l1 (the first Lyapunov
-        coefficient: < 0 supercritical, > 0 subcritical; NaN for sparse problems). Empty without
-        hopf."""
-        return self._curves("hopf", "curves")
-
-    @property
-    def neutral_saddle_curves(self) -> List[np.ndarray]:
-        """mesh(..., hopf=True): the neutral saddle curves (a real pair ±κ), as `hopf_curves`,
-        with κ in the omega column."""
-        return self._curves("hopf", "neutral_saddle_curves")
-
-    @property
-    def special_points(self) -> List[Dict[str, Any]]:
-        """mesh(..., hopf=True): the Bogdanov-Takens, fold-Hopf and Bautin points, as dicts
-        {"kind": "bogdanov_takens" | "zero_hopf" | "bautin", "point": {column: value},
-        "plane": {p1: value, p2: value}}."""
-        hopf = self.summary.get("hopf")
-        return [] if hopf is None else hopf["special_points"]
-
-    @property
-    def level_curves(self) -> List[np.ndarray]:
-        """mesh(..., level="F=V"): one (m, k) array per level curve, in the mesh's view
-        (``summary["level"]["columns"]``). Empty without level."""
-        return self._curves("level", "curves")
-
-    def _curves(self, section: str, key: str) -> List[np.ndarray]:
-        found = self.summary.get(section)
-        if found is None:
-            return []
-        return [np.asarray(curve["points"], dtype=float) for curve in found[key]]
-
-    @property
-    def termination(self) -> str:
-        """"completed", or why the run stopped early ("interrupted", "vertex limit reached"...)."""
-        return self._core.termination
-
-    @property
-    def is_complete(self) -> bool:
-        return not self._core.failure and not self._core.interrupted
-
-    @property
-    def problem(self) -> Optional[Problem]:
-        core = self._core.problem
-        return None if core is None else Problem._wrap(core)
-
-    @property
-    def vertex_count(self) -> int:
-        return self.vertices.shape[0]
-
-    @property
-    def triangle_count(self) -> int:
-        return self.triangles.shape[0]
-
-    def write(self, path: Union[str, "os.PathLike[str]"], *, ascii: bool = False,
-              view: Optional[str] = None) -> None:
-        """Writes the mesh as ``tessera mesh -o`` does: .ply (binary unless ``ascii``), .obj,
-        .vtk, .vtu, or .npy (the states of ``--states``: every coordinate, with the triangles
-        in FILE.triangles.npy). ``view`` as ``--view`` (e.g. "lambda,epsilon,max:u"); default
-        the problem file's view, else every coordinate (a summary for n > 50)."""
-        self._core.write(os.fspath(path), ascii, view or "")
-
-    def write_patches(self, path: Union[str, "os.PathLike[str]"]) -> None:
-        """The Bézier control points of method "bezier" (``--patches``, docs/bezier-patches.md)."""
-        self._core.write_patches(os.fspath(path))
-
-    def to_meshio(self) -> Any:
-        """A meshio.Mesh with the vertices and a "triangle" cell block (copies)."""
-        import meshio
-
-        return meshio.Mesh(np.array(self.vertices), [("triangle", np.array(self.triangles))])
-
-    def __repr__(self) -> str:
-        n = self.vertices.shape[1]
-        return (f"<tessera.Mesh {self.vertex_count} vertices in R^{n}, {self.triangle_count} "
-                f"triangles, {self.termination}>")
-
-
-def from_meshio(mesh: Any) -> Mesh:
-    """A Mesh of the points and the triangle cells of a meshio.Mesh."""
-    blocks = [block.data for block in mesh.cells if block.type == "triangle"]
-    if not blocks:
-        raise ValueError("the meshio mesh has no triangle cells")
-    return Mesh(mesh.points, np.concatenate(blocks))
-
-
-def read(path: Union[str, "os.PathLike[str]"]) -> Mesh:
-    """Reads a mesh file tessera writes (.ply, .obj, .vtk, .vtu, or the .npy states)."""
-    return Mesh._wrap(_tessera.Mesh.read(os.fspath(path)))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -681,6 +177,10 @@ def mesh(
     allow_partial: bool = False,
     handle_interrupt: bool = True,
     threads: Optional[int] = None,
+    chart_tolerance: Optional[float] = None,
+    checkpoint: Optional[Union[str, "os.PathLike[str]"]] = None,
+    checkpoint_every: float = 300.0,
+    _continue: Optional[tuple] = None,
 ) -> Mesh:
     """Covers a problem's surface with a triangle mesh: ``tessera mesh``.
 
@@ -742,6 +242,11 @@ def mesh(
         (each evaluation takes the GIL); the mesh does not depend on it (docs/threads.md).
     handle_interrupt: Ctrl-C stops the run (from the main thread, while Python's SIGINT handler
         is the default one) and raises `Interrupted` carrying the valid partial mesh.
+    chart_tolerance: atlas: size the charts for this tolerance (>= tolerance) and reach
+        ``tolerance`` by refinement alone (``--chart-tolerance``; what `extend` does).
+    checkpoint, checkpoint_every: atlas: save the build's state to this .tsc file every
+        ``checkpoint_every`` seconds (default 300), at a stop (Ctrl-C) and when the build ends;
+        `resume` continues it to the same mesh, `extend` grows it (docs/checkpoints.md).
 
     Returns a `Mesh` whose ``summary`` is the JSON summary of ``tessera mesh --summary``.
     Raises ValueError for bad input (before any computation), `ComputationFailed` (with
@@ -749,6 +254,7 @@ def mesh(
     `Interrupted` on Ctrl-C; an exception raised by a Python problem's F or J as it is.
     The GIL is released while C++ works (Python problems take it for each evaluation).
     """
+    arguments = dict(locals())  # (first: the call's arguments, for the checkpoint's record)
     chosen = _problem(problem)
     request = _tessera.MeshRequest()
     if method is not None:
@@ -789,6 +295,13 @@ def mesh(
     request.min_tangent_cosine = _in_range("min_tangent_cosine", min_tangent_cosine, 0.01, 0.999)
     request.refine = _in_range("refine", refine, 1, 64, int)
     request.threads = _in_range("threads", threads, 1, 100_000, int)
+    request.chart_tolerance = _finite_positive("chart_tolerance", chart_tolerance)
+    if checkpoint is not None:
+        request.checkpoint = os.fspath(checkpoint)
+        request.checkpoint_every = _finite_positive("checkpoint_every", checkpoint_every)
+        request.checkpoint_record = _checkpoints.record(problem, chosen, arguments)
+    if _continue is not None:
+        request.resume_state, request.extend = _continue
     core = _tessera.mesh(chosen._core, request, _progress(progress), bool(handle_interrupt))
     result = Mesh._wrap(core)
     if core.interrupted:

@@ -28,13 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
 void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
@@ -65,24 +58,6 @@ std::vector<std::string> mesh_words(const std::string& folder,
           "-q"};
 }
 
-// Starts `words` with stdout and stderr to `log`.
-pid_t spawn(std::vector<std::string> words, const std::string& log) {
-  const pid_t child = fork();
-  if (child == 0) {
-    const int out = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(out, STDOUT_FILENO);
-    dup2(out, STDERR_FILENO);
-    std::vector<char*> argv;
-    for (std::string& word : words) {
-      argv.push_back(word.data());
-    }
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  return child;
-}
-
 // The run with checkpoints that is never stopped, made once per method: its mesh, and what
 // its last checkpoint (at the end of the build) holds, the atlas's charts or the front's
 // vertices; that checkpoint resumed gives the same mesh again. (A run without --checkpoint may
@@ -100,14 +75,14 @@ Reference make_reference(const std::string& method) {
       method + " --report-samples 50 -q -o " + folder + "/mesh.ply --checkpoint " + folder +
       "/run.tsc --checkpoint-every 1000");
   EXPECT_EQ(run.exit_code, 0) << run.output;
-  Reference reference{read_bytes(folder + "/mesh.ply")};
+  Reference reference{testing::read_file_bytes(folder + "/mesh.ply")};
   const testing::CommandResult again = testing::run_cli(
       "resume " + folder + "/run.tsc -q -o " + folder + "/again.ply --summary " + folder +
       "/again.json");
   EXPECT_EQ(again.exit_code, 0) << again.output;
-  EXPECT_TRUE(read_bytes(folder + "/again.ply") == reference.mesh);
+  EXPECT_TRUE(testing::read_file_bytes(folder + "/again.ply") == reference.mesh);
   const nlohmann::json resumed =
-      nlohmann::json::parse(read_bytes(folder + "/again.json"))["run"]["resumed_from"];
+      nlohmann::json::parse(testing::read_file_bytes(folder + "/again.json"))["run"]["resumed_from"];
   reference.complete_build = resumed[method == "front" ? "vertices" : "charts"].get<int>();
   return reference;
 }
@@ -146,8 +121,9 @@ void expect_killed_runs_resume(const std::string& method, int most_milliseconds)
     SCOPED_TRACE("seed " + std::to_string(seed));
     const std::string folder =
         testing::temporary_directory("checkpoint_kill_" + method + std::to_string(seed));
-    const pid_t child = spawn(mesh_words(folder, method), folder + "/log.txt");
-    ASSERT_TRUE(wait_for_file(folder + "/run.tsc", child)) << read_bytes(folder + "/log.txt");
+    const pid_t child =
+        testing::spawn(mesh_words(folder, method), folder + "/log.txt", folder + "/log.txt");
+    ASSERT_TRUE(wait_for_file(folder + "/run.tsc", child)) << testing::read_file_bytes(folder + "/log.txt");
     // A pseudo-random moment after the first checkpoint, between checkpoints or in one.
     std::mt19937 random(seed);
     std::this_thread::sleep_for(
@@ -160,9 +136,9 @@ void expect_killed_runs_resume(const std::string& method, int most_milliseconds)
     const testing::CommandResult resumed =
         testing::run_cli("resume " + folder + "/run.tsc -q --summary " + folder + "/summary.json");
     ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
-    EXPECT_TRUE(read_bytes(folder + "/mesh.ply") == reference_mesh(method))
+    EXPECT_TRUE(testing::read_file_bytes(folder + "/mesh.ply") == reference_mesh(method))
         << "the resumed run's mesh differs from the uninterrupted run's";
-    const nlohmann::json run = nlohmann::json::parse(read_bytes(folder + "/summary.json"))["run"];
+    const nlohmann::json run = nlohmann::json::parse(testing::read_file_bytes(folder + "/summary.json"))["run"];
     killed_in_build += run["resumed_from"][method == "front" ? "vertices" : "charts"].get<int>() <
                        reference(method).complete_build;
   }
@@ -181,22 +157,22 @@ void expect_sigterm_then_resume(const std::string& method, int milliseconds) {
   std::vector<std::string> words = mesh_words(folder, method);
   words.push_back("--summary");
   words.push_back(folder + "/summary.json");
-  const pid_t child = spawn(words, folder + "/log.txt");
+  const pid_t child = testing::spawn(words, folder + "/log.txt", folder + "/log.txt");
   ASSERT_TRUE(wait_for_file(folder + "/run.tsc", child));
   std::this_thread::sleep_for(std::chrono::milliseconds(milliseconds));
   kill(child, SIGTERM);
   int status = 0;
   waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status)) << read_bytes(folder + "/log.txt");
+  ASSERT_TRUE(WIFEXITED(status)) << testing::read_file_bytes(folder + "/log.txt");
   ASSERT_EQ(WEXITSTATUS(status), 1) << "a stopped run ends as stopped early";
-  const nlohmann::json stopped = nlohmann::json::parse(read_bytes(folder + "/summary.json"));
+  const nlohmann::json stopped = nlohmann::json::parse(testing::read_file_bytes(folder + "/summary.json"));
   ASSERT_EQ(stopped["stop"]["stage"], "build") << stopped.dump(1);
 
   const testing::CommandResult resumed =
       testing::run_cli("resume " + folder + "/run.tsc -q --summary " + folder + "/resumed.json");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
-  EXPECT_TRUE(read_bytes(folder + "/mesh.ply") == reference_mesh(method));
-  const nlohmann::json summary = nlohmann::json::parse(read_bytes(folder + "/resumed.json"));
+  EXPECT_TRUE(testing::read_file_bytes(folder + "/mesh.ply") == reference_mesh(method));
+  const nlohmann::json summary = nlohmann::json::parse(testing::read_file_bytes(folder + "/resumed.json"));
   ASSERT_TRUE(summary["run"].contains("resumed_from")) << summary["run"].dump(1);
   if (method == "atlas") {
     EXPECT_EQ(summary["run"]["resumed_from"]["charts"], stopped["run"]["atlas"]["charts"]);
@@ -232,7 +208,7 @@ TEST(CliCheckpoint, DamagedCheckpointsAreRefused) {
   const testing::CommandResult run = testing::run_cli(
       "mesh sphere -q -o " + folder + "/mesh.ply --checkpoint " + folder + "/run.tsc");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const std::string good = read_bytes(folder + "/run.tsc");
+  const std::string good = testing::read_file_bytes(folder + "/run.tsc");
   ASSERT_GT(good.size(), 100u);
   write_bytes(folder + "/truncated.tsc", good.substr(0, good.size() * 2 / 3));
   expect_refused(folder + "/truncated.tsc", "truncated");
@@ -252,7 +228,7 @@ TEST(CliCheckpoint, DamagedCheckpointsAreRefused) {
   const testing::CommandResult resumed =
       testing::run_cli("resume " + folder + "/run.tsc -q -o " + folder + "/again.ply");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
-  EXPECT_TRUE(read_bytes(folder + "/again.ply") == read_bytes(folder + "/mesh.ply"));
+  EXPECT_TRUE(testing::read_file_bytes(folder + "/again.ply") == testing::read_file_bytes(folder + "/mesh.ply"));
 }
 
 TEST(CliCheckpoint, ChangedProblemFileIsRefused) {
@@ -266,9 +242,9 @@ TEST(CliCheckpoint, ChangedProblemFileIsRefused) {
                          "/mesh.ply --checkpoint " + folder + "/run.tsc");
     ASSERT_EQ(run.exit_code, 0) << run.output;
     std::ofstream(problem, std::ios::app) << "# changed\n";
-    const std::string mesh = read_bytes(folder + "/mesh.ply");
+    const std::string mesh = testing::read_file_bytes(folder + "/mesh.ply");
     expect_refused(folder + "/run.tsc", "changed since");
-    EXPECT_TRUE(read_bytes(folder + "/mesh.ply") == mesh) << "the original mesh is untouched";
+    EXPECT_TRUE(testing::read_file_bytes(folder + "/mesh.ply") == mesh) << "the original mesh is untouched";
   }
 }
 
@@ -280,7 +256,7 @@ TEST(CliCheckpoint, DamagedOrForeignFrontCheckpointsAreRefused) {
       testing::run_cli("mesh torus --method front -q -o " + folder + "/mesh.ply --checkpoint " +
                        folder + "/run.tsc");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const std::string good = read_bytes(folder + "/run.tsc");
+  const std::string good = testing::read_file_bytes(folder + "/run.tsc");
   ASSERT_GT(good.size(), 1000u);
   write_bytes(folder + "/truncated.tsc", good.substr(0, good.size() / 2));
   expect_refused(folder + "/truncated.tsc", "truncated");
@@ -313,10 +289,17 @@ TEST(CliCheckpoint, DamagedOrForeignFrontCheckpointsAreRefused) {
   }
   write_checkpoint_file(folder + "/method.tsc", atlas);
   expect_refused(folder + "/method.tsc", "runs --method front");
+  // `extend` is the atlas's.
+  const testing::CommandResult extended = testing::run_cli(
+      "extend " + folder + "/run.tsc --box -3,3,-3,3,-3,3 -o " + folder + "/extended.ply");
+  EXPECT_EQ(extended.exit_code, 2) << extended.output;
+  EXPECT_NE(extended.output.find("extend continues an atlas"), std::string::npos)
+      << extended.output;
+  EXPECT_FALSE(fs::exists(folder + "/extended.ply"));
   const testing::CommandResult resumed =
       testing::run_cli("resume " + folder + "/run.tsc -q -o " + folder + "/again.ply");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
-  EXPECT_TRUE(read_bytes(folder + "/again.ply") == read_bytes(folder + "/mesh.ply"));
+  EXPECT_TRUE(testing::read_file_bytes(folder + "/again.ply") == testing::read_file_bytes(folder + "/mesh.ply"));
 }
 
 TEST(CliCheckpoint, OtherMethodsAreRefused) {

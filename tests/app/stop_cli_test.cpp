@@ -35,13 +35,6 @@ struct StoppedRun {
   std::string summary;   ///< the summary file's path
 };
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // Runs `tessera mesh ARGUMENTS --progress -o … --summary …`, waits until its stderr has a line
 // that matches `stage_line` (e.g. "tessera: clip: " at the start of the clipping), then sends
 // the `signals` one after another, 20 ms apart, and waits for the process to end.
@@ -60,26 +53,12 @@ StoppedRun stop_when(const std::vector<std::string>& arguments, const std::strin
   words.push_back(run.mesh);
   words.emplace_back("--summary");
   words.push_back(run.summary);
-  const pid_t child = fork();
-  if (child == 0) {
-    const int err = open(progress_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int null = open("/dev/null", O_RDWR);
-    dup2(err, STDERR_FILENO);
-    dup2(null, STDOUT_FILENO);
-    dup2(null, STDIN_FILENO);
-    std::vector<char*> argv;
-    for (std::string& word : words) {
-      argv.push_back(word.data());
-    }
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
+  const pid_t child = testing::spawn(words, progress_file);
   const std::regex line(stage_line);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
   int status = 0;
   bool ended = false;
-  while (!std::regex_search(read_file(progress_file), line)) {
+  while (!std::regex_search(testing::read_file_bytes(progress_file), line)) {
     if (waitpid(child, &status, WNOHANG) == child) {
       ended = true;
       break;
@@ -97,7 +76,7 @@ StoppedRun stop_when(const std::vector<std::string>& arguments, const std::strin
     }
     waitpid(child, &status, 0);
   }
-  run.progress = read_file(progress_file);
+  run.progress = testing::read_file_bytes(progress_file);
   EXPECT_FALSE(ended) << "the run ended before a line matched '" << stage_line << "':\n"
                       << run.progress;
   run.exited = WIFEXITED(status);
@@ -120,7 +99,7 @@ nlohmann::json expect_files_of_stopped_run(const StoppedRun& run, const std::str
     const std::string file = entry.path().filename().string();
     EXPECT_TRUE(file == "mesh.ply" || file == "summary.json" || file == "progress.txt") << file;
   }
-  const nlohmann::json summary = nlohmann::json::parse(read_file(run.summary));
+  const nlohmann::json summary = nlohmann::json::parse(testing::read_file_bytes(run.summary));
   EXPECT_TRUE(summary.contains("stop")) << summary.dump(1);
   if (!summary.contains("stop")) {
     return summary;

@@ -1,18 +1,52 @@
 // SPDX-License-Identifier: MIT
 #include "support/test_support.h"
 
+#include <fcntl.h>
 #include <sys/wait.h>
 
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
 
 namespace tessera::testing {
+
+int spawn(std::vector<std::string> words, const std::string& stderr_path,
+          const std::string& stdout_path) {
+  const pid_t child = fork();
+  if (child == 0) {
+    const int null = open("/dev/null", O_RDWR);
+    const int err = open(stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int out = stdout_path.empty()         ? null
+                    : stdout_path == stderr_path ? err
+                                                 : open(stdout_path.c_str(),
+                                                        O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(null, STDIN_FILENO);
+    dup2(out, STDOUT_FILENO);
+    dup2(err, STDERR_FILENO);
+    std::vector<char*> argv;
+    for (std::string& word : words) {
+      argv.push_back(word.data());
+    }
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  return child;
+}
+
+std::string read_file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
 
 CommandResult run_cli(const std::string& arguments) {
   return run_shell(std::string(TESSERA_CLI) + " " + arguments);

@@ -20,6 +20,15 @@ CommandResult run_cli(const std::string& arguments);
 /// stdout and stderr; stdin is /dev/null.
 CommandResult run_shell(const std::string& command);
 
+/// Starts `words` (words[0] the program's path) as a child process without waiting for it:
+/// stderr to `stderr_path`, stdout to `stdout_path` (the same file as stderr if equal; empty:
+/// /dev/null), stdin from /dev/null. Returns the child's pid (waitpid it).
+int spawn(std::vector<std::string> words, const std::string& stderr_path,
+          const std::string& stdout_path = "");
+
+/// The bytes of a file (empty if it cannot be read).
+std::string read_file_bytes(const std::string& path);
+
 /// A fresh temporary directory for one test; removed at process exit is not guaranteed.
 std::string temporary_directory(const std::string& name);
 

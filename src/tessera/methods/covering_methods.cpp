@@ -39,6 +39,7 @@ CoveringResult run_atlas(const ProblemSetup& setup, const MethodSettings& settin
   options.tolerance = default_tolerance(setup);
   apply_shared_settings(settings, options);
   options.checkpoint = settings.atlas_checkpoint;
+  options.chart_tolerance = settings.atlas_chart_tolerance;
   // A checkpointed run takes the disk rule under "auto": its fallback from the hexagonal
   // placement would otherwise start a second build that a resumed run cannot tell apart.
   const bool checkpointed = settings.atlas_checkpoint.save || settings.atlas_checkpoint.resume_from;
@@ -182,6 +183,8 @@ void refuse_options_of_other_methods(const MethodSettings& given, const std::str
                                             << "', not for method '" << method << "'");
   };
   refuse_unless(given.atlas_placement == "auto" || method == "atlas", "--placement", "atlas");
+  refuse_unless(given.atlas_chart_tolerance == 0 || method == "atlas", "--chart-tolerance",
+                "atlas");
   refuse_unless((given.front_order == "gap" && given.front_min_gap_degrees == 0 &&
                  given.front_max_valence == 0) ||
                     method == "front",

@@ -38,6 +38,7 @@ struct MethodSettings {
   std::string atlas_placement = "auto";  ///< with a checkpoint, "auto" is "disk"
   AtlasCheckpointing atlas_checkpoint;  ///< checkpoints and resuming (method atlas only)
   FrontCheckpointing front_checkpoint;  ///< checkpoints and resuming (method front only)
+  double atlas_chart_tolerance = 0.0;   ///< AtlasOptions::chart_tolerance (0: the tolerance)
   // front
   double front_min_gap_degrees = 0.0;
   int front_max_valence = 0;

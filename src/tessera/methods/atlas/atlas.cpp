@@ -39,6 +39,10 @@ void AtlasOptions::validate() const {
   validate_common("AtlasOptions");
   TESSERA_CHECK(tolerance > 0, "AtlasOptions::tolerance = "
                                    << tolerance << " must be > 0: the chart radii are sized by it");
+  TESSERA_CHECK(chart_tolerance == 0 || chart_tolerance >= tolerance,
+                "AtlasOptions::chart_tolerance = "
+                    << chart_tolerance << " must be 0 or >= the tolerance " << tolerance
+                    << ": charts sized for a finer tolerance than the mesh's are wasted");
   TESSERA_CHECK(hexagonal_side >= 1.0 && hexagonal_side <= 1.9,
                 "AtlasOptions::hexagonal_side = " << hexagonal_side << " must lie in [1, 1.9]");
   TESSERA_CHECK(radius_growth >= 1.0 && radius_growth <= 4.0,
@@ -89,6 +93,10 @@ void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringRe
     // Its checkpoints would hold another build than the first attempt's, which a resumed run
     // starts with: a run killed now is continued from the first attempt's last checkpoint.
     options.checkpoint = {};
+  }
+  if (options.chart_tolerance > 0) {
+    // The builder sizes its charts by options.tolerance; the skeleton refines to the given one.
+    options.tolerance = options.chart_tolerance;
   }
   CoveringSummary& summary = result.summary;
   AtlasBuilder builder(context.problem, context.domain, options);

@@ -75,6 +75,11 @@ struct AtlasOptions : CoveringOptions {
   /// charts are factored twice (bratu2d:N=316 with 2 GiB: 256 of 422). Default: a quarter of
   /// the machine's physical memory, at least 2 GiB (default_factorisation_budget).
   double max_factorisation_bytes = default_factorisation_budget();
+  /// The charts are sized for this tolerance instead of `tolerance` (0: `tolerance`); the
+  /// refinement then bisects every triangle until it meets `tolerance`. `tessera extend
+  /// --tolerance` sets it to the tolerance of the atlas it continues, whose charts it keeps.
+  /// \pre 0 or ≥ tolerance (charts sized finer than the tolerance asks are wasted).
+  double chart_tolerance = 0.0;
   /// Checkpoints of the build and continuing from one (off by default).
   AtlasCheckpointing checkpoint;
 

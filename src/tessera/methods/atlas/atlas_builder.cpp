@@ -484,6 +484,9 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
   if (options_.checkpoint.resume_from) {
     BinaryReader in(*options_.checkpoint.resume_from, "atlas checkpoint");
     read_state(in, summary);
+    if (options_.checkpoint.extend) {
+      reopen_for_extension(summary);
+    }
   } else {
     Linearization linearization;
     const int first = add_chart(start, -1, linearization);

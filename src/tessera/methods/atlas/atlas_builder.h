@@ -157,6 +157,7 @@ class AtlasBuilder {
   void write_state(BinaryWriter& out);
   void read_state(BinaryReader& in, CoveringSummary& summary);
   detail::RunIdentity identity() const;  // what a state's fingerprint holds
+  void reopen_for_extension(CoveringSummary& summary);  // AtlasCheckpointing::extend
   Eigen::VectorXd start_;
   std::chrono::steady_clock::time_point build_start_;
   double seconds_before_ = 0.0;  // build time of the runs before a resumed checkpoint

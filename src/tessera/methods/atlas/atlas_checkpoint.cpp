@@ -41,7 +41,8 @@ DecisiveOptions decisive_options(const AtlasOptions& o) {
 }  // namespace
 
 RunIdentity AtlasBuilder::identity() const {
-  return {problem_, *space_, start_, domain_, decisive_options(options_), "AtlasOptions", "atlas"};
+  return {problem_,      *space_, start_, domain_, decisive_options(options_), "AtlasOptions",
+          "atlas",       options_.checkpoint.extend};
 }
 
 double AtlasBuilder::checkpoint_bytes() const {
@@ -267,4 +268,50 @@ void AtlasBuilder::read_state(BinaryReader& in, CoveringSummary& summary) {
   }
 }
 
+// A finished (or stopped) build continued into a larger domain: the eligibility of every chart
+// is judged again against the new domain, and each chart with a corner still uncovered is
+// queued, in chart order (deterministic). Closed charts stay as they are.
+void AtlasBuilder::reopen_for_extension(CoveringSummary& summary) {
+  int reopened = 0;
+  for (int c = 0; c < chart_count(); ++c) {
+    charts_[c].eligible = -1;
+  }
+  for (int c = 0; c < chart_count(); ++c) {
+    if (!charts_[c].queued && c != work_.chart && next_open_vertex(c) >= 0) {
+      enqueue(c);
+      ++reopened;
+    }
+  }
+  summary.notes.push_back("extended the checkpoint's atlas of " + std::to_string(chart_count()) +
+                          " charts into " + domain_.describe() + ": " +
+                          std::to_string(reopened) +
+                          " of its charts had corners left open and were continued");
+}
+
 }  // namespace tessera::detail
+
+namespace tessera {
+
+AtlasStateHeader read_atlas_state_header(const std::string& state) {
+  BinaryReader in(state, "atlas checkpoint");
+  const std::uint32_t version = in.u32("version");
+  if (version != kAtlasStateVersion) {
+    in.fail("the atlas's state has format version " + std::to_string(version) +
+            "; this tessera reads version " + std::to_string(kAtlasStateVersion));
+  }
+  const detail::RunFingerprint fingerprint = detail::read_run_fingerprint(in);
+  AtlasStateHeader header;
+  header.problem = fingerprint.problem;
+  header.dimension = fingerprint.dimension;
+  for (const auto& [name, value] : fingerprint.options) {
+    if (name == "tolerance") {
+      header.tolerance = value;
+    } else if (name == "step") {
+      header.step = value;
+    }
+  }
+  header.charts = in.i32("chart count");
+  return header;
+}
+
+}  // namespace tessera

@@ -37,6 +37,12 @@ struct AtlasCheckpointing {
   /// A state that `save` received, to continue from; null: start afresh. It must come from the
   /// same problem, start, domain and options (else InvalidArgument naming what differs).
   std::shared_ptr<const std::string> resume_from;
+  /// `resume_from` is continued into a larger domain (`tessera extend`, docs/checkpoints.md):
+  /// the domain may differ from the checkpoint's if it contains it (each of its faces parallel
+  /// to one of the old domain's and no nearer to it; InvalidArgument otherwise), and every
+  /// chart whose polygon is still open is queued again, so that the charts left outside the
+  /// old domain's margin grow into the new one. The charts there are kept as they are.
+  bool extend = false;
   /// At a stop the state is saved only up to this size: writing it delays the partial mesh
   /// (measured at n = 10⁴: about 0.5 s per 100 MB, made and written), and a batch system's
   /// grace period is short. A larger state is not saved at the stop; the last periodic
@@ -46,5 +52,16 @@ struct AtlasCheckpointing {
 
 /// The version of the atlas's state; a state of another version is refused.
 inline constexpr std::uint32_t kAtlasStateVersion = 1;
+
+/// What a saved state says of its run, read without continuing it (`tessera extend` checks
+/// its new tolerance against the old one). \throw InvalidArgument if it is not a state.
+struct AtlasStateHeader {
+  std::string problem;
+  int dimension = 0;
+  int charts = 0;
+  double tolerance = 0.0;  ///< the tolerance the charts were sized for (AtlasOptions)
+  double step = 0.0;
+};
+AtlasStateHeader read_atlas_state_header(const std::string& state);
 
 }  // namespace tessera

@@ -34,6 +34,30 @@ bool evaluate_at(const ImplicitProblem& problem, const Eigen::VectorXd& start, i
   return true;
 }
 
+// Empty if the domain {x : b_k·(x − p_k) ≥ 0 for all k} contains the old one; else which of
+// its faces does not. A sufficient test, exact for boxes: each face must be parallel to one of
+// the old domain's, with the old face on its inner side (the old domain may be bounded in
+// directions the new one is not). In one process (the checkpoint's domain is whole).
+std::string face_not_containing(const Domain& domain, const std::vector<HalfSpace>& old_faces) {
+  for (std::size_t k = 0; k < domain.half_spaces().size(); ++k) {
+    const HalfSpace& face = domain.half_spaces()[k];
+    bool inside = false;
+    for (const HalfSpace& old : old_faces) {
+      const bool parallel = old.normal.size() == face.normal.size() &&
+                            (old.normal - face.normal).lpNorm<Eigen::Infinity>() <= 1e-12;
+      if (parallel && face.normal.dot(old.point - face.point) >= 0) {
+        inside = true;
+        break;
+      }
+    }
+    if (!inside) {
+      return "its face " + (face.label.empty() ? std::to_string(k) : "'" + face.label + "'") +
+             " cuts into the old domain or bounds a direction the old one did not";
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
@@ -78,6 +102,30 @@ void write_run_fingerprint(BinaryWriter& out, const RunIdentity& run) {
   }
 }
 
+RunFingerprint read_run_fingerprint(BinaryReader& in) {
+  RunFingerprint fingerprint;
+  fingerprint.problem = in.string("problem name");
+  fingerprint.dimension = in.i32("n");
+  const int rows = in.i32("rows");
+  in.matrix("start", rows, 1);
+  for (int k = 0; k < kFingerprintPoints; ++k) {
+    in.u8("fingerprint");
+    in.matrix("fingerprint");
+  }
+  const std::size_t faces = in.count("domain", 16);
+  for (std::size_t k = 0; k < faces; ++k) {
+    in.matrix("domain normal", rows, 1);
+    in.matrix("domain point", rows, 1);
+  }
+  const std::size_t options = in.count("options", 9);
+  for (std::size_t k = 0; k < options; ++k) {
+    std::string name = in.string("option name");
+    const double value = in.f64("option value");
+    fingerprint.options.emplace_back(std::move(name), value);
+  }
+  return fingerprint;
+}
+
 void check_run_fingerprint(BinaryReader& in, const RunIdentity& run) {
   const std::string name = in.string("problem name");
   const int n = in.i32("n");
@@ -115,15 +163,25 @@ void check_run_fingerprint(BinaryReader& in, const RunIdentity& run) {
             describe_point(run.start, run.space) + " here): give the same --start");
   }
   const std::size_t faces = in.count("domain", 16);
+  std::vector<HalfSpace> old_faces(faces);
   bool same_domain = faces == run.domain.half_spaces().size();
   for (std::size_t k = 0; k < faces; ++k) {
-    const Eigen::MatrixXd normal = in.matrix("domain normal");
-    const Eigen::MatrixXd point = in.matrix("domain point");
+    old_faces[k].normal = in.matrix("domain normal", run.start.size(), 1);
+    old_faces[k].point = in.matrix("domain point", run.start.size(), 1);
     same_domain = same_domain &&
-                  same_bits(normal, Eigen::MatrixXd(run.domain.half_spaces()[k].normal)) &&
-                  same_bits(point, Eigen::MatrixXd(run.domain.half_spaces()[k].point));
+                  same_bits(Eigen::MatrixXd(old_faces[k].normal),
+                            Eigen::MatrixXd(run.domain.half_spaces()[k].normal)) &&
+                  same_bits(Eigen::MatrixXd(old_faces[k].point),
+                            Eigen::MatrixXd(run.domain.half_spaces()[k].point));
   }
-  if (!same_domain) {
+  if (run.domain_may_grow) {
+    const std::string outside = face_not_containing(run.domain, old_faces);
+    if (!outside.empty()) {
+      in.fail("this run's domain (" + run.domain.describe() +
+              ") does not contain the checkpoint's: " + outside +
+              "; `extend` continues an atlas into a larger region only");
+    }
+  } else if (!same_domain) {
     in.fail("its domain (--box) differs from this run's (" + run.domain.describe() + ")");
   }
   const std::size_t option_count = in.count("options", 9);

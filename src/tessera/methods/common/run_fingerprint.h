@@ -36,7 +36,18 @@ struct RunIdentity {
   /// How a refusal names an option and what would differ: "AtlasOptions", "atlas".
   std::string options_type;
   std::string product;
+  /// The domain may be larger than the fingerprint's if it contains it (the atlas's `extend`):
+  /// each face parallel to one of the old domain's and no nearer to it.
+  bool domain_may_grow = false;
 };
+
+/// A fingerprint read without comparing it (what `tessera extend` needs of a state).
+struct RunFingerprint {
+  std::string problem;
+  int dimension = 0;
+  DecisiveOptions options;
+};
+RunFingerprint read_run_fingerprint(BinaryReader& in);
 
 /// Writes the fingerprint of `run` (the bytes the atlas's state version 1 begins with).
 void write_run_fingerprint(BinaryWriter& out, const RunIdentity& run);

@@ -174,7 +174,8 @@ detail::DecisiveOptions decisive_options(const FrontOptions& o) {
 }  // namespace
 
 detail::RunIdentity FrontBuilder::identity() const {
-  return {problem_, *space_, start_, domain_, decisive_options(options_), "FrontOptions", "front"};
+  return {problem_, *space_, start_, domain_, decisive_options(options_), "FrontOptions", "front",
+          /*domain_may_grow=*/false};
 }
 
 double FrontBuilder::checkpoint_bytes() const {
