@@ -78,10 +78,11 @@ void check_checkpoint_options(const MeshCommand& command, const std::string& met
   if (command.checkpoint.empty()) {
     return;
   }
-  TESSERA_CHECK(method == "atlas", "--checkpoint " << command.checkpoint
-                                                   << ": checkpoints are supported for --method "
-                                                      "atlas, not yet for '"
-                                                   << method << "'");
+  TESSERA_CHECK(method == "atlas" || method == "front",
+                "--checkpoint " << command.checkpoint
+                                << ": checkpoints are supported for --method atlas and front, not "
+                                   "yet for '"
+                                << method << "'");
   TESSERA_CHECK(!covers_several, "--checkpoint " << command.checkpoint
                                                  << ": checkpoints are for runs of one start's "
                                                     "component (not --components all or several "
@@ -97,10 +98,15 @@ void check_checkpoint_options(const MeshCommand& command, const std::string& met
                                    "summary is replaced by one)");
 }
 
-AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool progress_lines) {
-  AtlasCheckpointing hooks;
+namespace {
+
+// The hooks of either method (AtlasCheckpointing, FrontCheckpointing: the same members); the
+// state goes to the file's section named `method`.
+template <typename Hooks>
+Hooks make_checkpointing(const MeshCommand& command, const std::string& method,
+                         bool progress_lines) {
+  Hooks hooks;
   hooks.resume_from = command.resume_state;
-  hooks.extend = command.extend;
   if (command.checkpoint.empty()) {
     return hooks;
   }
@@ -121,9 +127,9 @@ AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool pro
   const auto header = std::make_shared<CheckpointFile>();
   header->sections = {{"command", command_section(command)},
                       {"problem", problem_section(command.problem)},
-                      {"method", "atlas"}};
+                      {"method", method}};
   const std::string path = command.checkpoint;
-  hooks.save = [last, due_at, header, path, progress_lines](std::string state) {
+  hooks.save = [last, due_at, header, path, method, progress_lines](std::string state) {
     const auto begin = Clock::now();
     // (A save at a stop or at the end of the build was not asked by is_due: its state's time
     // is not known.)
@@ -133,7 +139,7 @@ AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool pro
     *due_at = Clock::time_point();
     CheckpointFile file = *header;
     const std::size_t bytes = state.size();
-    file.sections.emplace_back("atlas", std::move(state));
+    file.sections.emplace_back(method, std::move(state));
     try {
       write_checkpoint_file(path, file);
     } catch (const std::exception& error) {
@@ -154,12 +160,25 @@ AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool pro
   return hooks;
 }
 
+}  // namespace
+
+AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool progress_lines) {
+  AtlasCheckpointing hooks = make_checkpointing<AtlasCheckpointing>(command, "atlas", progress_lines);
+  hooks.extend = command.extend;
+  return hooks;
+}
+
+FrontCheckpointing make_front_checkpointing(const MeshCommand& command, bool progress_lines) {
+  return make_checkpointing<FrontCheckpointing>(command, "front", progress_lines);
+}
+
 namespace {
 
 // A checkpoint's run: its command line parsed again (in the folder it was given in, which
-// becomes the working folder) and the atlas's state.
+// becomes the working folder), its method and the method's state.
 struct CheckpointedRun {
   MeshCommand mesh;
+  std::string method;  // "atlas" or "front"
   std::shared_ptr<const std::string> state;
 };
 
@@ -174,9 +193,10 @@ CheckpointedRun load_checkpointed_run(const std::string& path) {
                                          "continue it with tessera.resume or tessera.extend");
   }
   const std::string& method = file.section("method", path);
-  TESSERA_CHECK(method == "atlas", "checkpoint file '" << path << "' is of method '" << method
-                                                       << "': checkpoints are supported for "
-                                                          "--method atlas");
+  TESSERA_CHECK(method == "atlas" || method == "front",
+                "checkpoint file '" << path << "' is of method '" << method
+                                    << "': checkpoints are supported for --method atlas and "
+                                       "front");
   // The original command line, parsed again in the folder it was given in (its relative paths
   // name the same files).
   BinaryReader command(file.section("command", path),
@@ -212,6 +232,13 @@ CheckpointedRun load_checkpointed_run(const std::string& path) {
     }
   }
   run.mesh.arguments.assign(words.begin() + 1, words.end());
+  // The state is the method's: a command line of another method would read it as its own.
+  const std::string command_method =
+      run.mesh.method.empty() ? covering_methods().front().name : run.mesh.method;
+  TESSERA_CHECK(command_method == method, "checkpoint file '"
+                                              << path << "' holds a state of --method " << method
+                                              << ", but its command line runs --method "
+                                              << command_method);
   // The problem file must be the one the checkpoint was made from.
   BinaryReader problem(file.section("problem", path),
                        "checkpoint file '" + path + "', its problem");
@@ -227,9 +254,10 @@ CheckpointedRun load_checkpointed_run(const std::string& path) {
                   "problem file '" << problem_file << "' changed since checkpoint '" << path
                                    << "' was written (" << size << " bytes then, " << now.size
                                    << " now, or other contents): resuming would continue an "
-                                      "atlas of another problem");
+                                      "build of another problem");
   }
-  run.state = std::make_shared<const std::string>(file.section("atlas", path));
+  run.method = method;
+  run.state = std::make_shared<const std::string>(file.section(method, path));
   return run;
 }
 
@@ -336,6 +364,10 @@ int run_extend(const ExtendCommand& extend) {
                                   << ": a checkpoint file must end in .tsc");
   }
   CheckpointedRun run = load_checkpointed_run(extend.checkpoint);
+  TESSERA_CHECK(run.method == "atlas", "tessera extend " << extend.checkpoint
+                                                         << ": extend continues an atlas; this "
+                                                            "checkpoint is of --method "
+                                                         << run.method << " (resume it instead)");
   MeshCommand& mesh = run.mesh;
   const AtlasStateHeader header = read_atlas_state_header(*run.state);
   std::vector<std::string>& words = mesh.arguments;

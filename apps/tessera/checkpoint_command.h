@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `tessera mesh --checkpoint FILE` (the atlas's build saved as it goes) and `tessera resume
+// `tessera mesh --checkpoint FILE` (the atlas's or the front's build saved as it goes) and `tessera resume
 // FILE` (the run continued from it, to the same mesh bit for bit). docs/checkpoints.md.
 #pragma once
 
@@ -7,6 +7,7 @@
 
 #include "mesh_command.h"
 #include "tessera/methods/atlas/atlas_checkpoint.h"
+#include "tessera/methods/front/front_checkpoint.h"
 
 namespace CLI {
 class App;
@@ -37,8 +38,8 @@ struct ExtendCommand {
 
 CLI::App* add_extend_command(CLI::App& app, ExtendCommand& command);
 
-/// Checks the checkpoint options of `command` for the chosen method and run (the atlas, one
-/// start, the serial backend). \throw InvalidArgument naming the option and the rule.
+/// Checks the checkpoint options of `command` for the chosen method and run (the atlas or the
+/// front, one start, the serial backend). \throw InvalidArgument naming the option and the rule.
 void check_checkpoint_options(const MeshCommand& command, const std::string& method,
                               bool covers_several);
 
@@ -47,6 +48,8 @@ void check_checkpoint_options(const MeshCommand& command, const std::string& met
 /// the atlas's state), and the state of `tessera resume` to continue from.
 /// `progress_lines`: say on stderr what each checkpoint took (with --progress).
 AtlasCheckpointing make_atlas_checkpointing(const MeshCommand& command, bool progress_lines);
+/// The same for the front (the state in section "front").
+FrontCheckpointing make_front_checkpointing(const MeshCommand& command, bool progress_lines);
 
 /// Reads the checkpoint, checks it (the file, the problem file's hash), parses the original
 /// command line again in its folder, and runs it continued from the checkpoint.

@@ -328,8 +328,12 @@ int mesh_on(SolverBackend& backend, const MeshCommand& command) {
   const StopSignals signals(/*notify=*/!quiet);
   // Collective on the PETSc backend: every rank stops at the same vertex.
   settings.stop_requested = [&backend] { return backend.any_rank(StopSignals::is_requested()); };
-  // The atlas's checkpoints, and the state of `tessera resume` (checkpoint_command.h).
-  settings.atlas_checkpoint = make_atlas_checkpointing(command, progress_lines);
+  // The method's checkpoints, and the state of `tessera resume` (checkpoint_command.h).
+  if (method.name == "front") {
+    settings.front_checkpoint = make_front_checkpointing(command, progress_lines);
+  } else {
+    settings.atlas_checkpoint = make_atlas_checkpointing(command, progress_lines);
+  }
   CoveringResult result;
   if (covers_several) {
     ComponentSearchOptions search;

@@ -47,12 +47,13 @@ struct MeshCommand {
   bool improve = false;
   int refine = 0;       ///< bezier: evaluate the cubic patches on a K×K subdivision (0: off)
   std::string patches;  ///< bezier: write the Bézier control points to this file
-  std::string
-      checkpoint;  ///< --checkpoint: the atlas's build is saved there (checkpoint_command.h)
+  std::string checkpoint;  ///< --checkpoint: the build (atlas, front) is saved there
+                           ///< (checkpoint_command.h)
   double checkpoint_every = 300.0;  ///< --checkpoint-every: seconds of build between checkpoints
   /// The command line after `tessera` ("mesh", …): saved in the checkpoints for `resume`.
   std::vector<std::string> arguments;
-  /// Set by `tessera resume`: the atlas's state to continue (AtlasCheckpointing::resume_from).
+  /// Set by `tessera resume`: the method's state to continue (AtlasCheckpointing or
+  /// FrontCheckpointing::resume_from).
   std::shared_ptr<const std::string> resume_state;
   /// Set by `tessera extend`: resume_state is continued into a larger box
   /// (AtlasCheckpointing::extend).

@@ -133,6 +133,9 @@ class SparseBackend final : public LinearizationBackend {
 
   bool clones_factorisation() const override { return !assembly_released_; }
 
+  Eigen::MatrixXd border_guide() const override { return last_tangent_; }
+  void set_border_guide(const Eigen::MatrixXd& guide) override { last_tangent_ = guide; }
+
   bool factor(const ImplicitProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& x,
               const Eigen::MatrixXd* reference, Eigen::MatrixXd& tangent,
               double& reciprocal_condition) override {
@@ -280,6 +283,29 @@ void Linearization::release_assembly() {
   }
 }
 
+void Linearization::make_backend(const ImplicitProblem& problem) {
+  if (!backend_) {
+    backend_ = problem.make_linearization_backend();
+  }
+  if (!backend_) {
+    if (problem.has_sparse_jacobian()) {
+      backend_ = std::make_unique<SparseBackend>();
+    } else {
+      backend_ = std::make_unique<DenseBackend>();
+    }
+  }
+}
+
+Eigen::MatrixXd Linearization::border_guide() const {
+  return backend_ ? backend_->border_guide() : Eigen::MatrixXd();
+}
+
+void Linearization::set_border_guide(const ImplicitProblem& problem,
+                                     const Eigen::MatrixXd& guide) {
+  make_backend(problem);
+  backend_->set_border_guide(guide);
+}
+
 bool Linearization::factor(const ImplicitProblem& problem,
                            const Eigen::Ref<const Eigen::VectorXd>& x,
                            const Eigen::MatrixXd* reference_tangent) {
@@ -295,16 +321,7 @@ bool Linearization::factor(const ImplicitProblem& problem,
   if (!space->all_finite(x)) {
     return false;
   }
-  if (!backend_) {
-    backend_ = problem.make_linearization_backend();
-  }
-  if (!backend_) {
-    if (problem.has_sparse_jacobian()) {
-      backend_ = std::make_unique<SparseBackend>();
-    } else {
-      backend_ = std::make_unique<DenseBackend>();
-    }
-  }
+  make_backend(problem);
   point_ = x;
   const long before = backend_->factorisations();
   const long jacobians_before = backend_->own_jacobian_evaluations();

@@ -61,10 +61,17 @@ class Linearization {
   /// half of the bytes at large n); solves and the tangent basis are unchanged. A copy made
   /// afterwards is not factored. For factorisations kept for their solves.
   void release_assembly();
+  /// What guides the border of the next factorisation made without a reference tangent (sparse
+  /// problems: the last basis factored); empty if none. A factorisation depends on it, so a
+  /// checkpoint keeps it and a resumed build sets it in a new object
+  /// (set_border_guide(problem, guide): the backend `factor` would make, with that guide).
+  Eigen::MatrixXd border_guide() const;
+  void set_border_guide(const ImplicitProblem& problem, const Eigen::MatrixXd& guide);
   /// Estimate of the reciprocal condition number of J (smallest/largest |R_ii|), in (0, 1].
   double reciprocal_condition() const { return reciprocal_condition_; }
 
  private:
+  void make_backend(const ImplicitProblem& problem);
   std::unique_ptr<LinearizationBackend> backend_;
   Eigen::VectorXd point_;
   Eigen::MatrixXd tangent_;

@@ -42,6 +42,11 @@ class LinearizationBackend {
   /// Evaluations of DF the backend made itself, not through ImplicitProblem::jacobian or
   /// sparse_jacobian (0 for tessera's own backends).
   long own_jacobian_evaluations() const { return own_jacobian_evaluations_; }
+  /// What guides the border of the next factorisation made without a reference (sparse: the
+  /// last basis factored); empty for none, and for backends without a border. A checkpoint
+  /// keeps it, so that a new object borders as the old one would have.
+  virtual Eigen::MatrixXd border_guide() const { return {}; }
+  virtual void set_border_guide(const Eigen::MatrixXd& /*guide*/) {}
   /// Heap bytes held (the factors, the Jacobian), approximately, on this rank.
   virtual std::size_t memory_bytes() const = 0;
   /// Drops what only factoring needed (the Jacobian, the assembled matrix): solves still work,

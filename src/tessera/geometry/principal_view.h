@@ -35,6 +35,10 @@ class PrincipalView {
   void fit_sample(int count, PointFunction point);
 
   Eigen::Vector3d operator()(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  /// The view's directions (n×3, orthonormal columns; empty for n ≤ 3), and the same set
+  /// again: a checkpoint keeps a fitted view, which the points alone do not decide.
+  const Eigen::MatrixXd& directions() const { return directions_; }
+  void set_directions(const Eigen::MatrixXd& directions) { directions_ = directions; }
   /// The view of every column of `points` (n × N), in one product.
   Eigen::Matrix3Xd project(const Eigen::Ref<const Eigen::MatrixXd>& points) const;
 
@@ -76,6 +80,9 @@ class RefitSchedule {
     next_ = 2 * count;
     return true;
   }
+  /// The count at which the next refit is due (a checkpoint keeps it).
+  int next() const { return next_; }
+  void set_next(int next) { next_ = next; }
 
  private:
   int next_ = 32;

@@ -89,6 +89,7 @@ CoveringResult run_front(const ProblemSetup& setup, const MethodSettings& settin
     options.max_valence = settings.front_max_valence;
   }
   options.order = settings.front_order == "fifo" ? FrontOrder::Fifo : FrontOrder::SmallestGapFirst;
+  options.checkpoint = settings.front_checkpoint;
   return triangulate_by_front(*setup.problem, setup.start, setup.domain, options);
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tessera/methods/atlas/atlas_checkpoint.h"
+#include "tessera/methods/front/front_checkpoint.h"
 #include "tessera/methods/covering_result.h"
 #include "tessera/problems/problem_setup.h"
 
@@ -36,6 +37,7 @@ struct MethodSettings {
   /// the clipped boundary's angles: 18–20° against 9° on whitney_pleat and trough).
   std::string atlas_placement = "auto";  ///< with a checkpoint, "auto" is "disk"
   AtlasCheckpointing atlas_checkpoint;  ///< checkpoints and resuming (method atlas only)
+  FrontCheckpointing front_checkpoint;  ///< checkpoints and resuming (method front only)
   double atlas_chart_tolerance = 0.0;   ///< AtlasOptions::chart_tolerance (0: the tolerance)
   // front
   double front_min_gap_degrees = 0.0;

@@ -153,10 +153,12 @@ struct CoveringSummary {
   int removed_triangles = 0;
   int repaired_holes = 0;  ///< places where removed triangles were replaced by a new triangulation
   std::vector<std::string> notes;  ///< remarks for the user, e.g. where a crossing was met
-  /// A build continued from a checkpoint (AtlasCheckpointing::resume_from): what the run had
-  /// done when the checkpoint was written. The counts above include its work.
+  /// A build continued from a checkpoint (AtlasCheckpointing or FrontCheckpointing::
+  /// resume_from): what the run had done when the checkpoint was written. The counts above
+  /// include its work.
   struct ResumedFrom {
-    int charts = 0;              ///< charts of the atlas in the checkpoint
+    int charts = 0;              ///< charts of the atlas in the checkpoint (0 for the front)
+    int vertices = 0;            ///< the front's vertices in the checkpoint (0 for the atlas)
     double build_seconds = 0.0;  ///< wall time of the build until then, over all earlier runs
     WorkCounts counts;           ///< F, DF and factorisations until then (in the counts above)
   };

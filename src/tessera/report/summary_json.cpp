@@ -280,12 +280,17 @@ std::string to_json(const MeshReport& report) {
     j["run"]["work_by_phase"] = phases;
     if (r.resumed_from) {
       // A run continued from a checkpoint: the counts above include the work before it.
-      j["run"]["resumed_from"] = {
-          {"charts", r.resumed_from->charts},
-          {"build_seconds", r.resumed_from->build_seconds},
-          {"function_evaluations", r.resumed_from->counts.function_evaluations},
-          {"jacobian_evaluations", r.resumed_from->counts.jacobian_evaluations},
-          {"factorisations", r.resumed_from->counts.factorisations}};
+      // The atlas counts its charts, the front its vertices.
+      nlohmann::json& resumed = j["run"]["resumed_from"];
+      if (r.resumed_from->vertices > 0) {
+        resumed["vertices"] = r.resumed_from->vertices;
+      } else {
+        resumed["charts"] = r.resumed_from->charts;
+      }
+      resumed["build_seconds"] = r.resumed_from->build_seconds;
+      resumed["function_evaluations"] = r.resumed_from->counts.function_evaluations;
+      resumed["jacobian_evaluations"] = r.resumed_from->counts.jacobian_evaluations;
+      resumed["factorisations"] = r.resumed_from->counts.factorisations;
     }
     if (r.vertex_count > 0) {
       const double V = r.vertex_count;
@@ -418,8 +423,11 @@ std::string to_text(const MeshReport& report) {
     }
     out << ", " << to_string(r.termination) << (r.message.empty() ? "" : ": " + r.message) << "\n";
     if (report.run->resumed_from) {
-      out << "resumed        from a checkpoint of " << report.run->resumed_from->charts
-          << " charts (" << report.run->resumed_from->build_seconds << " s of build)\n";
+      const auto& resumed = *report.run->resumed_from;
+      out << "resumed        from a checkpoint of "
+          << (resumed.vertices > 0 ? resumed.vertices : resumed.charts)
+          << (resumed.vertices > 0 ? " vertices (" : " charts (") << resumed.build_seconds
+          << " s of build)\n";
     }
     if (report.stop) {
       out << "stopped        by " << report.stop->signal << " during " << report.stop->stage;

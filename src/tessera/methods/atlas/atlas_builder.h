@@ -24,6 +24,7 @@
 #include "tessera/methods/atlas/atlas_triangulation.h"
 #include "tessera/methods/atlas/chart_index.h"
 #include "tessera/methods/atlas/chart_polygon.h"
+#include "tessera/methods/common/run_fingerprint.h"
 #include "tessera/methods/covering_result.h"
 
 namespace tessera {
@@ -155,6 +156,7 @@ class AtlasBuilder {
   double checkpoint_bytes() const;  // about what save_checkpoint writes
   void write_state(BinaryWriter& out);
   void read_state(BinaryReader& in, CoveringSummary& summary);
+  detail::RunIdentity identity() const;  // what a state's fingerprint holds
   void reopen_for_extension(CoveringSummary& summary);  // AtlasCheckpointing::extend
   Eigen::VectorXd start_;
   std::chrono::steady_clock::time_point build_start_;

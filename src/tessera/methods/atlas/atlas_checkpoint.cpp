@@ -3,9 +3,6 @@
 #include "tessera/methods/atlas/atlas_checkpoint.h"
 
 #include <algorithm>
-#include <bit>
-#include <cmath>
-#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -14,24 +11,13 @@
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/methods/atlas/atlas_builder.h"
+#include "tessera/methods/common/run_fingerprint.h"
 
 namespace tessera::detail {
 namespace {
 
-// F is evaluated at two points start + 0.125·(sin(0.618·(i+1)·(k+1)))_i, k = 0, 1: a changed
-// definition or parameter of the problem changes these values, whatever its name says.
-constexpr int kFingerprintPoints = 2;
-
-Eigen::VectorXd fingerprint_point(const Eigen::VectorXd& start, int k) {
-  Eigen::VectorXd x = start;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    x(i) += 0.125 * std::sin(0.618 * static_cast<double>(i + 1) * (k + 1));
-  }
-  return x;
-}
-
 // The options that decide the atlas, by name (max_vertices and the callbacks do not).
-std::vector<std::pair<std::string, double>> decisive_options(const AtlasOptions& o) {
+DecisiveOptions decisive_options(const AtlasOptions& o) {
   return {{"tolerance", o.tolerance},
           {"step", o.step},
           {"max_start_distance", o.max_start_distance},
@@ -52,54 +38,12 @@ std::vector<std::pair<std::string, double>> decisive_options(const AtlasOptions&
           {"max_factorisation_bytes", o.max_factorisation_bytes}};
 }
 
-bool same_bits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-}
-
-bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  if (a.rows() != b.rows() || a.cols() != b.cols()) {
-    return false;
-  }
-  for (Eigen::Index k = 0; k < a.size(); ++k) {
-    if (!same_bits(a.data()[k], b.data()[k])) {
-      return false;
-    }
-  }
-  return true;
-}
-
-// Empty if the domain {x : b_k·(x − p_k) ≥ 0 for all k} contains the old one; else which of
-// its faces does not. A sufficient test, exact for boxes: each face must be parallel to one of
-// the old domain's, with the old face on its inner side (the old domain may be bounded in
-// directions the new one is not). In one process (the checkpoint's domain is whole).
-std::string face_not_containing(const Domain& domain, const std::vector<HalfSpace>& old_faces) {
-  for (std::size_t k = 0; k < domain.half_spaces().size(); ++k) {
-    const HalfSpace& face = domain.half_spaces()[k];
-    bool inside = false;
-    for (const HalfSpace& old : old_faces) {
-      const bool parallel = old.normal.size() == face.normal.size() &&
-                            (old.normal - face.normal).lpNorm<Eigen::Infinity>() <= 1e-12;
-      if (parallel && face.normal.dot(old.point - face.point) >= 0) {
-        inside = true;
-        break;
-      }
-    }
-    if (!inside) {
-      return "its face " + (face.label.empty() ? std::to_string(k) : "'" + face.label + "'") +
-             " cuts into the old domain or bounds a direction the old one did not";
-    }
-  }
-  return "";
-}
-
-std::string number(double value) {
-  std::ostringstream text;
-  text.precision(17);
-  text << value;
-  return text.str();
-}
-
 }  // namespace
+
+RunIdentity AtlasBuilder::identity() const {
+  return {problem_,      *space_, start_, domain_, decisive_options(options_), "AtlasOptions",
+          "atlas",       options_.checkpoint.extend};
+}
 
 double AtlasBuilder::checkpoint_bytes() const {
   // The centres and the held bases are most of it (at n = 10⁴, 80 kB a chart).
@@ -116,33 +60,7 @@ void AtlasBuilder::save_checkpoint() {
 
 void AtlasBuilder::write_state(BinaryWriter& out) {
   out.u32(kAtlasStateVersion);
-  // The fingerprint of the run.
-  out.string(problem_.name());
-  out.i32(n_);
-  out.i32(rows_);
-  out.matrix(start_);
-  for (int k = 0; k < kFingerprintPoints; ++k) {
-    Eigen::VectorXd F(n_ - 2);
-    bool evaluated = true;
-    try {
-      problem_.evaluate(fingerprint_point(start_, k), F);
-    } catch (const std::exception&) {
-      evaluated = false;
-    }
-    out.u8(evaluated ? 1 : 0);
-    out.matrix(evaluated ? F : Eigen::VectorXd());
-  }
-  out.u64(domain_.half_spaces().size());
-  for (const HalfSpace& h : domain_.half_spaces()) {
-    out.matrix(h.normal);
-    out.matrix(h.point);
-  }
-  const auto options = decisive_options(options_);
-  out.u64(options.size());
-  for (const auto& [name, value] : options) {
-    out.string(name);
-    out.f64(value);
-  }
+  write_run_fingerprint(out, identity());
   // The work done, over all runs (this one and those it continued).
   out.i32(chart_count());
   out.f64(seconds_before_ +
@@ -227,80 +145,7 @@ void AtlasBuilder::read_state(BinaryReader& in, CoveringSummary& summary) {
             "; this tessera reads version " + std::to_string(kAtlasStateVersion));
   }
   // The fingerprint: the same problem, start, domain and options, or nothing is continued.
-  const std::string name = in.string("problem name");
-  const int n = in.i32("n");
-  const int rows = in.i32("rows");
-  if (name != problem_.name() || n != n_ || rows != rows_) {
-    in.fail("it was made for problem '" + name + "' in R^" + std::to_string(n) + ", not for '" +
-            problem_.name() + "' in R^" + std::to_string(n_));
-  }
-  const Eigen::MatrixXd start = in.matrix("start", rows_, 1);
-  for (int k = 0; k < kFingerprintPoints; ++k) {
-    const bool evaluated = in.u8("fingerprint") != 0;
-    const Eigen::MatrixXd saved = in.matrix("fingerprint");
-    Eigen::VectorXd F(n_ - 2);
-    bool here = true;
-    try {
-      // At the checkpoint's points (near its start): F decides before the start does.
-      problem_.evaluate(fingerprint_point(start.col(0), k), F);
-    } catch (const std::exception&) {
-      here = false;
-    }
-    if (evaluated != here || (here && !same_bits(saved, Eigen::MatrixXd(F)))) {
-      std::ostringstream where;
-      Eigen::Index i = 0;
-      while (here && evaluated && i + 1 < F.size() && saved.size() == F.size() &&
-             same_bits(saved(i), F(i))) {
-        ++i;
-      }
-      where << (here && evaluated && saved.size() == F.size()
-                    ? ": F_" + std::to_string(i) + " = " + number(F(i)) + " here, " +
-                          number(saved(i)) + " in the checkpoint"
-                    : "");
-      in.fail("F of problem '" + name + "' differs from the checkpoint's at a fixed test point" +
-              where.str() + ": the problem's definition, parameters or file changed since");
-    }
-  }
-  if (!same_bits(start, Eigen::MatrixXd(start_))) {
-    in.fail("its start point differs from this run's (" + describe_point(start.col(0), *space_) +
-            " there, " + describe_point(start_, *space_) + " here): give the same --start");
-  }
-  const std::size_t faces = in.count("domain", 16);
-  std::vector<HalfSpace> old_faces(faces);
-  bool same_domain = faces == domain_.half_spaces().size();
-  for (std::size_t k = 0; k < faces; ++k) {
-    old_faces[k].normal = in.matrix("domain normal", rows_, 1);
-    old_faces[k].point = in.matrix("domain point", rows_, 1);
-    same_domain = same_domain &&
-                  same_bits(Eigen::MatrixXd(old_faces[k].normal),
-                            Eigen::MatrixXd(domain_.half_spaces()[k].normal)) &&
-                  same_bits(Eigen::MatrixXd(old_faces[k].point),
-                            Eigen::MatrixXd(domain_.half_spaces()[k].point));
-  }
-  if (options_.checkpoint.extend) {
-    const std::string outside = face_not_containing(domain_, old_faces);
-    if (!outside.empty()) {
-      in.fail("this run's domain (" + domain_.describe() +
-              ") does not contain the checkpoint's: " + outside +
-              "; `extend` continues an atlas into a larger region only");
-    }
-  } else if (!same_domain) {
-    in.fail("its domain (--box) differs from this run's (" + domain_.describe() + ")");
-  }
-  const auto options = decisive_options(options_);
-  const std::size_t option_count = in.count("options", 9);
-  if (option_count != options.size()) {
-    in.fail("it holds " + std::to_string(option_count) + " options, this tessera " +
-            std::to_string(options.size()));
-  }
-  for (const auto& [option, value] : options) {
-    const std::string saved_name = in.string("option name");
-    const double saved = in.f64("option value");
-    if (saved_name != option || !same_bits(saved, value)) {
-      in.fail("AtlasOptions::" + option + " = " + number(value) + " here, but " + saved_name +
-              " = " + number(saved) + " in the checkpoint: the continued atlas would differ");
-    }
-  }
+  check_run_fingerprint(in, identity());
   {
     CoveringSummary::ResumedFrom resumed;
     resumed.charts = in.i32("chart count");
@@ -333,7 +178,7 @@ void AtlasBuilder::read_state(BinaryReader& in, CoveringSummary& summary) {
     chart.eligible = static_cast<signed char>(in.u8("chart eligible"));
     if (chart.parent < -1 || chart.parent >= count || !(chart.radius > 0)) {
       in.fail("corrupt: chart " + std::to_string(c) + " has parent " +
-              std::to_string(chart.parent) + " and radius " + number(chart.radius));
+              std::to_string(chart.parent) + " and radius " + exact_number(chart.radius));
     }
     std::vector<ChartPolygon::Vertex> vertices(in.count("polygon", 20));
     for (auto& v : vertices) {
@@ -454,24 +299,11 @@ AtlasStateHeader read_atlas_state_header(const std::string& state) {
     in.fail("the atlas's state has format version " + std::to_string(version) +
             "; this tessera reads version " + std::to_string(kAtlasStateVersion));
   }
+  const detail::RunFingerprint fingerprint = detail::read_run_fingerprint(in);
   AtlasStateHeader header;
-  header.problem = in.string("problem name");
-  header.dimension = in.i32("n");
-  const int rows = in.i32("rows");
-  in.matrix("start", rows, 1);
-  for (int k = 0; k < detail::kFingerprintPoints; ++k) {
-    in.u8("fingerprint");
-    in.matrix("fingerprint");
-  }
-  const std::size_t faces = in.count("domain", 16);
-  for (std::size_t k = 0; k < faces; ++k) {
-    in.matrix("domain normal", rows, 1);
-    in.matrix("domain point", rows, 1);
-  }
-  const std::size_t options = in.count("options", 9);
-  for (std::size_t k = 0; k < options; ++k) {
-    const std::string name = in.string("option name");
-    const double value = in.f64("option value");
+  header.problem = fingerprint.problem;
+  header.dimension = fingerprint.dimension;
+  for (const auto& [name, value] : fingerprint.options) {
     if (name == "tolerance") {
       header.tolerance = value;
     } else if (name == "step") {

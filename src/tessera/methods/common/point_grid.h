@@ -36,6 +36,18 @@ class PointGrid {
   void refit_if_due(PositionFunction position);
   /// Ids of inserted points whose stored position is within `radius` ≤ cell_size of x,
   /// in increasing id order (deterministic). `position(id)` returns the stored point.
+  /// The view and the refit schedule: with the ids and their points, what decides the grid's
+  /// answers (a checkpoint keeps them; the cells follow by inserting the ids again).
+  const Eigen::MatrixXd& view_directions() const { return view_.directions(); }
+  int next_refit() const { return schedule_.next(); }
+  /// Empties the grid and sets its view and schedule (as view_directions and next_refit gave).
+  void reset(const Eigen::MatrixXd& view_directions, int next_refit) {
+    cells_.clear();
+    size_ = 0;
+    view_.set_directions(view_directions);
+    schedule_.set_next(next_refit);
+  }
+  int size() const { return size_; }
   template <typename PositionFunction>
   std::vector<int> near(const Eigen::Ref<const Eigen::VectorXd>& x, double radius,
                         PositionFunction position) const;

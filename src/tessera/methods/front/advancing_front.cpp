@@ -13,16 +13,19 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "tessera/core/ambient_space.h"
+#include "tessera/core/binary_stream.h"
 #include "tessera/core/corrector.h"
 #include "tessera/core/counted_problem.h"
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
 #include "tessera/core/process_memory.h"
+#include "tessera/core/sparse_lu.h"
 #include "tessera/methods/common/clip_to_domain.h"
 #include "tessera/methods/front/front_builder.h"
 #include "tessera/methods/front/front_state.h"
@@ -90,13 +93,30 @@ void FrontBuilder::sample_memory(CoveringSummary& summary) const {
 
 void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& start_frame,
                        CoveringSummary& summary) {
+  const FrontCheckpointing& checkpoints = options_.checkpoint;
+  // With checkpoints a factorisation must depend on its matrix alone, not on the object's
+  // history (KLU refactors with its last pivots): a resumed build's objects are new. As for the
+  // atlas (atlas_builder.cpp), only then: runs without checkpoints keep the cheaper refactoring.
+  std::optional<FullPivotingScope> full_pivoting;
+  if (checkpoints.save || checkpoints.resume_from) {
+    full_pivoting.emplace();
+  }
+  start_ = start_point;
+  build_start_ = std::chrono::steady_clock::now();
   step_ = options_.step;
   // The chord corrector contracts like O(h·curvature); a projection that needs to move the
   // point by more than the step itself has left the neighbourhood of x_c (paper: Proj fails).
   chord_options_.max_displacement = 0.75 * options_.step;
+  if (checkpoints.resume_from) {
+    // (Outside the try: a refused state is an InvalidArgument, not a stopped run.)
+    BinaryReader in(*checkpoints.resume_from, "front checkpoint");
+    read_state(in, summary);
+  }
   try {
-    build_initial_hexagon(start_point, start_frame);
-    int processed = 0;
+    if (!checkpoints.resume_from) {
+      build_initial_hexagon(start_point, start_frame);
+    }
+    int& processed = processed_;
     ProgressSchedule progress_schedule;
     while (auto center = next_frontal()) {
       const FrontState::Checkpoint checkpoint = state_.checkpoint();
@@ -127,9 +147,16 @@ void FrontBuilder::run(const Eigen::VectorXd& start_point, const Linearization& 
                       "stopped at the vertex limit of " + std::to_string(options_.max_vertices)};
       }
       if (options_.stop_requested && options_.stop_requested()) {
+        save_checkpoint_at_stop(summary);  // before the state is made a valid partial mesh
         throw StopRun{CoveringTermination::Interrupted,
                       "interrupted at " + std::to_string(state_.live_vertex_count()) + " vertices"};
       }
+      if (checkpoints.save && checkpoints.is_due && checkpoints.is_due()) {
+        save_checkpoint();
+      }
+    }
+    if (checkpoints.save) {
+      save_checkpoint();  // the complete build: a run killed after it need not build again
     }
     // Parts of the front connected to an exterior vertex are never glued there (it is not
     // processed): bratu2d:N=8 at h = 0.15 had such a pinch at ε = −0.02, and every face's

@@ -8,6 +8,7 @@
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/methods/covering.h"
+#include "tessera/methods/front/front_checkpoint.h"
 
 namespace tessera {
 
@@ -39,6 +40,8 @@ struct FrontOptions : CoveringOptions {
   /// that no needle triangles appear at the boundary (see clip_to_domain).
   double boundary_snap_fraction = 0.35;
   FrontOrder order = FrontOrder::SmallestGapFirst;
+  /// Checkpoints of the build and the state to continue (front_checkpoint.h).
+  FrontCheckpointing checkpoint;
 
   /// \throw InvalidArgument naming the first option that is out of range.
   void validate() const;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <chrono>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -12,12 +13,19 @@
 #include <string>
 #include <vector>
 
+#include "tessera/core/counted_problem.h"
 #include "tessera/core/domain.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/linearization.h"
 #include "tessera/methods/covering.h"
 #include "tessera/methods/front/advancing_front.h"
 #include "tessera/methods/front/front_state.h"
+#include "tessera/methods/common/run_fingerprint.h"
+
+namespace tessera {
+class BinaryReader;
+class BinaryWriter;
+}  // namespace tessera
 
 namespace tessera::front_detail {
 
@@ -58,6 +66,9 @@ class FrontBuilder {
         space_(problem.space()),
         state_(space_, options.step * options.collision_distance_fraction) {}
 
+  /// Builds from the start (or continues options.checkpoint.resume_from; then the start must
+  /// be the checkpointed run's). \throw InvalidArgument if that state is corrupt or another
+  /// run's.
   void run(const Eigen::VectorXd& start_point, const Linearization& start_frame,
            CoveringSummary& summary);
   FrontState& state() { return state_; }
@@ -129,6 +140,20 @@ class FrontBuilder {
   /// U oriented so that v's triangles turn counterclockwise.
   Eigen::MatrixXd oriented_frame(int v, const Eigen::MatrixXd& basis,
                                  const std::vector<FanChain>& chains) const;
+
+  // Checkpoints (front_checkpoint.cpp, front_checkpoint.h).
+  double checkpoint_bytes() const;  // about what save_checkpoint writes
+  void save_checkpoint();
+  /// At a stop: saves unless the state is over max_bytes_at_stop (then a note says so).
+  void save_checkpoint_at_stop(CoveringSummary& summary);
+  void write_state(BinaryWriter& out) const;
+  void read_state(BinaryReader& in, CoveringSummary& summary);
+  detail::RunIdentity identity() const;
+  Eigen::VectorXd start_;  // the start point, for the fingerprint
+  std::chrono::steady_clock::time_point build_start_;
+  double seconds_before_ = 0.0;  // build time of the runs before a resumed checkpoint
+  WorkCounts counts_before_;     // and their work
+  int processed_ = 0;            // frontal vertices processed (the memory samples' cadence)
 
   const ImplicitProblem& problem_;
   const Domain& domain_;

@@ -17,6 +17,9 @@
 
 namespace tessera {
 
+class BinaryReader;
+class BinaryWriter;
+
 /// Node types of the paper's Table 4.1 (−1 frontal, 0/1 interior, 2 exterior).
 enum class VertexType { Frontal, Interior, Exterior, Removed };
 
@@ -115,6 +118,12 @@ class FrontState {
   std::vector<int> roll_back(const Checkpoint& checkpoint);
   /// Puts a frontal vertex at the back of the FIFO queue again.
   void requeue(int v) { queue_.push_back(v); }
+
+  /// Writes the whole state (front_checkpoint.h): what decides every later step.
+  void write_state(BinaryWriter& out) const;
+  /// Reads what write_state wrote into a state made empty. \throw InvalidArgument naming a
+  /// corrupt field (an index out of range, counts that disagree).
+  void read_state(BinaryReader& in);
 
   /// The live part as a compact TriangleMesh (unreferenced vertices dropped). The points are
   /// handed over, compacted in place, not copied: the state has none afterwards.
