@@ -14,21 +14,18 @@ namespace py = pybind11;
 
 namespace tessera::python {
 
-AtlasCheckpointing make_python_checkpointing(const CheckpointRequest& request) {
-  AtlasCheckpointing hooks;
+namespace {
+
+// The hooks every method's checkpointing has (AtlasCheckpointing, FrontCheckpointing).
+template <typename Hooks>
+Hooks make_hooks(const CheckpointRequest& request, const std::string& method) {
+  Hooks hooks;
   if (!request.resume_state.empty()) {
     hooks.resume_from = std::make_shared<const std::string>(request.resume_state);
   }
-  hooks.extend = request.extend;
   if (request.path.empty()) {
     return hooks;
   }
-  check_output_folder(request.path);
-  TESSERA_CHECK(std::filesystem::path(request.path).extension() == ".tsc",
-                "checkpoint " << request.path
-                              << ": a checkpoint file must end in .tsc (so that no mesh or "
-                                 "summary is replaced by one)");
-  TESSERA_CHECK(request.every > 0, "checkpoint_every = " << request.every << " must be > 0");
   using Clock = std::chrono::steady_clock;
   const auto last = std::make_shared<Clock::time_point>(Clock::now());
   const double every = request.every;
@@ -36,12 +33,12 @@ AtlasCheckpointing make_python_checkpointing(const CheckpointRequest& request) {
     return std::chrono::duration<double>(Clock::now() - *last).count() >= every;
   };
   const auto header = std::make_shared<CheckpointFile>();
-  header->sections = {{"python", request.record}, {"method", "atlas"}};
+  header->sections = {{"python", request.record}, {"method", method}};
   const std::string path = request.path;
   // (Called from the run's thread without the GIL: C++ only.)
-  hooks.save = [last, header, path](std::string state) {
+  hooks.save = [last, header, path, method](std::string state) {
     CheckpointFile file = *header;
-    file.sections.emplace_back("atlas", std::move(state));
+    file.sections.emplace_back(method, std::move(state));
     try {
       write_checkpoint_file(path, file);
     } catch (const std::exception& error) {
@@ -50,6 +47,35 @@ AtlasCheckpointing make_python_checkpointing(const CheckpointRequest& request) {
     *last = Clock::now();
   };
   return hooks;
+}
+
+}  // namespace
+
+void apply_python_checkpointing(const CheckpointRequest& request, const std::string& method,
+                                MethodSettings& settings) {
+  if (!request.is_used()) {
+    return;
+  }
+  TESSERA_CHECK(method == "atlas" || method == "front",
+                "checkpoint: checkpoints are supported for methods 'atlas' and 'front', not for '"
+                    << method << "'");
+  TESSERA_CHECK(!request.extend || method == "atlas",
+                "extend continues an atlas; a checkpoint of method '"
+                    << method << "' is continued by resume");
+  if (!request.path.empty()) {
+    check_output_folder(request.path);
+    TESSERA_CHECK(std::filesystem::path(request.path).extension() == ".tsc",
+                  "checkpoint " << request.path
+                                << ": a checkpoint file must end in .tsc (so that no mesh or "
+                                   "summary is replaced by one)");
+    TESSERA_CHECK(request.every > 0, "checkpoint_every = " << request.every << " must be > 0");
+  }
+  if (method == "atlas") {
+    settings.atlas_checkpoint = make_hooks<AtlasCheckpointing>(request, method);
+    settings.atlas_checkpoint.extend = request.extend;
+  } else {
+    settings.front_checkpoint = make_hooks<FrontCheckpointing>(request, method);
+  }
 }
 
 void register_checkpoint_functions(py::module_& module) {

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "tessera/methods/atlas/atlas_checkpoint.h"
+#include "tessera/methods/covering_methods.h"
 
 namespace tessera::python {
 
@@ -17,15 +17,18 @@ struct CheckpointRequest {
   std::string path;           ///< the .tsc file; empty: no checkpoints
   double every = 300.0;       ///< seconds of build between two checkpoints
   std::string record;         ///< the "python" section: the mesh() call as JSON
-  std::string resume_state;   ///< an atlas's state to continue; empty: start afresh
-  bool extend = false;        ///< AtlasCheckpointing::extend
+  std::string resume_state;   ///< a method's state to continue; empty: start afresh
+  bool extend = false;        ///< AtlasCheckpointing::extend (the atlas only)
   bool is_used() const { return !path.empty() || !resume_state.empty(); }
 };
 
-/// The atlas's hooks for `request`: saves every `every` seconds, at a stop and at the end of
-/// the build, each a checkpoint file written atomically (a failed write is a warning on
-/// stderr: the mesh matters more); continues request.resume_state if given.
-AtlasCheckpointing make_python_checkpointing(const CheckpointRequest& request);
+/// The hooks of `method` ("atlas" or "front") for `request`, in `settings`: saves every `every`
+/// seconds, at a stop and at the end of the build, each a checkpoint file written atomically (a
+/// failed write is a warning on stderr: the mesh matters more); continues request.resume_state
+/// if given. \throw InvalidArgument for another method, a path that is not .tsc, or extend with
+/// the front.
+void apply_python_checkpointing(const CheckpointRequest& request, const std::string& method,
+                                MethodSettings& settings);
 
 /// read_checkpoint(path) -> {section name: bytes}, checked (InvalidArgument naming what is
 /// wrong); atlas_state_header(bytes) -> {"problem", "dimension", "charts", "tolerance", "step"}.

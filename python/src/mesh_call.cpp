@@ -124,14 +124,11 @@ std::shared_ptr<MeshHandle> mesh_problem(const std::shared_ptr<ProblemHandle>& p
 
   if (request.checkpoint.is_used()) {
     // As `tessera mesh --checkpoint` (apps/tessera/checkpoint_command.cpp).
-    TESSERA_CHECK(method.name == "atlas", "checkpoint: checkpoints are supported for method "
-                                          "'atlas', not yet for '"
-                                              << method.name << "'");
     TESSERA_CHECK(!covers_several, "checkpoint: checkpoints are for runs of one start's "
                                    "component (not components='all' or several starts)");
   }
   MethodSettings settings = request.settings;
-  settings.atlas_checkpoint = make_python_checkpointing(request.checkpoint);
+  apply_python_checkpointing(request.checkpoint, method.name, settings);
   // A progress callable that raises stops the run; its exception is raised afterwards.
   ProgressReporter reporter(progress);
   settings.progress = reporter.callback();

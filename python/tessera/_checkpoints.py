@@ -58,7 +58,8 @@ def record(problem: Any, chosen: Any, arguments: Dict[str, Any]) -> str:
 
 
 def _load(path: Union[str, "os.PathLike[str]"], problem: Any):
-    """The checkpoint's sections, its record and the problem to continue it with."""
+    """The checkpoint's path, its method's state, its record and the problem to continue it
+    with."""
     path = os.fspath(path)
     sections = _tessera.read_checkpoint(path)
     if "python" not in sections:
@@ -76,14 +77,16 @@ def _load(path: Union[str, "os.PathLike[str]"], problem: Any):
                              f"Python ('{named.get('python_problem')}'): give it again, "
                              f"resume('{path}', problem=...)")
         problem = named["specification"]
-    return path, sections, saved, problem
+    method = sections["method"].decode()
+    return path, sections[method], saved, problem
 
 
 def resume(path: Union[str, "os.PathLike[str]"], problem: Optional[Any] = None, *,
            progress: Any = None, allow_partial: bool = False, handle_interrupt: bool = True,
            threads: Optional[int] = None):
-    """Continues the run of ``mesh(..., checkpoint=path)`` from its checkpoint: the same
-    problem and arguments, and the same mesh, bit for bit, as the run that was never stopped.
+    """Continues the run of ``mesh(..., checkpoint=path)`` (method atlas or front) from its
+    checkpoint: the same problem and arguments, and the same mesh, bit for bit, as the run that
+    was never stopped.
 
     problem: needed only if the run's problem was a `Problem` written in Python (a catalogue
         name or problem file is recorded); it must be the same problem (F is compared at two
@@ -94,12 +97,11 @@ def resume(path: Union[str, "os.PathLike[str]"], problem: Optional[Any] = None, 
     """
     import tessera
 
-    path, sections, saved, problem = _load(path, problem)
+    path, state, saved, problem = _load(path, problem)
     return tessera.mesh(problem, **saved["arguments"], progress=progress,
                         allow_partial=allow_partial, handle_interrupt=handle_interrupt,
                         threads=threads, checkpoint=path,
-                        checkpoint_every=saved["checkpoint_every"],
-                        _continue=(sections["atlas"], False))
+                        checkpoint_every=saved["checkpoint_every"], _continue=(state, False))
 
 
 def extend(path: Union[str, "os.PathLike[str]"], *, box: Any = None,
@@ -122,12 +124,15 @@ def extend(path: Union[str, "os.PathLike[str]"], *, box: Any = None,
     if box is None and tolerance is None:
         raise ValueError(f"extend('{os.fspath(path)}'): give a larger box, a finer tolerance, "
                          f"or both")
-    path, sections, saved, problem = _load(path, problem)
+    path, state, saved, problem = _load(path, problem)
     arguments = dict(saved["arguments"])
+    if arguments.get("method") not in (None, "atlas"):
+        raise ValueError(f"extend continues an atlas; checkpoint file '{path}' is of method "
+                         f"'{arguments['method']}': continue it with resume")
     if box is not None:
         arguments["box"] = _plain(box)  # its containment is checked where the state is read
     if tolerance is not None:
-        header = _tessera.atlas_state_header(sections["atlas"])
+        header = _tessera.atlas_state_header(state)
         before = arguments.get("tolerance") or header["tolerance"]
         if not float(tolerance) < before:
             raise ValueError(f"extend: tolerance {tolerance} is not finer than the run's "
@@ -138,5 +143,4 @@ def extend(path: Union[str, "os.PathLike[str]"], *, box: Any = None,
     return tessera.mesh(problem, **arguments, progress=progress, allow_partial=allow_partial,
                         handle_interrupt=handle_interrupt, threads=threads,
                         checkpoint=os.fspath(checkpoint) if checkpoint is not None else path,
-                        checkpoint_every=saved["checkpoint_every"],
-                        _continue=(sections["atlas"], True))
+                        checkpoint_every=saved["checkpoint_every"], _continue=(state, True))

@@ -22,9 +22,10 @@ def same_mesh(a: tessera.Mesh, b: tessera.Mesh) -> bool:
             np.array_equal(a.triangles, b.triangles))
 
 
-def test_a_stopped_run_resumes_to_the_same_mesh(tmp_path):
-    whole = tessera.mesh("bvp:points=200", report_samples=50, checkpoint=tmp_path / "whole.tsc",
-                         progress=False)
+@pytest.mark.parametrize("method", ["atlas", "front"])
+def test_a_stopped_run_resumes_to_the_same_mesh(tmp_path, method):
+    whole = tessera.mesh("bvp:points=200", method=method, report_samples=50,
+                         checkpoint=tmp_path / "whole.tsc", progress=False)
 
     class Stop(Exception):
         pass
@@ -34,11 +35,11 @@ def test_a_stopped_run_resumes_to_the_same_mesh(tmp_path):
             raise Stop()
 
     with pytest.raises(Stop):
-        tessera.mesh("bvp:points=200", report_samples=50, checkpoint=tmp_path / "run.tsc",
-                     progress=stop_in_the_build)
+        tessera.mesh("bvp:points=200", method=method, report_samples=50,
+                     checkpoint=tmp_path / "run.tsc", progress=stop_in_the_build)
     resumed = tessera.resume(tmp_path / "run.tsc", progress=False)
-    run = resumed.summary["run"]
-    assert 1000 <= run["resumed_from"]["charts"] < run["atlas"]["charts"]
+    resumed_from = resumed.summary["run"]["resumed_from"]
+    assert resumed_from["charts" if method == "atlas" else "vertices"] >= 1000
     assert same_mesh(resumed, whole)
 
 
@@ -101,8 +102,11 @@ def test_checkpoints_of_the_command_line_and_of_python_are_told_apart(tmp_path, 
     assert "tessera.resume" in refused.stderr
 
 
-def test_checkpoints_are_for_the_atlas(tmp_path):
-    with pytest.raises(ValueError, match="supported for method 'atlas'"):
-        tessera.mesh("sphere", method="front", checkpoint=tmp_path / "f.tsc", progress=False)
+def test_checkpoints_are_for_the_atlas_and_the_front(tmp_path):
+    with pytest.raises(ValueError, match="supported for methods 'atlas' and 'front'"):
+        tessera.mesh("sphere", method="bezier", checkpoint=tmp_path / "f.tsc", progress=False)
+    tessera.mesh("sphere", method="front", checkpoint=tmp_path / "front.tsc", progress=False)
+    with pytest.raises(ValueError, match="extend continues an atlas"):
+        tessera.extend(tmp_path / "front.tsc", tolerance=1e-4, progress=False)
     with pytest.raises(ValueError, match="must end in .tsc"):
         tessera.mesh("sphere", checkpoint=tmp_path / "f.ply", progress=False)
