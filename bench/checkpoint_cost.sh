@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cost of the atlas's checkpoints (issue 32, docs/checkpoints.md): one run without
+# The cost of the checkpoints of the atlas or the front (issue 32, docs/checkpoints.md): one run without
 # checkpoints and one with `--checkpoint-every EVERY`, their build and wall times, the size and
 # time of each checkpoint (from --progress), and whether both meshes are the same file; then the
 # second run killed (SIGKILL) after KILL_AFTER seconds and resumed, its mesh compared too.
@@ -7,6 +7,7 @@
 # Usage: bench/checkpoint_cost.sh PROBLEM [-- MESH OPTIONS ...]
 #   EVERY=S        seconds between checkpoints (default 10)
 #   KILL_AFTER=S   when the killed run is killed (default: half the plain run's wall time)
+#   METHOD=name    atlas (default) or front
 #   TESSERA=path   another binary (default build/tessera)
 # Example: bench/checkpoint_cost.sh bratu2d:N=100 -- --step 0.4 --tolerance 0.05
 set -euo pipefail
@@ -16,24 +17,25 @@ shift
 [ "${1:-}" = "--" ] && shift
 options=("$@")
 tessera=${TESSERA:-build/tessera}
+method=${METHOD:-atlas}
 every=${EVERY:-10}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 now() { date +%s.%N; }
 
 start=$(now)
-"$tessera" mesh "$problem" --method atlas "${options[@]}" -q -o "$work/plain.ply" \
+"$tessera" mesh "$problem" --method "$method" "${options[@]}" -q -o "$work/plain.ply" \
   --summary "$work/plain.json"
 plain=$(echo "$(now) - $start" | bc -l)
 
 start=$(now)
-"$tessera" mesh "$problem" --method atlas "${options[@]}" -o "$work/saved.ply" \
+"$tessera" mesh "$problem" --method "$method" "${options[@]}" -o "$work/saved.ply" \
   --summary "$work/saved.json" --checkpoint "$work/run.tsc" --checkpoint-every "$every" \
   --progress 2> "$work/saved.log" > /dev/null
 saved=$(echo "$(now) - $start" | bc -l)
 
 build_of() {
-  python3 -c "import json,sys; s=json.load(open(sys.argv[1])); print('%.1f' % sum(p['wall_seconds'] for p in s['run']['work_by_phase'] if p['phase'] in ('start', 'build')), s['run']['atlas']['charts'])" "$1"
+  python3 -c "import json,sys; s=json.load(open(sys.argv[1])); print('%.1f' % sum(p['wall_seconds'] for p in s['run']['work_by_phase'] if p['phase'] in ('start', 'build')), s['run']['atlas']['charts'] if 'atlas' in s['run'] else s['counts']['vertices'])" "$1"
 }
 echo "plain:      wall $(printf %.1f "$plain") s, build s and charts: $(build_of "$work/plain.json")"
 echo "checkpoint: wall $(printf %.1f "$saved") s, build s and charts: $(build_of "$work/saved.json")"
@@ -44,7 +46,7 @@ cmp "$work/plain.ply" "$work/saved.ply" && echo "meshes: identical"
 
 kill_after=${KILL_AFTER:-$(echo "$plain / 2" | bc -l)}
 rm -f "$work/run.tsc" "$work/saved.ply"
-"$tessera" mesh "$problem" --method atlas "${options[@]}" -q -o "$work/saved.ply" \
+"$tessera" mesh "$problem" --method "$method" "${options[@]}" -q -o "$work/saved.ply" \
   --checkpoint "$work/run.tsc" --checkpoint-every "$every" &
 pid=$!
 sleep "$kill_after"
