@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_support.h"
 #include "tessera/core/error.h"
 #include "tessera/problems/catalogue.h"
 
@@ -25,20 +26,6 @@ AtlasOptions options_for(const ProblemSetup& setup) {
   options.step = 2.0 * setup.suggested_step;
   options.tolerance = 0.02 * setup.suggested_step;
   return options;
-}
-
-// The same mesh: the same vertices (every coordinate's bits) and the same triangles.
-void expect_identical(const TriangleMesh& a, const TriangleMesh& b, const std::string& what) {
-  ASSERT_EQ(a.vertex_count(), b.vertex_count()) << what;
-  ASSERT_EQ(a.triangle_count(), b.triangle_count()) << what;
-  ASSERT_EQ(a.points().rows(), b.points().rows()) << what;
-  int differing = 0;
-  for (Eigen::Index k = 0; k < a.points().size(); ++k) {
-    differing += std::bit_cast<std::uint64_t>(a.points().data()[k]) !=
-                 std::bit_cast<std::uint64_t>(b.points().data()[k]);
-  }
-  EXPECT_EQ(differing, 0) << what << ": coordinates that differ in their bits";
-  EXPECT_TRUE(a.triangles() == b.triangles()) << what << ": the triangles differ";
 }
 
 struct Checkpoints {
@@ -95,7 +82,7 @@ void expect_resumes_identically(const std::string& specification, int stop_after
   };
   const CoveringResult resumed = from(stopped.at_stop);
   ASSERT_TRUE(resumed.summary.is_complete()) << resumed.summary.message;
-  expect_identical(whole.mesh, resumed.mesh, "resumed from the stop");
+  testing::expect_identical_meshes(whole.mesh, resumed.mesh, "resumed from the stop");
   ASSERT_TRUE(resumed.summary.resumed_from.has_value());
   EXPECT_GT(resumed.summary.resumed_from->charts, 1);
   EXPECT_LT(resumed.summary.resumed_from->charts, whole.summary.charts);
@@ -104,14 +91,14 @@ void expect_resumes_identically(const std::string& specification, int stop_after
   // repeated start projection.
   EXPECT_GE(resumed.summary.function_evaluations, whole.summary.function_evaluations);
   const std::string& earlier = stopped.periodic[stopped.periodic.size() / 2];
-  expect_identical(whole.mesh, from(earlier).mesh, "resumed from a periodic checkpoint");
+  testing::expect_identical_meshes(whole.mesh, from(earlier).mesh, "resumed from a periodic checkpoint");
 
   // Stopped again after resuming, and resumed once more.
   const Checkpoints twice =
       build(setup, stop_after / 2, 0, std::make_shared<const std::string>(stopped.at_stop));
   ASSERT_EQ(twice.result.summary.termination, CoveringTermination::Interrupted);
   ASSERT_FALSE(twice.at_stop.empty());
-  expect_identical(whole.mesh, from(twice.at_stop).mesh, "resumed twice");
+  testing::expect_identical_meshes(whole.mesh, from(twice.at_stop).mesh, "resumed twice");
 }
 
 TEST(AtlasCheckpoint, SphereResumesToTheSameMesh) { expect_resumes_identically("sphere", 150, 37); }
@@ -152,7 +139,7 @@ TEST(AtlasCheckpoint, LargeStateIsNotWrittenAtTheStop) {
   ASSERT_FALSE(saved.empty());
   AtlasOptions resumed = options_for(setup);
   resumed.checkpoint.resume_from = std::make_shared<const std::string>(saved.back());
-  expect_identical(uninterrupted(setup).mesh,
+  testing::expect_identical_meshes(uninterrupted(setup).mesh,
                    cover_by_atlas(*setup.problem, setup.start, setup.domain, resumed).mesh,
                    "resumed from the last periodic checkpoint");
 }

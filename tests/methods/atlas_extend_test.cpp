@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_support.h"
 #include "tessera/core/error.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_validation.h"
@@ -152,9 +153,8 @@ TEST_F(AtlasExtend, AStoppedExtensionResumesToTheSameMesh) {
   resumed.checkpoint.resume_from = std::make_shared<const std::string>(stopped.final_state);
   const AtlasRun finished = cover(*setup_, cap_box(-0.5), resumed);
   ASSERT_TRUE(finished.result.summary.is_complete());
-  ASSERT_EQ(whole.result.mesh.vertex_count(), finished.result.mesh.vertex_count());
-  EXPECT_TRUE(whole.result.mesh.points() == finished.result.mesh.points());
-  EXPECT_TRUE(whole.result.mesh.triangles() == finished.result.mesh.triangles());
+  testing::expect_identical_meshes(whole.result.mesh, finished.result.mesh,
+                                   "the extension stopped and resumed");
 }
 
 TEST_F(AtlasExtend, ADomainThatDoesNotContainTheOldOneIsRefused) {

@@ -47,20 +47,6 @@ FrontOptions options_for(const Case& c, const ProblemSetup& setup) {
   return options;
 }
 
-// The same mesh: the same vertices (every coordinate's bits) and the same triangles.
-void expect_identical(const TriangleMesh& a, const TriangleMesh& b, const std::string& what) {
-  ASSERT_EQ(a.vertex_count(), b.vertex_count()) << what;
-  ASSERT_EQ(a.triangle_count(), b.triangle_count()) << what;
-  ASSERT_EQ(a.points().rows(), b.points().rows()) << what;
-  int differing = 0;
-  for (Eigen::Index k = 0; k < a.points().size(); ++k) {
-    differing += std::bit_cast<std::uint64_t>(a.points().data()[k]) !=
-                 std::bit_cast<std::uint64_t>(b.points().data()[k]);
-  }
-  EXPECT_EQ(differing, 0) << what << ": coordinates that differ in their bits";
-  EXPECT_TRUE(a.triangles() == b.triangles()) << what << ": the triangles differ";
-}
-
 struct Checkpoints {
   std::vector<std::string> periodic;  // every `every`-th step
   std::string at_stop;
@@ -115,7 +101,7 @@ void expect_resumes_identically(const Case& c, const std::vector<int>& stops, in
     ASSERT_FALSE(stopped.at_stop.empty()) << "a stop saves the state";
     const CoveringResult resumed = from(stopped.at_stop);
     ASSERT_TRUE(resumed.summary.is_complete()) << resumed.summary.message;
-    expect_identical(whole.mesh, resumed.mesh, "resumed from the stop");
+    testing::expect_identical_meshes(whole.mesh, resumed.mesh, "resumed from the stop");
     EXPECT_EQ(resumed.summary.merges, whole.summary.merges);
     EXPECT_EQ(resumed.summary.front_connections, whole.summary.front_connections);
     EXPECT_EQ(resumed.summary.notes, whole.summary.notes);
@@ -126,7 +112,7 @@ void expect_resumes_identically(const Case& c, const std::vector<int>& stops, in
     EXPECT_GE(resumed.summary.function_evaluations, whole.summary.function_evaluations);
     if (!stopped.periodic.empty()) {
       const std::string& earlier = stopped.periodic[stopped.periodic.size() / 2];
-      expect_identical(whole.mesh, from(earlier).mesh, "resumed from a periodic checkpoint");
+      testing::expect_identical_meshes(whole.mesh, from(earlier).mesh, "resumed from a periodic checkpoint");
     }
   }
   // Stopped again after resuming, and resumed once more.
@@ -136,11 +122,11 @@ void expect_resumes_identically(const Case& c, const std::vector<int>& stops, in
       build(c, setup, stops.front(), 0, std::make_shared<const std::string>(first.at_stop));
   ASSERT_EQ(twice.result.summary.termination, CoveringTermination::Interrupted);
   ASSERT_FALSE(twice.at_stop.empty());
-  expect_identical(whole.mesh, from(twice.at_stop).mesh, "resumed twice");
+  testing::expect_identical_meshes(whole.mesh, from(twice.at_stop).mesh, "resumed twice");
   // The complete build's own checkpoint (what the end saves) gives the mesh again.
   const Checkpoints complete = build(c, setup, 0, 0);
   ASSERT_FALSE(complete.periodic.empty()) << "the end of the build saves";
-  expect_identical(whole.mesh, from(complete.periodic.back()).mesh, "resumed when complete");
+  testing::expect_identical_meshes(whole.mesh, from(complete.periodic.back()).mesh, "resumed when complete");
 }
 
 TEST(FrontCheckpoint, SphereResumesToTheSameMesh) {
@@ -286,7 +272,7 @@ TEST(FrontCheckpoint, CheckpointsLeaveADenseRunUnchanged) {
   const Case c{"torus"};
   const ProblemSetup setup = setup_of(c);
   const FrontOptions plain = options_for(c, setup);
-  expect_identical(triangulate_by_front(*setup.problem, setup.start, setup.domain, plain).mesh,
+  testing::expect_identical_meshes(triangulate_by_front(*setup.problem, setup.start, setup.domain, plain).mesh,
                    uninterrupted(c, setup).mesh, "with and without checkpoints");
 }
 
@@ -314,7 +300,7 @@ TEST(FrontCheckpoint, LargeStateIsNotWrittenAtTheStop) {
   ASSERT_FALSE(saved.empty());
   FrontOptions resumed = options_for(c, setup);
   resumed.checkpoint.resume_from = std::make_shared<const std::string>(saved.back());
-  expect_identical(uninterrupted(c, setup).mesh,
+  testing::expect_identical_meshes(uninterrupted(c, setup).mesh,
                    triangulate_by_front(*setup.problem, setup.start, setup.domain, resumed).mesh,
                    "resumed from the last periodic checkpoint");
 }

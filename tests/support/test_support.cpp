@@ -15,6 +15,11 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
+
+#include "tessera/geometry/triangle_mesh.h"
+
 namespace tessera::testing {
 
 int spawn(std::vector<std::string> words, const std::string& stderr_path,
@@ -46,6 +51,19 @@ std::string read_file_bytes(const std::string& path) {
   std::ostringstream bytes;
   bytes << in.rdbuf();
   return bytes.str();
+}
+
+void expect_identical_meshes(const TriangleMesh& a, const TriangleMesh& b, const std::string& what) {
+  ASSERT_EQ(a.vertex_count(), b.vertex_count()) << what;
+  ASSERT_EQ(a.triangle_count(), b.triangle_count()) << what;
+  ASSERT_EQ(a.points().rows(), b.points().rows()) << what;
+  int differing = 0;
+  for (Eigen::Index k = 0; k < a.points().size(); ++k) {
+    differing += std::bit_cast<std::uint64_t>(a.points().data()[k]) !=
+                 std::bit_cast<std::uint64_t>(b.points().data()[k]);
+  }
+  EXPECT_EQ(differing, 0) << what << ": coordinates that differ in their bits";
+  EXPECT_TRUE(a.triangles() == b.triangles()) << what << ": the triangles differ";
 }
 
 CommandResult run_cli(const std::string& arguments) {

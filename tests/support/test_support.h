@@ -5,6 +5,10 @@
 #include <string>
 #include <vector>
 
+namespace tessera {
+class TriangleMesh;
+}  // namespace tessera
+
 namespace tessera::testing {
 
 /// Result of running the `tessera` command line tool.
@@ -28,6 +32,10 @@ int spawn(std::vector<std::string> words, const std::string& stderr_path,
 
 /// The bytes of a file (empty if it cannot be read).
 std::string read_file_bytes(const std::string& path);
+
+/// Expects the same mesh, bit for bit: the same vertices (every coordinate's bits) and the same
+/// triangles (what a resumed run must give). `what` names the comparison in failures.
+void expect_identical_meshes(const TriangleMesh& a, const TriangleMesh& b, const std::string& what);
 
 /// A fresh temporary directory for one test; removed at process exit is not guaranteed.
 std::string temporary_directory(const std::string& name);

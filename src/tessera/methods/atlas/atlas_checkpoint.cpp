@@ -62,16 +62,11 @@ void AtlasBuilder::write_state(BinaryWriter& out) {
   out.u32(kAtlasStateVersion);
   write_run_fingerprint(out, identity());
   // The work done, over all runs (this one and those it continued).
-  out.i32(chart_count());
-  out.f64(seconds_before_ +
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start_).count());
-  WorkCounts counts = counts_before_;
-  if (const auto* counted = dynamic_cast<const CountedProblem*>(&problem_)) {
-    counts += counted->counts();
-  }
-  out.i64(counts.function_evaluations);
-  out.i64(counts.jacobian_evaluations);
-  out.i64(counts.factorisations);
+  write_work_done(out, chart_count(),
+                  seconds_before_ + std::chrono::duration<double>(
+                                        std::chrono::steady_clock::now() - build_start_)
+                                        .count(),
+                  counts_before_, problem_);
 
   // The charts.
   const int count = chart_count();
@@ -146,21 +141,14 @@ void AtlasBuilder::read_state(BinaryReader& in, CoveringSummary& summary) {
   }
   // The fingerprint: the same problem, start, domain and options, or nothing is continued.
   check_run_fingerprint(in, identity());
-  {
-    CoveringSummary::ResumedFrom resumed;
-    resumed.charts = in.i32("chart count");
-    resumed.build_seconds = in.f64("build seconds");
-    resumed.counts.function_evaluations = in.i64("work");
-    resumed.counts.jacobian_evaluations = in.i64("work");
-    resumed.counts.factorisations = in.i64("work");
-    if (resumed.charts < 1) {
-      in.fail("corrupt: " + std::to_string(resumed.charts) + " charts");
-    }
-    seconds_before_ = resumed.build_seconds;
-    counts_before_ = resumed.counts;
-    summary.resumed_from = resumed;
-  }
-  const int count = summary.resumed_from->charts;
+  const WorkDone done = read_work_done(in, "charts");
+  seconds_before_ = done.build_seconds;
+  counts_before_ = done.counts;
+  summary.resumed_from = CoveringSummary::ResumedFrom{};
+  summary.resumed_from->charts = done.count;
+  summary.resumed_from->build_seconds = done.build_seconds;
+  summary.resumed_from->counts = done.counts;
+  const int count = done.count;
   // The charts.
   std::vector<double> indexed_radius(static_cast<std::size_t>(count));
   charts_.reserve(static_cast<std::size_t>(count));

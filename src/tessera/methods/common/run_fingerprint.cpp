@@ -200,4 +200,30 @@ void check_run_fingerprint(BinaryReader& in, const RunIdentity& run) {
   }
 }
 
+void write_work_done(BinaryWriter& out, int count, double build_seconds, const WorkCounts& before,
+                     const ImplicitProblem& problem) {
+  WorkCounts counts = before;
+  if (const auto* counted = dynamic_cast<const CountedProblem*>(&problem)) {
+    counts += counted->counts();
+  }
+  out.i32(count);
+  out.f64(build_seconds);
+  out.i64(counts.function_evaluations);
+  out.i64(counts.jacobian_evaluations);
+  out.i64(counts.factorisations);
+}
+
+WorkDone read_work_done(BinaryReader& in, const char* unit) {
+  WorkDone done;
+  done.count = in.i32(unit);
+  done.build_seconds = in.f64("build seconds");
+  done.counts.function_evaluations = in.i64("work");
+  done.counts.jacobian_evaluations = in.i64("work");
+  done.counts.factorisations = in.i64("work");
+  if (done.count < 1) {
+    in.fail("corrupt: " + std::to_string(done.count) + " " + unit);
+  }
+  return done;
+}
+
 }  // namespace tessera::detail

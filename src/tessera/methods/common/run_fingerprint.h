@@ -12,6 +12,7 @@
 
 #include "tessera/core/ambient_space.h"
 #include "tessera/core/domain.h"
+#include "tessera/core/counted_problem.h"
 #include "tessera/core/implicit_problem.h"
 
 namespace tessera {
@@ -55,6 +56,19 @@ void write_run_fingerprint(BinaryWriter& out, const RunIdentity& run);
 /// \throw InvalidArgument (BinaryReader::fail) naming the first thing that differs: the problem,
 ///        F at a test point, the start, the domain or an option with both values.
 void check_run_fingerprint(BinaryReader& in, const RunIdentity& run);
+
+/// The work a state records after its fingerprint, over every run it continues: the method's
+/// count (charts, vertices), the build's seconds, and F, DF and factorisations.
+struct WorkDone {
+  int count = 0;
+  double build_seconds = 0.0;
+  WorkCounts counts;
+};
+/// Writes `before` plus what `problem` counted in this run (if it is a CountedProblem).
+void write_work_done(BinaryWriter& out, int count, double build_seconds, const WorkCounts& before,
+                     const ImplicitProblem& problem);
+/// \throw InvalidArgument (BinaryReader::fail) for a count below 1, naming `unit` ("charts").
+WorkDone read_work_done(BinaryReader& in, const char* unit);
 
 /// The same bits (NaN payloads and signed zeros included).
 inline bool same_bits(double a, double b) {

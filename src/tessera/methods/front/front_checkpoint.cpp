@@ -215,16 +215,11 @@ void FrontBuilder::write_state(BinaryWriter& out) const {
   out.u32(kFrontStateVersion);
   detail::write_run_fingerprint(out, identity());
   // The work done, over all runs (this one and those it continued).
-  out.i32(state_.live_vertex_count());
-  out.f64(seconds_before_ +
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start_).count());
-  WorkCounts counts = counts_before_;
-  if (const auto* counted = dynamic_cast<const CountedProblem*>(&problem_)) {
-    counts += counted->counts();
-  }
-  out.i64(counts.function_evaluations);
-  out.i64(counts.jacobian_evaluations);
-  out.i64(counts.factorisations);
+  detail::write_work_done(out, state_.live_vertex_count(),
+                          seconds_before_ + std::chrono::duration<double>(
+                                                std::chrono::steady_clock::now() - build_start_)
+                                                .count(),
+                          counts_before_, problem_);
   // The builder: the step (halved at the start if needed), the counters, the order's state.
   out.f64(step_);
   out.f64(chord_options_.max_displacement);
@@ -265,17 +260,13 @@ void FrontBuilder::read_state(BinaryReader& in, CoveringSummary& summary) {
   }
   // The fingerprint: the same problem, start, domain and options, or nothing is continued.
   detail::check_run_fingerprint(in, identity());
+  const detail::WorkDone done = detail::read_work_done(in, "vertices");
   CoveringSummary::ResumedFrom resumed;
-  resumed.vertices = in.i32("vertex count");
-  resumed.build_seconds = in.f64("build seconds");
-  resumed.counts.function_evaluations = in.i64("work");
-  resumed.counts.jacobian_evaluations = in.i64("work");
-  resumed.counts.factorisations = in.i64("work");
-  if (resumed.vertices < 1) {
-    in.fail("corrupt: " + std::to_string(resumed.vertices) + " vertices");
-  }
-  seconds_before_ = resumed.build_seconds;
-  counts_before_ = resumed.counts;
+  resumed.vertices = done.count;
+  resumed.build_seconds = done.build_seconds;
+  resumed.counts = done.counts;
+  seconds_before_ = done.build_seconds;
+  counts_before_ = done.counts;
 
   step_ = in.f64("step");
   chord_options_.max_displacement = in.f64("chord displacement");
