@@ -7,6 +7,8 @@
 #include <Eigen/QR>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "tessera/core/ambient_space.h"
 #include "tessera/core/bordered_jacobian.h"
@@ -66,6 +68,9 @@ class DenseBackend final : public LinearizationBackend {
     if (!jacobian_.allFinite()) {
       return false;
     }
+    if (m == 1) {
+      return factor_gradient(tangent, reciprocal_condition);
+    }
     qr_.compute(jacobian_.transpose());
     ++factorisations_;
     const auto& R = qr_.matrixR();
@@ -89,17 +94,63 @@ class DenseBackend final : public LinearizationBackend {
 
   void solve(const Eigen::Ref<const Eigen::VectorXd>& rhs, const Eigen::MatrixXd&,
              Eigen::Ref<Eigen::VectorXd> dx) const override {
+    if (jacobian_.rows() == 1) {
+      // H [r/β; 0] = (r/β)(e₀ − τ v), as minimum_norm_from_qr computes it (v₀ = 1).
+      const double z = rhs(0) / beta_;
+      dx = (-z * tau_) * reflector_;
+      dx(0) += z;
+      return;
+    }
     minimum_norm_from_qr(qr_, rhs, dx);
   }
 
   std::size_t memory_bytes() const override {
     return sizeof(double) * static_cast<std::size_t>(jacobian_.size() + qr_.matrixQR().size() +
-                                                     qr_.hCoeffs().size());
+                                                     qr_.hCoeffs().size() + reflector_.size());
   }
 
  private:
+  // One equation (a surface in R³): the QR of the gradient g (n×1) is a single Householder
+  // reflection H = I − τ v vᵀ with H g = β e₀, formed here as Eigen's makeHouseholder forms it,
+  // so that the basis and the solves equal the general path's to rounding, without its
+  // allocations and column pivoting (at n = 3 they cost more than F: issue 35).
+  bool factor_gradient(Eigen::MatrixXd& tangent, double& reciprocal_condition) {
+    const int n = static_cast<int>(jacobian_.cols());
+    const double c0 = jacobian_(0, 0);
+    const double tail = jacobian_.row(0).tail(n - 1).squaredNorm();
+    ++factorisations_;
+    reflector_.resize(n);
+    reflector_(0) = 1.0;
+    if (tail <= std::numeric_limits<double>::min()) {
+      tau_ = 0.0;
+      beta_ = c0;
+      reflector_.tail(n - 1).setZero();
+    } else {
+      beta_ = std::sqrt(c0 * c0 + tail);
+      if (c0 >= 0.0) {
+        beta_ = -beta_;
+      }
+      reflector_.tail(n - 1) = jacobian_.row(0).tail(n - 1).transpose() / (c0 - beta_);
+      tau_ = (beta_ - c0) / beta_;
+    }
+    reciprocal_condition = beta_ != 0.0 ? 1.0 : 0.0;
+    if (beta_ == 0.0) {
+      return false;
+    }
+    // ker g: columns 1 and 2 of H, e_k − τ v v_k.
+    tangent.resize(n, 2);
+    for (int k = 0; k < 2; ++k) {
+      tangent.col(k) = (-tau_ * reflector_(k + 1)) * reflector_;
+      tangent(k + 1, k) += 1.0;
+    }
+    return true;
+  }
+
   Eigen::MatrixXd jacobian_;
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
+  Eigen::VectorXd reflector_;  // v of the one-equation case
+  double tau_ = 0.0;
+  double beta_ = 0.0;
 };
 
 class SparseBackend final : public LinearizationBackend {

@@ -66,6 +66,9 @@ namespace {
 
 using detail::AtlasBuilder;
 
+// Tangential smoothing after the hexagonal placement (see build_atlas).
+constexpr int kHexagonalSmoothingPasses = 1;
+
 // The median radius of the charts outside or within one radius of ∂S; −1 if there are none.
 double median_boundary_radius(const Domain& domain, const AtlasBuilder& builder) {
   std::vector<double> boundary_radii;
@@ -131,7 +134,9 @@ void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringRe
   summary.step = max_radius;
 
   if (options.placement == AtlasPlacement::Hexagonal && result.mesh.triangle_count() > 0) {
-    improve_mesh(result.mesh, context.problem, ImprovementOptions{}, 3);
+    // One pass of smoothing: three cost 6 more evaluations of F per vertex for 1–2° more of
+    // smallest angle (torus at 1e-3: 28.7° after one pass, 30.7° after three; V·H the same).
+    improve_mesh(result.mesh, context.problem, ImprovementOptions{}, kHexagonalSmoothingPasses);
   } else if (options.swap_edges && result.mesh.triangle_count() > 0) {
     ImprovementOptions swaps;
     improve_by_edge_swaps(result.mesh, context.problem, swaps);

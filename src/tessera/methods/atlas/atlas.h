@@ -20,7 +20,7 @@ enum class AtlasPlacement {
   /// above 30° without post-processing; about twice the vertices of an ideal mesh.
   Disk,
   /// Towards a hexagonal packing (centres about 1.5 R apart): about 30 % fewer vertices. The
-  /// mesh is then improved (Delaunay swaps and three passes of tangential smoothing on M) and
+  /// mesh is then improved (Delaunay swaps and one pass of tangential smoothing on M) and
   /// every triangle is checked against the tolerance and bisected where needed.
   Hexagonal,
 };

@@ -34,7 +34,7 @@ void ChartIndex::hash(int chart, const Eigen::Ref<const Eigen::VectorXd>& center
   const int level_index = static_cast<int>(std::floor(std::log2(radius)));
   Level& level = levels_[level_index];
   level.max_radius = std::ldexp(1.0, level_index + 1);
-  level.cell_size = 2.0 * level.max_radius;
+  level.cell_size = 4.0 * level.max_radius;
   const Eigen::Vector3d p = view_(center);
   level.cells[key(static_cast<std::int64_t>(std::floor(p(0) / level.cell_size)),
                   static_cast<std::int64_t>(std::floor(p(1) / level.cell_size)),

@@ -25,7 +25,8 @@ double signed_area_ratio(const TriangleMesh& mesh, const Triangle& t, const Eige
                          const Eigen::VectorXd& origin) {
   Eigen::Vector2d p[3];
   for (int k = 0; k < 3; ++k) {
-    p[k] = T.transpose() * (mesh.point(t[k]) - origin);
+    // Column by column: no temporary n-vector (this runs for every triangle of every star).
+    p[k] = {T.col(0).dot(mesh.point(t[k]) - origin), T.col(1).dot(mesh.point(t[k]) - origin)};
   }
   const double area = 0.5 * ((p[1].x() - p[0].x()) * (p[2].y() - p[0].y()) -
                              (p[1].y() - p[0].y()) * (p[2].x() - p[0].x()));
@@ -73,9 +74,14 @@ SmoothingSummary smooth_tangentially(TriangleMesh& mesh, const ImplicitProblem& 
   const std::vector<Triangle>& triangles = mesh.triangles();
   Linearization at_old;
   Linearization at_new;
-  Linearization workspace;
   const int n = mesh.ambient_dimension();
+  // Kept across vertices: at n = 3 the allocations would cost more than the arithmetic.
   Eigen::VectorXd average(n);
+  Eigen::VectorXd x(n);
+  Eigen::VectorXd y(n);
+  Eigen::VectorXd step(n);
+  Eigen::MatrixXd T(n, 2);
+  std::vector<double> sign_before;
   for (int pass = 0; pass < options.iterations; ++pass) {
     ++summary.iterations;
     for (int v = 0; v < mesh.vertex_count(); ++v) {
@@ -83,7 +89,7 @@ SmoothingSummary smooth_tangentially(TriangleMesh& mesh, const ImplicitProblem& 
       if (is_fixed[v] || star.empty()) {
         continue;
       }
-      const Eigen::VectorXd x = mesh.point(v);
+      x = mesh.point(v);
       // x̄: each neighbour appears in two triangles of a closed star, so the triangle-weighted
       // average of the other two corners is the plain average of the neighbours.
       average.setZero();
@@ -101,20 +107,22 @@ SmoothingSummary smooth_tangentially(TriangleMesh& mesh, const ImplicitProblem& 
         ++summary.rejected_projection;
         continue;
       }
-      const Eigen::MatrixXd T = at_old.tangent_basis();
-      const Eigen::VectorXd step = options.relaxation * (T * (T.transpose() * (average - x)));
-      Eigen::VectorXd y = x + step;
+      T = at_old.tangent_basis();
+      step.noalias() = T * (T.transpose() * (average - x));
+      step *= options.relaxation;
+      y = x + step;
       CorrectorOptions corrector;
       corrector.max_displacement = std::max(step.norm(), 1e-300);
-      if (step.norm() == 0.0 ||
-          !project_gauss_newton(problem, y, corrector, workspace).is_success() ||
+      // The chord of the factorisation at x: the move is a fraction of an edge, so it contracts
+      // at once, without factoring at every iterate as Gauss–Newton would (the one factorisation
+      // at y below is needed anyway, for the fold test in the tangent plane there).
+      if (step.norm() == 0.0 || !project_chord(problem, at_old, y, corrector).is_success() ||
           !at_new.factor(problem, y, &T)) {
         ++summary.rejected_projection;
         continue;
       }
       // Orientation of each triangle of the star in the plane at x, before the move.
-      std::vector<double> sign_before;
-      sign_before.reserve(star.size());
+      sign_before.clear();
       for (const int t : star) {
         sign_before.push_back(signed_area_ratio(mesh, triangles[t], T, x) >= 0 ? 1.0 : -1.0);
       }
