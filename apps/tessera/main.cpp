@@ -114,6 +114,7 @@ int run_check(const std::string& mesh_path, std::string problem, bool json) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tessera::app::become_petsc_program_if_asked(argc, argv);
   CLI::App app{"tessera: trustworthy triangulations of implicitly defined surfaces F(x) = 0"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "tessera 0.1.0");

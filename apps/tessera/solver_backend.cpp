@@ -1,12 +1,18 @@
 // SPDX-License-Identifier: MIT
 #include "solver_backend.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <string_view>
 
 #include "tessera/core/error.h"
 #include "tessera/methods/stability/state_jacobian.h"
@@ -57,6 +63,45 @@ std::vector<std::string> take_petsc_options(int& argc, char** argv) {
   argv[argc] = nullptr;
   return options;
 }
+
+bool asks_for_petsc(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view argument = argv[i];
+    if (argument == "--backend=petsc" ||
+        (argument == "--backend" && i + 1 < argc && std::string_view(argv[i + 1]) == "petsc")) {
+      return true;
+    }
+  }
+  return false;
+}
+
+#if defined(TESSERA_CLI_PETSC_PROGRAM)
+
+void become_petsc_program_if_asked(int argc, char** argv) {
+  if (!asks_for_petsc(argc, argv)) {
+    return;
+  }
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) {
+    return;  // SolverBackend then says this program has no PETSc
+  }
+  const std::filesystem::path program = self.parent_path() / TESSERA_CLI_PETSC_PROGRAM;
+  if (!std::filesystem::exists(program, error)) {
+    return;
+  }
+  // The same process (mpirun's ranks stay its ranks) with the same arguments and environment.
+  execv(program.c_str(), argv);
+  std::cerr << "tessera: error: --backend petsc: could not start " << program.string() << ": "
+            << std::strerror(errno) << "\n";
+  std::exit(1);
+}
+
+#else
+
+void become_petsc_program_if_asked(int /*argc*/, char** /*argv*/) {}
+
+#endif
 
 #if defined(TESSERA_CLI_HAS_PETSC)
 
