@@ -8,6 +8,7 @@
 #include <memory>
 #include <cstdint>
 #include <numbers>
+#include <span>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
@@ -17,6 +18,7 @@
 #include "tessera/core/corrector.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
+#include "tessera/core/parallel_for.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 
@@ -526,42 +528,112 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
   summary.fraction_angles_below_30_before = shape_before.fraction_angles_below_30;
 
   std::vector<Triangle> triangles = mesh.triangles();
+  // The first sweep's topology. Later sweeps visit only the edges a swap may have changed, so
+  // instead of rebuilding it (at 10⁶ vertices two full sweeps of nearly no swaps were a fifth of
+  // a torus's run) the vertices' triangles are patched where swaps changed them.
+  const MeshTopology topology(mesh.vertex_count(), triangles);
   std::unordered_set<std::int64_t> edges;
-  for (const Triangle& tri : triangles) {
-    for (int k = 0; k < 3; ++k) {
-      edges.insert(edge_key(tri[k], tri[(k + 1) % 3]));
-    }
+  edges.reserve(static_cast<std::size_t>(topology.edge_count()));
+  for (const auto& edge : topology.edges()) {
+    edges.insert(edge_key(edge[0], edge[1]));
   }
+  std::unordered_map<int, std::vector<int>> patched_stars;
+  const auto star_of = [&](int v) -> std::span<const int> {
+    const auto found = patched_stars.find(v);
+    return found != patched_stars.end() ? std::span<const int>(found->second)
+                                        : topology.vertex_triangles(v);
+  };
+  const auto patch_star = [&](int v, int removed, int added) {
+    auto found = patched_stars.find(v);
+    if (found == patched_stars.end()) {
+      const auto initial = topology.vertex_triangles(v);
+      found = patched_stars.emplace(v, std::vector<int>(initial.begin(), initial.end())).first;
+    }
+    std::vector<int>& star = found->second;
+    if (removed >= 0) {
+      std::erase(star, removed);
+    }
+    if (added >= 0) {
+      star.push_back(added);
+    }
+  };
   CornerTangents corner_tangents(problem);
   Linearization workspace;
-  std::vector<std::uint8_t> is_changed;
+  std::vector<std::uint8_t> is_changed(triangles.size(), 0);
   // A split mesh (SPMD): every rank its rows of the points; what a swap is judged by is summed
   // over the ranks, so that all make the same swaps.
   const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
   const AmbientSpace& space = *shared_space;
   const bool split = space.is_distributed();
-  // kQuadSides lengths per edge of the sweep's topology (split meshes, MaxMinAngle).
+  // The edges of a sweep, as vertex pairs: the first sweep every edge, each later one the edges
+  // of the triangles the sweep before changed and those refused because their other diagonal
+  // was an edge (a swap may have removed it), in order. Any other edge keeps its quad and its
+  // verdict, so it would not be swapped.
+  std::vector<std::array<int, 2>> visit;
+  visit.reserve(static_cast<std::size_t>(topology.edge_count()));
+  for (const auto& edge : topology.edges()) {
+    visit.push_back({edge[0], edge[1]});
+  }
+  std::vector<Quad> quads;
+  std::vector<std::uint8_t> has_quad;
+  std::vector<std::array<int, 2>> refused_existing;
+  std::vector<int> changed;
+  // kQuadSides lengths per visited edge (split meshes, MaxMinAngle).
   std::vector<double> quad_lengths;
+  // Verdicts made before the sweep (on threads): the quads do not move while it runs, and an
+  // edge whose triangles a swap changed is skipped, so each is the verdict it would get in turn.
+  std::vector<std::int8_t> verdicts;
+  const bool judge_ahead = !split && (options.criterion == ImprovementCriterion::MaxMinAngle ||
+                                      options.criterion == ImprovementCriterion::NormalAngle);
   while (summary.sweeps < options.max_sweeps) {
     ++summary.sweeps;
-    // The topology is rebuilt once per sweep. A swap changes only its two triangles: edges of
-    // changed triangles are skipped for the rest of the sweep (their incidences are stale) and
-    // visited again in the next one.
-    const MeshTopology topology(mesh.vertex_count(), triangles);
-    is_changed.assign(triangles.size(), 0);
+    const bool first_sweep = summary.sweeps == 1;
+    const int count = static_cast<int>(visit.size());
+    quads.assign(visit.size(), Quad{});
+    has_quad.assign(visit.size(), 0);
+    int interior_edges = 0;
+    for (int i = 0; i < count; ++i) {
+      const auto [u, w] = visit[static_cast<std::size_t>(i)];
+      std::array<int, 2> incident{-1, -1};
+      int found = 0;
+      if (first_sweep) {
+        const auto on_edge = topology.edge_triangles(i);
+        found = static_cast<int>(on_edge.size());
+        if (found == 2) {
+          incident = {on_edge[0], on_edge[1]};
+        }
+      } else {
+        for (const int t : star_of(u)) {
+          const Triangle& tri = triangles[static_cast<std::size_t>(t)];
+          if (tri[0] == w || tri[1] == w || tri[2] == w) {
+            if (found < 2) {
+              incident[static_cast<std::size_t>(found)] = t;
+            }
+            ++found;
+          }
+        }
+      }
+      if (found != 2) {
+        continue;  // boundary edges are never swapped; non-manifold edges are left alone
+      }
+      ++interior_edges;
+      has_quad[static_cast<std::size_t>(i)] =
+          orient_quad(triangles, incident[0], incident[1], u, w, quads[static_cast<std::size_t>(i)])
+              ? 1
+              : 0;
+    }
+    if (first_sweep) {
+      summary.interior_edges = interior_edges;
+    }
     if (split && options.criterion == ImprovementCriterion::MaxMinAngle) {
-      // Swaps move no point, and an edge is judged only while its quad is the one of the
-      // sweep's topology: every quad's lengths are measured at once (one reduction per sweep).
-      quad_lengths.assign(kQuadSides * static_cast<std::size_t>(topology.edge_count()), 0.0);
-      for (int e = 0; e < topology.edge_count(); ++e) {
-        const auto incident = topology.edge_triangles(e);
-        Quad q;
-        if (incident.size() == 2 && orient_quad(triangles, incident[0], incident[1],
-                                                topology.edge(e)[0], topology.edge(e)[1], q)) {
-          const auto pairs = quad_sides(q);
-          for (std::size_t i = 0; i < pairs.size(); ++i) {
-            quad_lengths[kQuadSides * static_cast<std::size_t>(e) + i] =
-                (mesh.point(pairs[i].first) - mesh.point(pairs[i].second)).squaredNorm();
+      // Swaps move no point: every quad's lengths are measured at once (one reduction).
+      quad_lengths.assign(kQuadSides * visit.size(), 0.0);
+      for (int i = 0; i < count; ++i) {
+        if (has_quad[static_cast<std::size_t>(i)]) {
+          const auto pairs = quad_sides(quads[static_cast<std::size_t>(i)]);
+          for (std::size_t k = 0; k < pairs.size(); ++k) {
+            quad_lengths[kQuadSides * static_cast<std::size_t>(i) + k] =
+                (mesh.point(pairs[k].first) - mesh.point(pairs[k].second)).squaredNorm();
           }
         }
       }
@@ -572,24 +644,29 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
         length = std::sqrt(length);
       }
     }
+    if (judge_ahead) {
+      verdicts.assign(visit.size(), static_cast<std::int8_t>(Verdict::DoesNotImprove));
+      parallel_for(count, thread_count(), [&](int i) {
+        if (has_quad[static_cast<std::size_t>(i)]) {
+          verdicts[static_cast<std::size_t>(i)] = static_cast<std::int8_t>(judge_swap(
+              mesh, problem, quads[static_cast<std::size_t>(i)], options, workspace, nullptr));
+        }
+      });
+    }
+    refused_existing.clear();
+    changed.clear();
     int swaps_in_sweep = 0;
-    int interior_edges = 0;
-    for (int e = 0; e < topology.edge_count(); ++e) {
-      const auto incident = topology.edge_triangles(e);
-      if (incident.size() != 2) {
-        continue;  // boundary edges are never swapped; non-manifold edges are left alone
-      }
-      ++interior_edges;
-      if (is_changed[incident[0]] || is_changed[incident[1]]) {
+    for (int i = 0; i < count; ++i) {
+      if (!has_quad[static_cast<std::size_t>(i)]) {
         continue;
       }
-      const auto& edge = topology.edge(e);
-      Quad q;
-      if (!orient_quad(triangles, incident[0], incident[1], edge[0], edge[1], q)) {
-        continue;
+      const Quad& q = quads[static_cast<std::size_t>(i)];
+      if (is_changed[static_cast<std::size_t>(q.t1)] || is_changed[static_cast<std::size_t>(q.t2)]) {
+        continue;  // an edge of a changed triangle: the next sweep visits it
       }
       if (edges.count(edge_key(q.c, q.d)) != 0) {
         ++summary.rejected_existing_edge;
+        refused_existing.push_back(visit[static_cast<std::size_t>(i)]);
         continue;
       }
       // A split mesh polls where a swap is wanted, before its factorisations: the request is
@@ -601,10 +678,12 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
       }
       // The criterion first: most edges of a reasonable mesh do not want a swap, and for them
       // the projection and the five factorisations of the validity check would be wasted.
-      const Verdict verdict = judge_swap(
-          mesh, problem, q, options, workspace,
-          quad_lengths.empty() ? nullptr
-                               : quad_lengths.data() + kQuadSides * static_cast<std::size_t>(e));
+      const Verdict verdict =
+          judge_ahead ? static_cast<Verdict>(verdicts[static_cast<std::size_t>(i)])
+                      : judge_swap(mesh, problem, q, options, workspace,
+                                   quad_lengths.empty()
+                                       ? nullptr
+                                       : quad_lengths.data() + kQuadSides * static_cast<std::size_t>(i));
       if (verdict == Verdict::ProjectionFailed) {
         ++summary.rejected_projection_failed;
         continue;
@@ -627,17 +706,23 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
         ++summary.rejected_projection_failed;
         continue;
       }
-      triangles[q.t1] = {q.c, q.a, q.d};
-      triangles[q.t2] = {q.d, q.b, q.c};
-      // The mesh's triangles are read by the criteria (through the mesh points only), so they
-      // are written back at the end of the sweep.
+      // (a, b, c) becomes (c, a, d) and (b, a, d) becomes (d, b, c): b leaves t1 and d joins it,
+      // a leaves t2 and c joins it. The mesh's triangles are read by the criteria (through the
+      // mesh points only), so they are written back at the end.
+      triangles[static_cast<std::size_t>(q.t1)] = {q.c, q.a, q.d};
+      triangles[static_cast<std::size_t>(q.t2)] = {q.d, q.b, q.c};
+      patch_star(q.b, q.t1, -1);
+      patch_star(q.d, -1, q.t1);
+      patch_star(q.a, q.t2, -1);
+      patch_star(q.c, -1, q.t2);
       edges.erase(edge_key(q.a, q.b));
       edges.insert(edge_key(q.c, q.d));
-      is_changed[q.t1] = 1;
-      is_changed[q.t2] = 1;
+      is_changed[static_cast<std::size_t>(q.t1)] = 1;
+      is_changed[static_cast<std::size_t>(q.t2)] = 1;
+      changed.push_back(q.t1);
+      changed.push_back(q.t2);
       ++swaps_in_sweep;
     }
-    summary.interior_edges = interior_edges;
     summary.swaps += swaps_in_sweep;
     if (summary.interrupted) {
       break;
@@ -646,6 +731,17 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
       summary.converged = true;
       break;
     }
+    visit = std::move(refused_existing);
+    refused_existing = {};
+    for (const int t : changed) {
+      const Triangle& tri = triangles[static_cast<std::size_t>(t)];
+      for (int k = 0; k < 3; ++k) {
+        visit.push_back({std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])});
+      }
+      is_changed[static_cast<std::size_t>(t)] = 0;
+    }
+    std::sort(visit.begin(), visit.end());
+    visit.erase(std::unique(visit.begin(), visit.end()), visit.end());
   }
   mesh.set_triangles(std::move(triangles));
   const MeshQuality shape_after = measure_shape(mesh);
