@@ -89,7 +89,11 @@ int threads_for(const ImplicitProblem& problem) {
 }
 
 void parallel_for(int count, int threads, const std::function<void(int)>& body) {
-  threads = std::min(threads, (count + kBlock - 1) / kBlock);
+  // Indices are handed out kBlock at a time, fewer where the loop is short: a loop over a few
+  // blocks of heavy work (the validation's rounds of pair blocks: two on two threads) must not
+  // become one thread's.
+  threads = std::max(1, std::min(threads, count));
+  const int chunk = std::clamp(count / (4 * threads), 1, kBlock);
 #ifdef TESSERA_HAS_OPENMP
   if (threads > 1) {
     // The smallest index whose body threw, and its exception; the indices above it are skipped
@@ -97,7 +101,7 @@ void parallel_for(int count, int threads, const std::function<void(int)>& body) 
     std::atomic<int> failed_at{std::numeric_limits<int>::max()};
     std::exception_ptr failure;
     std::mutex failure_mutex;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, kBlock)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, chunk)
     for (int i = 0; i < count; ++i) {
       if (i > failed_at.load(std::memory_order_relaxed)) {
         continue;

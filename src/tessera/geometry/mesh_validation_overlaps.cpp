@@ -293,6 +293,29 @@ OverlapOnManifold overlap_on_manifold(const MeshView& view, const GeometricInput
   return found;
 }
 
+// `pairs` (s, t), s < count, each once, in the order of (s, t): by a counting sort on s and a sort
+// of each s's few partners on threads (std::sort of 10⁷ pairs was 0.4 s of one thread).
+void sort_by_first_triangle(std::vector<std::pair<int, int>>& pairs, int count) {
+  std::vector<std::size_t> start(static_cast<std::size_t>(count) + 1, 0);
+  for (const auto& pair : pairs) {
+    ++start[static_cast<std::size_t>(pair.first) + 1];
+  }
+  for (int s = 0; s < count; ++s) {
+    start[static_cast<std::size_t>(s) + 1] += start[static_cast<std::size_t>(s)];
+  }
+  std::vector<std::pair<int, int>> sorted(pairs.size());
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
+  for (const auto& pair : pairs) {
+    sorted[next[static_cast<std::size_t>(pair.first)]++] = pair;
+  }
+  pairs = std::vector<std::pair<int, int>>();  // its memory back before the partners' sorts
+  parallel_for(count, thread_count(), [&](int s) {
+    std::sort(sorted.begin() + static_cast<std::ptrdiff_t>(start[static_cast<std::size_t>(s)]),
+              sorted.begin() + static_cast<std::ptrdiff_t>(start[static_cast<std::size_t>(s) + 1]));
+  });
+  pairs = std::move(sorted);
+}
+
 }  // namespace
 
 // 2. Overlap. Two triangles that share no edge must not cover the same part of M. Candidates:
@@ -321,7 +344,7 @@ void check_overlaps(const MeshView& view, const GeometricInput& geometry,
   }
   std::vector<std::pair<int, int>> pairs =
       nearby_triangle_pairs(points, triangles, margins, split ? view.mesh.shared_space() : nullptr);
-  std::sort(pairs.begin(), pairs.end());
+  sort_by_first_triangle(pairs, count);
   // The planar test runs for every candidate pair (about ten per triangle), and at large n its
   // cost is the passes over n-vectors: the reference triangle's frame (origin, orthonormal U,
   // its own corners in U) is kept for the last two references (pairs come sorted by their first

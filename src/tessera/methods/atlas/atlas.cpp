@@ -136,7 +136,9 @@ void build_atlas(CoveringContext& context, const AtlasOptions& given, CoveringRe
   if (options.placement == AtlasPlacement::Hexagonal && result.mesh.triangle_count() > 0) {
     // One pass of smoothing: three cost 6 more evaluations of F per vertex for 1–2° more of
     // smallest angle (torus at 1e-3: 28.7° after one pass, 30.7° after three; V·H the same).
-    improve_mesh(result.mesh, context.problem, ImprovementOptions{}, kHexagonalSmoothingPasses);
+    ImprovementOptions improvement;
+    improvement.measure_shapes = false;  // the summary is not kept
+    improve_mesh(result.mesh, context.problem, improvement, kHexagonalSmoothingPasses);
   } else if (options.swap_edges && result.mesh.triangle_count() > 0) {
     ImprovementOptions swaps;
     improve_by_edge_swaps(result.mesh, context.problem, swaps);

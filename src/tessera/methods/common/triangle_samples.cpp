@@ -210,6 +210,9 @@ PassSamples TriangleSampler::sample(const std::vector<std::pair<int, int>>& pair
   // triangle).
   std::vector<Claims> claims(pairs.size());
   std::unordered_set<std::uint64_t> claimed;
+  // Reserved: growing these by rehashing was a third of the serial phases at 10⁶ vertices.
+  claimed.reserve(2 * pairs.size());
+  midpoint_distance_.reserve(midpoint_distance_.size() + 2 * pairs.size());
   for (int k = 0; k < count; ++k) {
     const Triangle& tri = mesh_.triangle(pairs[static_cast<std::size_t>(k)].second);
     Claims& claim = claims[static_cast<std::size_t>(k)];
@@ -294,7 +297,8 @@ PassSamples TriangleSampler::sample(const std::vector<std::pair<int, int>>& pair
   found.worst.resize(pairs.size());
   found.worst_edge.resize(pairs.size());
   found.worst_sample.resize(pairs.size());
-  for (int k = 0; k < count; ++k) {
+  // Each triangle judged on its own (the maps are only read now): on threads.
+  parallel_for(count, thread_count(), [&](int k) {
     const Triangle& tri = mesh_.triangle(pairs[static_cast<std::size_t>(k)].second);
     const Measured& m = measured[static_cast<std::size_t>(k)];
     // The worst sample, the first of equals in the order centroid, midpoints, circumcentre.
@@ -358,7 +362,7 @@ PassSamples TriangleSampler::sample(const std::vector<std::pair<int, int>>& pair
     found.worst[static_cast<std::size_t>(k)] = worst;
     found.worst_edge[static_cast<std::size_t>(k)] = worst_edge;
     found.worst_sample[static_cast<std::size_t>(k)] = worst_sample;
-  }
+  });
   return found;
 }
 

@@ -51,6 +51,10 @@ struct ImprovementOptions {
   /// swaps made so far (each checked) kept. Empty: never stopped. A covering passes its own
   /// (Ctrl-C): at large n a swap's checks cost factorisations.
   std::function<bool()> stop_requested;
+  /// Measure the mesh's shape before and after for the summary (min_angle_degrees_before …):
+  /// a pass over the triangles each. A caller that discards the summary (the atlas's own
+  /// improvement) leaves them out: at 10⁶ vertices six such passes were 0.4 s.
+  bool measure_shapes = true;
 
   /// \throw InvalidArgument naming the first option that is out of range.
   void validate() const;

@@ -10,6 +10,7 @@ MeshImprovement improve_mesh(TriangleMesh& mesh, const ImplicitProblem& problem,
   if (smoothing_passes > 0) {
     SmoothingOptions smoothing_options;
     smoothing_options.iterations = smoothing_passes;
+    smoothing_options.measure_shapes = options.measure_shapes;
     result.smoothing = smooth_tangentially(mesh, problem, smoothing_options);
     const ImprovementSummary again = improve_by_edge_swaps(mesh, problem, options);
     result.swaps.swaps += again.swaps;

@@ -61,7 +61,9 @@ SmoothingSummary smooth_tangentially(TriangleMesh& mesh, const ImplicitProblem& 
                                        << problem.ambient_dimension());
   options.validate();
   SmoothingSummary summary;
-  summary.min_angle_degrees_before = measure_shape(mesh).min_angle_degrees;
+  if (options.measure_shapes) {
+    summary.min_angle_degrees_before = measure_shape(mesh).min_angle_degrees;
+  }
   const MeshTopology topology(mesh);
   // Boundary vertices and vertices of non-manifold edges stay where they are.
   std::vector<std::uint8_t> is_fixed(mesh.vertex_count(), 0);
@@ -150,7 +152,9 @@ SmoothingSummary smooth_tangentially(TriangleMesh& mesh, const ImplicitProblem& 
       ++summary.moves;
     }
   }
-  summary.min_angle_degrees_after = measure_shape(mesh).min_angle_degrees;
+  if (options.measure_shapes) {
+    summary.min_angle_degrees_after = measure_shape(mesh).min_angle_degrees;
+  }
   return summary;
 }
 

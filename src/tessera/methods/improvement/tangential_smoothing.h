@@ -23,6 +23,9 @@ struct SmoothingOptions {
   /// Refuse a move that lowers the smallest angle of the vertex's star ("smart" Laplacian), so
   /// that the mesh's minimum angle never drops. false: plain Laplacian (folds are still refused).
   bool keep_min_angle = true;
+  /// Measure the smallest angle before and after for the summary (a pass over the triangles
+  /// each), as ImprovementOptions::measure_shapes.
+  bool measure_shapes = true;
 
   /// \throw InvalidArgument naming the first option that is out of range.
   void validate() const;
