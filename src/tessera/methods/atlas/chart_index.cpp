@@ -1,12 +1,62 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/methods/atlas/chart_index.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <utility>
 
 namespace tessera {
 
 ChartIndex::ChartIndex(std::shared_ptr<const AmbientSpace> space) : view_(std::move(space)) {}
+
+std::size_t ChartIndex::CellTable::slot_of(std::int64_t key) const {
+  // Fibonacci hashing: the key's high product bits, then linear probing.
+  const std::size_t mask = keys_.size() - 1;
+  std::size_t slot =
+      static_cast<std::size_t>((static_cast<std::uint64_t>(key) * 0x9E3779B97F4A7C15ull) >> shift_);
+  while (cell_at_[slot] >= 0 && keys_[slot] != key) {
+    slot = (slot + 1) & mask;
+  }
+  return slot;
+}
+
+const std::vector<ChartIndex::Entry>* ChartIndex::CellTable::find(std::int64_t key) const {
+  if (keys_.empty()) {
+    return nullptr;
+  }
+  const int cell = cell_at_[slot_of(key)];
+  return cell >= 0 ? &cells_[static_cast<std::size_t>(cell)] : nullptr;
+}
+
+std::vector<ChartIndex::Entry>& ChartIndex::CellTable::operator[](std::int64_t key) {
+  if (2 * (cells_.size() + 1) > keys_.size()) {
+    grow();  // at most half full
+  }
+  const std::size_t slot = slot_of(key);
+  if (cell_at_[slot] < 0) {
+    keys_[slot] = key;
+    cell_at_[slot] = static_cast<int>(cells_.size());
+    cells_.emplace_back();
+  }
+  return cells_[static_cast<std::size_t>(cell_at_[slot])];
+}
+
+void ChartIndex::CellTable::grow() {
+  const std::size_t size = std::max<std::size_t>(64, 2 * keys_.size());
+  const std::vector<std::int64_t> old_keys = std::move(keys_);
+  const std::vector<int> old_cells = std::move(cell_at_);
+  keys_.assign(size, 0);
+  cell_at_.assign(size, -1);
+  shift_ = 64 - std::countr_zero(size);
+  for (std::size_t slot = 0; slot < old_keys.size(); ++slot) {
+    if (old_cells[slot] >= 0) {
+      const std::size_t to = slot_of(old_keys[slot]);
+      keys_[to] = old_keys[slot];
+      cell_at_[to] = old_cells[slot];
+    }
+  }
+}
 
 std::int64_t ChartIndex::key(std::int64_t i, std::int64_t j, std::int64_t k) {
   // 21 bits per axis: far cells may collide, which costs a distance check, never a miss.
@@ -76,7 +126,7 @@ void ChartIndex::candidates(const Eigen::Ref<const Eigen::VectorXd>& center, dou
       box_cells *= static_cast<double>(high[a] - low[a] + 1);
     }
     if (box_cells > static_cast<double>(level.cells.size())) {
-      for (const auto& [cell, entries] : level.cells) {
+      for (const std::vector<Entry>& entries : level.cells.cells()) {
         consider(entries);
       }
       continue;
@@ -84,9 +134,8 @@ void ChartIndex::candidates(const Eigen::Ref<const Eigen::VectorXd>& center, dou
     for (std::int64_t i = low[0]; i <= high[0]; ++i) {
       for (std::int64_t j = low[1]; j <= high[1]; ++j) {
         for (std::int64_t k = low[2]; k <= high[2]; ++k) {
-          const auto it = level.cells.find(key(i, j, k));
-          if (it != level.cells.end()) {
-            consider(it->second);
+          if (const std::vector<Entry>* entries = level.cells.find(key(i, j, k))) {
+            consider(*entries);
           }
         }
       }
