@@ -72,6 +72,7 @@ class DenseBackend final : public LinearizationBackend {
       return factor_gradient(tangent, reciprocal_condition);
     }
     qr_.compute(jacobian_.transpose());
+    is_qr_computed_ = true;
     ++factorisations_;
     const auto& R = qr_.matrixR();
     double largest = 0.0;
@@ -105,8 +106,11 @@ class DenseBackend final : public LinearizationBackend {
   }
 
   std::size_t memory_bytes() const override {
-    return sizeof(double) * static_cast<std::size_t>(jacobian_.size() + qr_.matrixQR().size() +
-                                                     qr_.hCoeffs().size() + reflector_.size());
+    // (qr_ only where it was computed: Eigen asserts on an uncomputed one.)
+    const Eigen::Index qr_doubles =
+        is_qr_computed_ ? qr_.matrixQR().size() + qr_.hCoeffs().size() : 0;
+    return sizeof(double) *
+           static_cast<std::size_t>(jacobian_.size() + qr_doubles + reflector_.size());
   }
 
  private:
@@ -149,6 +153,7 @@ class DenseBackend final : public LinearizationBackend {
   Eigen::MatrixXd jacobian_;
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
   Eigen::VectorXd reflector_;  // v of the one-equation case
+  bool is_qr_computed_ = false;
   double tau_ = 0.0;
   double beta_ = 0.0;
 };
