@@ -64,6 +64,10 @@ std::vector<std::string> take_petsc_options(int& argc, char** argv) {
   return options;
 }
 
+#if defined(TESSERA_CLI_PETSC_PROGRAM)
+
+namespace {
+
 bool asks_for_petsc(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view argument = argv[i];
@@ -75,7 +79,7 @@ bool asks_for_petsc(int argc, char** argv) {
   return false;
 }
 
-#if defined(TESSERA_CLI_PETSC_PROGRAM)
+}  // namespace
 
 void become_petsc_program_if_asked(int argc, char** argv) {
   if (!asks_for_petsc(argc, argv)) {

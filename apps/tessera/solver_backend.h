@@ -28,9 +28,6 @@ namespace tessera::app {
 /// start with '-', or is a number). PETSc's options therefore go last on the command line.
 std::vector<std::string> take_petsc_options(int& argc, char** argv);
 
-/// Whether the command line asks for --backend petsc.
-bool asks_for_petsc(int argc, char** argv);
-
 /// `tessera` without PETSc: if the command line asks for --backend petsc, replaces this process
 /// by `tessera-petsc` from the same folder (execv, same arguments), which has the backend; the
 /// plain program does not load PETSc, MPI and their libraries (35 ms at every start). Returns

@@ -502,3 +502,56 @@ TEST(Linearization, AKeptFactorisationHoldsWhatItCounts) {
   EXPECT_LE(held, 1.1 * counted) << "kept " << held << " bytes, counted " << counted;
 #endif
 }
+
+// One equation (n = 3) has its own factorisation, a single Householder reflection (issue 35):
+// at every point the basis must be orthonormal and span ker DF, a solve the minimum-norm
+// solution (along ∇F), and a gradient along the first axis (the reflection's degenerate case,
+// either sign) and a vanishing one handled. memory_bytes must not read the unused general QR
+// (Eigen asserts on it in the sanitizer build; every n = 3 run aborted there once).
+TEST(Linearization, OneEquationGivesTheKernelAndMinimumNormSolves) {
+  class Plane final : public tessera::ImplicitProblem {
+   public:
+    explicit Plane(Eigen::Vector3d normal) : normal_(std::move(normal)) {}
+    int ambient_dimension() const override { return 3; }
+    void evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+                  Eigen::Ref<Eigen::VectorXd> F) const override {
+      F(0) = normal_.dot(x) - 1.0;
+    }
+    void jacobian(const Eigen::Ref<const Eigen::VectorXd>&,
+                  Eigen::Ref<Eigen::MatrixXd> J) const override {
+      J.row(0) = normal_.transpose();
+    }
+
+   private:
+    Eigen::Vector3d normal_;
+  };
+  const tessera::ProblemSetup torus = tessera::make_catalogue_problem("torus");
+  const Plane along_x(Eigen::Vector3d(2.0, 0.0, 0.0));
+  const Plane against_x(Eigen::Vector3d(-0.5, 0.0, 0.0));
+  const Plane flat(Eigen::Vector3d::Zero());
+  const auto check = [](const tessera::ImplicitProblem& problem, const Eigen::Vector3d& x) {
+    tessera::Linearization linearization;
+    ASSERT_TRUE(linearization.factor(problem, x));
+    Eigen::MatrixXd J(1, 3);
+    problem.jacobian(x, J);
+    const Eigen::MatrixXd& T = linearization.tangent_basis();
+    EXPECT_LE((T.transpose() * T - Eigen::Matrix2d::Identity()).norm(), 1e-14);
+    EXPECT_LE((J * T).norm(), 1e-14 * J.norm());
+    Eigen::VectorXd r(1);
+    r(0) = 0.3;
+    Eigen::VectorXd dx(3);
+    linearization.solve_minimum_norm(r, dx);
+    EXPECT_NEAR((J * dx)(0), 0.3, 1e-14);
+    EXPECT_LE((T.transpose() * dx).norm(), 1e-14);  // nothing along ker DF
+    EXPECT_GT(linearization.memory_bytes(), 0u);
+  };
+  for (int k = 0; k < 20; ++k) {
+    const Eigen::Vector3d x = torus.start + 0.3 * Eigen::Vector3d(std::sin(k), std::cos(3 * k),
+                                                                  std::sin(7 * k));
+    check(*torus.problem, x);
+  }
+  check(along_x, Eigen::Vector3d(0.5, 0.2, 0.1));
+  check(against_x, Eigen::Vector3d(-2.0, 0.2, 0.1));
+  tessera::Linearization singular;
+  EXPECT_FALSE(singular.factor(flat, Eigen::Vector3d(0.1, 0.2, 0.3)));
+}

@@ -384,21 +384,22 @@ bool Linearization::factor(const ImplicitProblem& problem,
   // Factorisations are the currency of continuation at large n: the run's counter sees them,
   // and their time, so that a run states its cost per vertex in factorisations' worth. Where
   // one takes under kTimedBelow (n = 3: less than reading the clock twice, which was 3 % of a
-  // torus's run) only every kTimingStride-th is timed, its time counted for all of them.
+  // torus's run) only every kTimingStride-th is timed, its time counted for all of them. Per
+  // thread, not per object: the loops that factor make a Linearization per point.
   const auto* counted = dynamic_cast<const CountedProblem*>(&problem);
   constexpr double kTimedBelow = 20e-6;
   constexpr int kTimingStride = 16;
   thread_local int untimed = 0;
   thread_local double last_seconds = 1.0;
   const bool timed = counted != nullptr && (last_seconds >= kTimedBelow || untimed == 0);
-  const auto started = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point started = timed ? Clock::now() : Clock::time_point();
   const bool is_factored =
       backend_->factor(problem, x, reference_tangent, tangent_, reciprocal_condition_);
   if (counted != nullptr) {
     double seconds = 0.0;
     if (timed) {
-      last_seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      last_seconds = std::chrono::duration<double>(Clock::now() - started).count();
       seconds = last_seconds < kTimedBelow ? kTimingStride * last_seconds : last_seconds;
       untimed = kTimingStride - 1;
     } else {

@@ -539,15 +539,20 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
     return found != patched_stars.end() ? std::span<const int>(found->second)
                                         : topology.vertex_triangles(v);
   };
-  // Whether u and w are joined by an edge: a triangle of u's has w.
-  const auto is_edge = [&](int u, int w) {
+  // The triangles on the edge u–w (the first two in `incident`, which may be null) and how
+  // many there are: those of u's that have w. 0: u and w are not joined.
+  const auto triangles_on_edge = [&](int u, int w, std::array<int, 2>* incident) {
+    int found = 0;
     for (const int t : star_of(u)) {
       const Triangle& tri = triangles[static_cast<std::size_t>(t)];
       if (tri[0] == w || tri[1] == w || tri[2] == w) {
-        return true;
+        if (incident != nullptr && found < 2) {
+          (*incident)[static_cast<std::size_t>(found)] = t;
+        }
+        ++found;
       }
     }
-    return false;
+    return found;
   };
   const auto patch_star = [&](int v, int removed, int added) {
     auto found = patched_stars.find(v);
@@ -609,15 +614,7 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
           incident = {on_edge[0], on_edge[1]};
         }
       } else {
-        for (const int t : star_of(u)) {
-          const Triangle& tri = triangles[static_cast<std::size_t>(t)];
-          if (tri[0] == w || tri[1] == w || tri[2] == w) {
-            if (found < 2) {
-              incident[static_cast<std::size_t>(found)] = t;
-            }
-            ++found;
-          }
-        }
+        found = triangles_on_edge(u, w, &incident);
       }
       if (found != 2) {
         continue;  // boundary edges are never swapped; non-manifold edges are left alone
@@ -670,7 +667,7 @@ ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProbl
       if (is_changed[static_cast<std::size_t>(q.t1)] || is_changed[static_cast<std::size_t>(q.t2)]) {
         continue;  // an edge of a changed triangle: the next sweep visits it
       }
-      if (is_edge(q.c, q.d)) {
+      if (triangles_on_edge(q.c, q.d, nullptr) > 0) {
         ++summary.rejected_existing_edge;
         refused_existing.push_back(visit[static_cast<std::size_t>(i)]);
         continue;
