@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "tessera/methods/improvement/edge_swap.h"
 
+#include "tessera/methods/improvement/detail/swap_quad.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
@@ -8,7 +10,6 @@
 #include <memory>
 #include <cstdint>
 #include <numbers>
-#include <span>
 #include <sstream>
 #include <unordered_map>
 #include <vector>
@@ -17,11 +18,17 @@
 #include "tessera/core/corrector.h"
 #include "tessera/core/error.h"
 #include "tessera/core/linearization.h"
-#include "tessera/core/parallel_for.h"
 #include "tessera/geometry/mesh_quality.h"
 #include "tessera/geometry/mesh_topology.h"
 
 namespace tessera {
+
+using detail::check_dimensions;
+using detail::check_quad_geometry;
+using detail::CornerTangents;
+using detail::orient_quad;
+using detail::Quad;
+
 namespace {
 
 constexpr double kRadiansToDegrees = 180.0 / std::numbers::pi;
@@ -32,17 +39,10 @@ std::int64_t edge_key(int u, int v) {
   return (low << 32) | high;
 }
 
-// The edge {a, b} with its two triangles: t1 = (a, b, c) traverses it a -> b, t2 = (b, a, d).
-struct Quad {
-  int t1 = -1;
-  int t2 = -1;
-  int a = -1;
-  int b = -1;
-  int c = -1;
-  int d = -1;
-};
+}  // namespace
 
-// Fills a, b, c, d from the two triangles of an edge {u, v}; false if they traverse it alike.
+namespace detail {
+
 bool orient_quad(const std::vector<Triangle>& triangles, int t1, int t2, int u, int v, Quad& q) {
   const Triangle& first = triangles[t1];
   const Triangle& second = triangles[t2];
@@ -65,6 +65,10 @@ bool orient_quad(const std::vector<Triangle>& triangles, int t1, int t2, int u, 
   }
   return false;
 }
+
+}  // namespace detail
+
+namespace {
 
 // Signed area of the triangle (p, q, r) of points in R².
 double signed_area(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
@@ -122,76 +126,53 @@ bool project_edge_midpoint(const TriangleMesh& mesh, const ImplicitProblem& prob
   return project_gauss_newton(problem, x, corrector, linearization).is_success();
 }
 
-// Tangent bases at the mesh's vertices (whose points a swap never moves), kept for the
-// vertices seen last: neighbouring quadrilaterals share corners, so most corners are factored
-// once per run instead of once per check. Bounded, so that a sweep over a mesh of large n holds
-// O(1) n-vectors.
-class CornerTangents {
- public:
-  explicit CornerTangents(const ImplicitProblem& problem)
-      : problem_(problem), space_(problem.space()) {}
+}  // namespace
 
-  /// The factorisation at vertex v, made now unless v was the last one factored.
-  const Linearization* factorisation(const TriangleMesh& mesh, int v) {
-    if (factored_vertex_ != v) {
-      factored_vertex_ = v;
-      is_factored_ = linearization_.factor(problem_, mesh.point(v));
-      if (is_factored_) {
-        remember(v, linearization_.tangent_basis());
-      }
+namespace detail {
+
+const Linearization* CornerTangents::factorisation(const TriangleMesh& mesh, int v) {
+  if (factored_vertex_ != v) {
+    factored_vertex_ = v;
+    is_factored_ = linearization_.factor(problem_, mesh.point(v));
+    if (is_factored_) {
+      remember(v, linearization_.tangent_basis());
     }
-    return is_factored_ ? &linearization_ : nullptr;
   }
+  return is_factored_ ? &linearization_ : nullptr;
+}
 
-  /// T at vertex v (n×2, orthonormal), oriented like `reference`; false where DF is rank
-  /// deficient.
-  bool tangent(const TriangleMesh& mesh, int v, const Eigen::MatrixXd& reference,
-               Eigen::MatrixXd& T) {
-    const auto found = tangents_.find(v);
-    if (found != tangents_.end()) {
-      T = found->second;
-    } else if (problem_.has_sparse_jacobian() && is_factored_ &&
-               tangent_basis_near(problem_, linearization_, mesh.point(v), T)) {
-      // The corners of a quadrilateral are a neighbour's neighbours: the chord from the last
-      // factorisation (one DF, a few solves) gives v's tangent plane without a factorisation
-      // of its own (at n = 10⁵, a third of a second each, three per swap checked).
-      remember(v, T);
-    } else if (const Linearization* at_v = factorisation(mesh, v)) {
-      T = at_v->tangent_basis();
-    } else {
-      return false;
-    }
-    if (space_->is_distributed()) {
-      align_tangent_basis(T, reference, *space_);  // Tᵀ·reference summed over the ranks
-    } else {
-      align_tangent_basis(T, reference);
-    }
-    return true;
+bool CornerTangents::tangent(const TriangleMesh& mesh, int v, const Eigen::MatrixXd& reference,
+                             Eigen::MatrixXd& T) {
+  const auto found = tangents_.find(v);
+  if (found != tangents_.end()) {
+    T = found->second;
+  } else if (problem_.has_sparse_jacobian() && is_factored_ &&
+             tangent_basis_near(problem_, linearization_, mesh.point(v), T)) {
+    // The corners of a quadrilateral are a neighbour's neighbours: the chord from the last
+    // factorisation (one DF, a few solves) gives v's tangent plane without a factorisation
+    // of its own (at n = 10⁵, a third of a second each, three per swap checked).
+    remember(v, T);
+  } else if (const Linearization* at_v = factorisation(mesh, v)) {
+    T = at_v->tangent_basis();
+  } else {
+    return false;
   }
-
- private:
-  // At most 256 bases and 32 MB of them (at n = 10⁵ a basis is 1.6 MB).
-  static constexpr std::size_t kCapacity = 256;
-  static constexpr std::size_t kCapacityBytes = std::size_t{32} << 20;
-  void remember(int v, const Eigen::MatrixXd& T) {
-    const std::size_t bytes = static_cast<std::size_t>(T.size()) * sizeof(double);
-    if (tangents_.size() >= kCapacity || (tangents_.size() + 1) * bytes > kCapacityBytes) {
-      tangents_.clear();  // simplest bound; the next checks refill what they need
-    }
-    tangents_[v] = T;
+  if (space_->is_distributed()) {
+    align_tangent_basis(T, reference, *space_);  // Tᵀ·reference summed over the ranks
+  } else {
+    align_tangent_basis(T, reference);
   }
+  return true;
+}
 
-  const ImplicitProblem& problem_;
-  const std::shared_ptr<const AmbientSpace> space_;
-  Linearization linearization_;
-  int factored_vertex_ = -1;
-  bool is_factored_ = false;
-  std::unordered_map<int, Eigen::MatrixXd> tangents_;
-};
+void CornerTangents::remember(int v, const Eigen::MatrixXd& T) {
+  const std::size_t bytes = static_cast<std::size_t>(T.size()) * sizeof(double);
+  if (tangents_.size() >= kCapacity || (tangents_.size() + 1) * bytes > kCapacityBytes) {
+    tangents_.clear();  // simplest bound; the next checks refill what they need
+  }
+  tangents_[v] = T;
+}
 
-// Projects the midpoint of a and b onto M (the chord frozen at a, Gauss–Newton where it does
-// not contract) and checks that the quadrilateral a, d, b, c is strictly convex, with the old
-// triangles' orientation, in the tangent planes at its four corners.
 SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& problem,
                               const Quad& q, const ImprovementOptions& options,
                               Linearization& workspace, CornerTangents& corners_tangents) {
@@ -238,6 +219,10 @@ SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& p
   }
   return SwapCheck::Allowed;
 }
+
+}  // namespace detail
+
+namespace {
 
 // n×2 orthonormal basis of the oriented 2-plane of triangle (p, q, r) (Gram–Schmidt).
 Eigen::MatrixXd plane_basis(const TriangleMesh& mesh, int p, int q, int r) {
@@ -303,23 +288,10 @@ double plane_angle_from_gram(const Eigen::Matrix3d& G, const Quad& q, const Tria
   return std::acos(std::clamp(smallest, 0.0, 1.0));
 }
 
-// What the criterion says of replacing triangles (a, b, c), (b, a, d) by (c, a, d), (d, b, c).
-enum class Verdict {
-  Improves,  ///< by more than the relative tolerance
-  DoesNotImprove,
-  ProjectionFailed,  ///< MidpointDistance: the old edge's midpoint could not be projected
-};
+}  // namespace
 
-// The quad's five sides and two diagonals in R^n: ab, bc, ca, ad, db, cd.
-constexpr int kQuadSides = 6;
-std::array<std::pair<int, int>, 6> quad_sides(const Quad& q) {
-  return {{{q.a, q.b}, {q.b, q.c}, {q.c, q.a}, {q.a, q.d}, {q.d, q.b}, {q.c, q.d}}};
-}
+namespace detail {
 
-// Evaluates the criterion alone (no validity check): the angle and normal criteria cost a few
-// dot products, far less than the five factorisations of the convexity check. `measured`: the
-// quad's kQuadSides lengths if the caller has them (a split mesh measures a sweep's quads at
-// once).
 Verdict judge_swap(const TriangleMesh& mesh, const ImplicitProblem& problem, const Quad& q,
                    const ImprovementOptions& options, Linearization& workspace,
                    const double* measured) {
@@ -385,6 +357,10 @@ Verdict judge_swap(const TriangleMesh& mesh, const ImplicitProblem& problem, con
   return Verdict::DoesNotImprove;
 }
 
+}  // namespace detail
+
+namespace {
+
 // Finds the two triangles of edge {u, v} by a linear scan (for the single-edge entry points).
 SwapCheck find_quad(const std::vector<Triangle>& triangles, int u, int v, Quad& q) {
   std::vector<int> found;
@@ -418,6 +394,10 @@ SwapCheck find_quad(const std::vector<Triangle>& triangles, int u, int v, Quad& 
   return SwapCheck::Allowed;
 }
 
+}  // namespace
+
+namespace detail {
+
 void check_dimensions(const TriangleMesh& mesh, const ImplicitProblem& problem) {
   if (problem.space()->is_distributed()) {
     check_mesh_of_problem(mesh, problem, "edge swaps");  // a split mesh of the problem's rows
@@ -429,7 +409,7 @@ void check_dimensions(const TriangleMesh& mesh, const ImplicitProblem& problem) 
                                        << problem.ambient_dimension());
 }
 
-}  // namespace
+}  // namespace detail
 
 const char* to_string(ImprovementCriterion criterion) {
   switch (criterion) {
@@ -515,242 +495,6 @@ SwapCheck swap_edge(TriangleMesh& mesh, const ImplicitProblem& problem, int a, i
     mesh.set_triangles(std::move(triangles));
   }
   return check;
-}
-
-ImprovementSummary improve_by_edge_swaps(TriangleMesh& mesh, const ImplicitProblem& problem,
-                                         const ImprovementOptions& options) {
-  check_dimensions(mesh, problem);
-  options.validate();
-  ImprovementSummary summary;
-  if (options.measure_shapes) {
-    const MeshQuality shape_before = measure_shape(mesh);
-    summary.min_angle_degrees_before = shape_before.min_angle_degrees;
-    summary.fraction_angles_below_30_before = shape_before.fraction_angles_below_30;
-  }
-
-  std::vector<Triangle> triangles = mesh.triangles();
-  // The first sweep's topology. Later sweeps visit only the edges a swap may have changed, so
-  // instead of rebuilding it (at 10⁶ vertices two full sweeps of nearly no swaps were a fifth of
-  // a torus's run) the vertices' triangles are patched where swaps changed them.
-  const MeshTopology topology(mesh.vertex_count(), triangles);
-  std::unordered_map<int, std::vector<int>> patched_stars;
-  const auto star_of = [&](int v) -> std::span<const int> {
-    const auto found = patched_stars.find(v);
-    return found != patched_stars.end() ? std::span<const int>(found->second)
-                                        : topology.vertex_triangles(v);
-  };
-  // The triangles on the edge u–w (the first two in `incident`, which may be null) and how
-  // many there are: those of u's that have w. 0: u and w are not joined.
-  const auto triangles_on_edge = [&](int u, int w, std::array<int, 2>* incident) {
-    int found = 0;
-    for (const int t : star_of(u)) {
-      const Triangle& tri = triangles[static_cast<std::size_t>(t)];
-      if (tri[0] == w || tri[1] == w || tri[2] == w) {
-        if (incident != nullptr && found < 2) {
-          (*incident)[static_cast<std::size_t>(found)] = t;
-        }
-        ++found;
-      }
-    }
-    return found;
-  };
-  const auto patch_star = [&](int v, int removed, int added) {
-    auto found = patched_stars.find(v);
-    if (found == patched_stars.end()) {
-      const auto initial = topology.vertex_triangles(v);
-      found = patched_stars.emplace(v, std::vector<int>(initial.begin(), initial.end())).first;
-    }
-    std::vector<int>& star = found->second;
-    if (removed >= 0) {
-      std::erase(star, removed);
-    }
-    if (added >= 0) {
-      star.push_back(added);
-    }
-  };
-  CornerTangents corner_tangents(problem);
-  Linearization workspace;
-  std::vector<std::uint8_t> is_changed(triangles.size(), 0);
-  // A split mesh (SPMD): every rank its rows of the points; what a swap is judged by is summed
-  // over the ranks, so that all make the same swaps.
-  const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
-  const AmbientSpace& space = *shared_space;
-  const bool split = space.is_distributed();
-  // The edges of a sweep, as vertex pairs: the first sweep every edge, each later one the edges
-  // of the triangles the sweep before changed and those refused because their other diagonal
-  // was an edge (a swap may have removed it), in order. Any other edge keeps its quad and its
-  // verdict, so it would not be swapped.
-  std::vector<std::array<int, 2>> visit;
-  visit.reserve(static_cast<std::size_t>(topology.edge_count()));
-  for (const auto& edge : topology.edges()) {
-    visit.push_back({edge[0], edge[1]});
-  }
-  std::vector<Quad> quads;
-  std::vector<std::uint8_t> has_quad;
-  std::vector<std::array<int, 2>> refused_existing;
-  std::vector<int> changed;
-  // kQuadSides lengths per visited edge (split meshes, MaxMinAngle).
-  std::vector<double> quad_lengths;
-  // Verdicts made before the sweep (on threads): the quads do not move while it runs, and an
-  // edge whose triangles a swap changed is skipped, so each is the verdict it would get in turn.
-  std::vector<std::int8_t> verdicts;
-  const bool judge_ahead = !split && (options.criterion == ImprovementCriterion::MaxMinAngle ||
-                                      options.criterion == ImprovementCriterion::NormalAngle);
-  while (summary.sweeps < options.max_sweeps) {
-    ++summary.sweeps;
-    const bool first_sweep = summary.sweeps == 1;
-    const int count = static_cast<int>(visit.size());
-    quads.assign(visit.size(), Quad{});
-    has_quad.assign(visit.size(), 0);
-    int interior_edges = 0;
-    for (int i = 0; i < count; ++i) {
-      const auto [u, w] = visit[static_cast<std::size_t>(i)];
-      std::array<int, 2> incident{-1, -1};
-      int found = 0;
-      if (first_sweep) {
-        const auto on_edge = topology.edge_triangles(i);
-        found = static_cast<int>(on_edge.size());
-        if (found == 2) {
-          incident = {on_edge[0], on_edge[1]};
-        }
-      } else {
-        found = triangles_on_edge(u, w, &incident);
-      }
-      if (found != 2) {
-        continue;  // boundary edges are never swapped; non-manifold edges are left alone
-      }
-      ++interior_edges;
-      has_quad[static_cast<std::size_t>(i)] =
-          orient_quad(triangles, incident[0], incident[1], u, w, quads[static_cast<std::size_t>(i)])
-              ? 1
-              : 0;
-    }
-    if (first_sweep) {
-      summary.interior_edges = interior_edges;
-    }
-    if (split && options.criterion == ImprovementCriterion::MaxMinAngle) {
-      // Swaps move no point: every quad's lengths are measured at once (one reduction).
-      quad_lengths.assign(kQuadSides * visit.size(), 0.0);
-      for (int i = 0; i < count; ++i) {
-        if (has_quad[static_cast<std::size_t>(i)]) {
-          const auto pairs = quad_sides(quads[static_cast<std::size_t>(i)]);
-          for (std::size_t k = 0; k < pairs.size(); ++k) {
-            quad_lengths[kQuadSides * static_cast<std::size_t>(i) + k] =
-                (mesh.point(pairs[k].first) - mesh.point(pairs[k].second)).squaredNorm();
-          }
-        }
-      }
-      if (!quad_lengths.empty()) {
-        space.sum(quad_lengths.data(), static_cast<int>(quad_lengths.size()));
-      }
-      for (double& length : quad_lengths) {
-        length = std::sqrt(length);
-      }
-    }
-    if (judge_ahead) {
-      verdicts.assign(visit.size(), static_cast<std::int8_t>(Verdict::DoesNotImprove));
-      parallel_for(count, thread_count(), [&](int i) {
-        if (has_quad[static_cast<std::size_t>(i)]) {
-          verdicts[static_cast<std::size_t>(i)] = static_cast<std::int8_t>(judge_swap(
-              mesh, problem, quads[static_cast<std::size_t>(i)], options, workspace, nullptr));
-        }
-      });
-    }
-    refused_existing.clear();
-    changed.clear();
-    int swaps_in_sweep = 0;
-    for (int i = 0; i < count; ++i) {
-      if (!has_quad[static_cast<std::size_t>(i)]) {
-        continue;
-      }
-      const Quad& q = quads[static_cast<std::size_t>(i)];
-      if (is_changed[static_cast<std::size_t>(q.t1)] || is_changed[static_cast<std::size_t>(q.t2)]) {
-        continue;  // an edge of a changed triangle: the next sweep visits it
-      }
-      if (triangles_on_edge(q.c, q.d, nullptr) > 0) {
-        ++summary.rejected_existing_edge;
-        refused_existing.push_back(visit[static_cast<std::size_t>(i)]);
-        continue;
-      }
-      // A split mesh polls where a swap is wanted, before its factorisations: the request is
-      // one rank's, so the ranks agree on it by a reduction, which per edge would cost more
-      // than the criterion measured for the whole sweep at once.
-      if (!split && options.stop_requested && options.stop_requested()) {
-        summary.interrupted = true;
-        break;
-      }
-      // The criterion first: most edges of a reasonable mesh do not want a swap, and for them
-      // the projection and the five factorisations of the validity check would be wasted.
-      const Verdict verdict =
-          judge_ahead ? static_cast<Verdict>(verdicts[static_cast<std::size_t>(i)])
-                      : judge_swap(mesh, problem, q, options, workspace,
-                                   quad_lengths.empty()
-                                       ? nullptr
-                                       : quad_lengths.data() + kQuadSides * static_cast<std::size_t>(i));
-      if (verdict == Verdict::ProjectionFailed) {
-        ++summary.rejected_projection_failed;
-        continue;
-      }
-      if (verdict == Verdict::DoesNotImprove) {
-        continue;
-      }
-      if (split && options.stop_requested &&
-          space.maximum(options.stop_requested() ? 1.0 : 0.0) > 0.0) {
-        summary.interrupted = true;
-        break;
-      }
-      const SwapCheck check =
-          check_quad_geometry(mesh, problem, q, options, workspace, corner_tangents);
-      if (check == SwapCheck::NonConvex) {
-        ++summary.rejected_non_convex;
-        continue;
-      }
-      if (check != SwapCheck::Allowed) {
-        ++summary.rejected_projection_failed;
-        continue;
-      }
-      // (a, b, c) becomes (c, a, d) and (b, a, d) becomes (d, b, c): b leaves t1 and d joins it,
-      // a leaves t2 and c joins it. The mesh's triangles are read by the criteria (through the
-      // mesh points only), so they are written back at the end.
-      triangles[static_cast<std::size_t>(q.t1)] = {q.c, q.a, q.d};
-      triangles[static_cast<std::size_t>(q.t2)] = {q.d, q.b, q.c};
-      patch_star(q.b, q.t1, -1);
-      patch_star(q.d, -1, q.t1);
-      patch_star(q.a, q.t2, -1);
-      patch_star(q.c, -1, q.t2);
-      is_changed[static_cast<std::size_t>(q.t1)] = 1;
-      is_changed[static_cast<std::size_t>(q.t2)] = 1;
-      changed.push_back(q.t1);
-      changed.push_back(q.t2);
-      ++swaps_in_sweep;
-    }
-    summary.swaps += swaps_in_sweep;
-    if (summary.interrupted) {
-      break;
-    }
-    if (swaps_in_sweep == 0) {
-      summary.converged = true;
-      break;
-    }
-    visit = std::move(refused_existing);
-    refused_existing = {};
-    for (const int t : changed) {
-      const Triangle& tri = triangles[static_cast<std::size_t>(t)];
-      for (int k = 0; k < 3; ++k) {
-        visit.push_back({std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])});
-      }
-      is_changed[static_cast<std::size_t>(t)] = 0;
-    }
-    std::sort(visit.begin(), visit.end());
-    visit.erase(std::unique(visit.begin(), visit.end()), visit.end());
-  }
-  mesh.set_triangles(std::move(triangles));
-  if (options.measure_shapes) {
-    const MeshQuality shape_after = measure_shape(mesh);
-    summary.min_angle_degrees_after = shape_after.min_angle_degrees;
-    summary.fraction_angles_below_30_after = shape_after.fraction_angles_below_30;
-  }
-  return summary;
 }
 
 }  // namespace tessera
