@@ -259,6 +259,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
       const double worst = pass.worst[k];
       if (worst <= threshold) {
         summary.max_distance = std::max(summary.max_distance, worst);
+        summary.max_distance_within = std::max(summary.max_distance_within, worst);
         continue;
       }
       is_far[t] = 1;
@@ -481,8 +482,12 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
           summary.worst_point = sampler.sample_point(pairs[k].second, pass.worst_sample[k], gram);
         }
         ++summary.remaining;
+        summary.far_triangles.push_back(pairs[k].second);
+      } else {
+        summary.max_distance_within = std::max(summary.max_distance_within, worst);
       }
     }
+    std::sort(summary.far_triangles.begin(), summary.far_triangles.end());
   }
   return summary;
 }

@@ -37,12 +37,17 @@ struct ToleranceRefinement {
   int rounds = 0;
   int split_edges = 0;
   int remaining = 0;  ///< triangles still above the threshold after max_rounds
+  /// Their indices in the mesh returned, ascending (remaining of them).
+  std::vector<int> far_triangles;
   /// stop_requested said so: the triangles not yet checked were left as they were, and
   /// remaining and max_distance speak only of those checked.
   bool interrupted = false;
   /// The largest sampled distance to M over the triangles checked last (all candidates and
   /// their offspring); +infinity if a sample could not be projected.
   double max_distance = 0.0;
+  /// The same over the triangles checked that are within the threshold: the bound of the mesh
+  /// once far_triangles are removed.
+  double max_distance_within = 0.0;
   /// The sample where the distance is largest among the triangles still above the threshold
   /// (empty if remaining == 0), for messages.
   Eigen::VectorXd worst_point;
