@@ -555,3 +555,80 @@ TEST(Linearization, OneEquationGivesTheKernelAndMinimumNormSolves) {
   tessera::Linearization singular;
   EXPECT_FALSE(singular.factor(flat, Eigen::Vector3d(0.1, 0.2, 0.3)));
 }
+
+// Issue 30: a linearisation that borrows another point's factorisation. On bratu2d (sparse, a
+// 2-D grid) at a point y a step from the factored x0:
+//  - tangent_basis_near with an angle tolerance gives ker DF(y) (‖DF(y)·T‖ at rounding, judged
+//    against the exact basis from a factorisation at y);
+//  - the borrowed solves solve the bordered system [DF(x0); Tᵀ] dx = [r; 0];
+//  - the chord from it ends on M at y's own pointOnDisk point (Tᵀ(x − predicted) = 0), where
+//    a factorisation at y puts it, with no factorisation made;
+//  - the factors are shared, not copied, and factoring the borrower again leaves the lender's
+//    solves as they were.
+TEST(Linearization, BorrowedFactorisationSolvesTheBorderedSystemOfItsOwnTangent) {
+  const tessera::ProblemSetup bratu = tessera::make_catalogue_problem("bratu2d:N=8");
+  const tessera::CountedProblem problem(*bratu.problem);
+  const int n = problem.ambient_dimension();
+  tessera::Linearization at_x0;
+  ASSERT_TRUE(at_x0.factor(problem, bratu.start));
+  // y: a step along M from x0.
+  Eigen::VectorXd y = bratu.start + 0.5 * bratu.suggested_step * at_x0.tangent_basis().col(0);
+  ASSERT_TRUE(tessera::project_chord(problem, at_x0, y, {}).is_success());
+  tessera::Linearization at_y;
+  ASSERT_TRUE(at_y.factor(problem, y, &at_x0.tangent_basis()));
+  Eigen::MatrixXd T;
+  ASSERT_TRUE(tessera::tangent_basis_near(problem, at_x0, y, T, 0.0, 8, 1e-10));
+  // The same plane as the factorisation's at y: the projection onto it moves T by rounding.
+  const Eigen::MatrixXd& exact = at_y.tangent_basis();
+  EXPECT_LT((T - exact * (exact.transpose() * T)).norm(), 1e-9);
+  EXPECT_GT((exact.transpose() * T).determinant(), 0.0);  // oriented like x0's basis
+
+  const long factorisations = problem.counts().factorisations;
+  tessera::Linearization borrowed;
+  ASSERT_TRUE(borrowed.borrow(problem, at_x0, y, T));
+  EXPECT_TRUE(borrowed.is_borrowed());
+  EXPECT_EQ(borrowed.factorisation_identity(), at_x0.factorisation_identity());
+  EXPECT_EQ(borrowed.factored_point(), bratu.start);
+  EXPECT_EQ(borrowed.point(), y);
+  // [DF(x0); Tᵀ] dx = [r; 0].
+  Eigen::MatrixXd J0(n - 2, n);
+  problem.jacobian(bratu.start, J0);
+  const Eigen::VectorXd r = Eigen::VectorXd::LinSpaced(n - 2, -1.0, 1.0);
+  Eigen::VectorXd dx(n);
+  borrowed.solve_minimum_norm(r, dx);
+  EXPECT_LT((J0 * dx - r).norm(), 1e-10 * r.norm() * J0.norm());
+  EXPECT_LT((T.transpose() * dx).norm(), 1e-12 * dx.norm());
+  Eigen::MatrixXd columns(n, 2);
+  borrowed.solve_minimum_norm_columns(Eigen::MatrixXd(r.replicate(1, 2)), columns);
+  EXPECT_LT((columns.col(0) - dx).norm(), 1e-12 * dx.norm());
+
+  // pointOnDisk of y's chart, from its borrowed solves and from its own factorisation.
+  const Eigen::VectorXd predicted = y + 0.3 * bratu.suggested_step * T.col(1);
+  Eigen::VectorXd by_borrowed = predicted;
+  Eigen::VectorXd by_own = predicted;
+  const auto chord = tessera::project_chord(problem, borrowed, by_borrowed, {});
+  ASSERT_TRUE(chord.is_success()) << chord.brief_report();
+  ASSERT_TRUE(tessera::project_chord(problem, at_y, by_own, {}).is_success());
+  EXPECT_LT((T.transpose() * (by_borrowed - predicted)).norm(), 1e-12);
+  EXPECT_LT((by_borrowed - by_own).norm(), 1e-8);
+  EXPECT_EQ(problem.counts().factorisations, factorisations);  // none was made
+
+  // Shared, not copied: a copy borrows the same factors; factoring the borrower anew makes
+  // its own and leaves the lender's solves unchanged.
+  const tessera::Linearization copy = borrowed;
+  EXPECT_EQ(copy.factorisation_identity(), at_x0.factorisation_identity());
+  Eigen::VectorXd before(n);
+  at_x0.solve_minimum_norm(r, before);
+  ASSERT_TRUE(borrowed.factor(problem, by_own, &T));
+  EXPECT_FALSE(borrowed.is_borrowed());
+  EXPECT_NE(borrowed.factorisation_identity(), at_x0.factorisation_identity());
+  Eigen::VectorXd after(n);
+  at_x0.solve_minimum_norm(r, after);
+  EXPECT_EQ(before, after);
+  // Too oblique a tangent is refused.
+  Eigen::MatrixXd oblique = T;
+  oblique.col(1) = J0.row(0).transpose().normalized();
+  tessera::Linearization refused;
+  EXPECT_FALSE(refused.borrow(problem, at_x0, y, oblique));
+  EXPECT_FALSE(refused.is_factored());
+}

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "tessera/core/ambient_space.h"
 #include "tessera/core/bordered_jacobian.h"
@@ -284,6 +285,9 @@ class SparseBackend final : public LinearizationBackend {
     if (status != SparseLuStatus::Success) {
       return false;
     }
+    if (const std::optional<long> nonzeros = lu_->factor_nonzeros(); nonzeros) {
+      fill_ = static_cast<double>(*nonzeros) / static_cast<double>(bordered_.nonZeros());
+    }
     tangent = Eigen::MatrixXd::Zero(n, 2);
     tangent(n - 2, 0) = 1.0;
     tangent(n - 1, 1) = 1.0;
@@ -306,6 +310,10 @@ class SparseBackend final : public LinearizationBackend {
   std::unique_ptr<SparseLu> lu_;
   Eigen::MatrixXd last_tangent_;  // guides the border of the next factorisation
   bool assembly_released_ = false;  // jacobian_ and bordered_ freed after factoring
+  double fill_ = 0.0;               // nnz(L + U) / nnz(A) of the last factorisation
+
+ public:
+  double fill_ratio() const override { return fill_; }
 };
 
 }  // namespace
@@ -315,11 +323,18 @@ Linearization::~Linearization() = default;
 Linearization::Linearization(Linearization&&) noexcept = default;
 Linearization& Linearization::operator=(Linearization&&) noexcept = default;
 Linearization::Linearization(const Linearization& other)
-    : backend_(other.backend_ ? other.backend_->clone() : nullptr),
+    : backend_(other.is_borrowed() ? other.backend_
+               : other.backend_    ? std::shared_ptr<LinearizationBackend>(other.backend_->clone())
+                                   : nullptr),
       point_(other.point_),
       tangent_(other.tangent_),
+      solver_tangent_(other.solver_tangent_),
+      solver_point_(other.solver_point_),
+      oblique_(other.oblique_),
+      space_(other.space_),
       reciprocal_condition_(other.reciprocal_condition_),
-      factored_(other.factored_ && other.backend_ && other.backend_->clones_factorisation()) {}
+      factored_(other.factored_ && other.backend_ &&
+                (other.is_borrowed() || other.backend_->clones_factorisation())) {}
 Linearization& Linearization::operator=(const Linearization& other) {
   if (this != &other) {
     Linearization copy(other);
@@ -327,6 +342,8 @@ Linearization& Linearization::operator=(const Linearization& other) {
   }
   return *this;
 }
+
+double Linearization::fill_ratio() const { return backend_ ? backend_->fill_ratio() : 0.0; }
 
 std::size_t Linearization::memory_bytes() const {
   return (backend_ ? backend_->memory_bytes() : 0) +
@@ -340,6 +357,12 @@ void Linearization::release_assembly() {
 }
 
 void Linearization::make_backend(const ImplicitProblem& problem) {
+  if (backend_ && (is_borrowed() || backend_.use_count() > 1)) {
+    backend_.reset();  // others solve with it: a new factorisation goes into a new backend
+  }
+  solver_tangent_.resize(0, 0);
+  solver_point_.resize(0);
+  space_.reset();
   if (!backend_) {
     backend_ = problem.make_linearization_backend();
   }
@@ -418,9 +441,46 @@ bool Linearization::factor(const ImplicitProblem& problem,
   return true;
 }
 
+bool Linearization::borrow(const ImplicitProblem& problem, const Linearization& near,
+                           const Eigen::Ref<const Eigen::VectorXd>& y,
+                           const Eigen::MatrixXd& tangent, double min_cosine) {
+  if (!near.is_factored()) {
+    return false;
+  }
+  std::shared_ptr<const AmbientSpace> space = problem.space();
+  const Eigen::MatrixXd& solver_tangent =
+      near.is_borrowed() ? near.solver_tangent_ : near.tangent_;
+  const Eigen::Matrix2d cosines = space->products(tangent, solver_tangent);
+  if (!(std::abs(cosines.determinant()) >= min_cosine)) {
+    return false;
+  }
+  backend_ = near.backend_;
+  solver_tangent_ = solver_tangent;
+  solver_point_ = near.factored_point();
+  oblique_ = cosines.inverse();
+  space_ = std::move(space);
+  point_ = y;
+  tangent_ = tangent;
+  reciprocal_condition_ = near.reciprocal_condition_;
+  factored_ = true;
+  return true;
+}
+
+// dx ← dx − T_s (Tᵀ T_s)⁻¹ Tᵀ dx, column by column: J_s·dx is unchanged (T_s spans ker J_s) and
+// Tᵀ dx becomes zero.
+void Linearization::make_orthogonal_to_tangent(Eigen::Ref<Eigen::MatrixXd> dx) const {
+  const Eigen::MatrixXd along = space_->products(tangent_, dx);  // 2 × k
+  dx.noalias() -= solver_tangent_ * (oblique_ * along);
+}
+
 void Linearization::solve_minimum_norm(const Eigen::Ref<const Eigen::VectorXd>& rhs,
                                        Eigen::Ref<Eigen::VectorXd> dx) const {
   TESSERA_ASSERT(factored_);
+  if (is_borrowed()) {
+    backend_->solve(rhs, solver_tangent_, dx);
+    make_orthogonal_to_tangent(dx);
+    return;
+  }
   backend_->solve(rhs, tangent_, dx);
 }
 
@@ -428,10 +488,29 @@ void Linearization::solve_minimum_norm_columns(const Eigen::Ref<const Eigen::Mat
                                                Eigen::Ref<Eigen::MatrixXd> dx) const {
   TESSERA_ASSERT(factored_);
   TESSERA_ASSERT(rhs.cols() == dx.cols());
+  if (is_borrowed()) {
+    backend_->solve_columns(rhs, solver_tangent_, dx);
+    make_orthogonal_to_tangent(dx);
+    return;
+  }
   backend_->solve_columns(rhs, tangent_, dx);
 }
 
 namespace {
+
+// The tangent iteration's stop by its steps (tangent_basis_near's angle_tolerance): a linear
+// iteration contracting by θ (the largest ratio of successive corrections) is within
+// θ/(1 − θ)·‖correction‖ of its limit after a correction. The first correction gives no θ.
+bool converged_by_steps(double size, double& previous, double& contraction,
+                        double angle_tolerance) {
+  const bool has_ratio = previous > 0;
+  if (has_ratio) {
+    contraction = std::max(contraction, size / previous);
+  }
+  previous = size;
+  return size == 0.0 || (has_ratio && contraction < 1.0 &&
+                         contraction / (1.0 - contraction) * size <= angle_tolerance);
+}
 
 // tangent_basis_near on the local rows of a distributed problem: the same iteration, with DF(y)·T
 // from the problem's JacobianProduct and every norm and inner product reduced over the ranks
@@ -439,7 +518,8 @@ namespace {
 bool tangent_basis_near_distributed(const ImplicitProblem& problem, const AmbientSpace& space,
                                     const Linearization& near,
                                     const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::MatrixXd& T,
-                                    double tolerance, int max_iterations) {
+                                    double tolerance, int max_iterations,
+                                    double angle_tolerance) {
   const JacobianProduct* product = problem.as_jacobian_product();
   if (product == nullptr) {
     return false;  // J(y)·T is not available: the caller factors at y instead
@@ -453,6 +533,8 @@ bool tangent_basis_near_distributed(const ImplicitProblem& problem, const Ambien
   }
   T = near.tangent_basis();
   Eigen::MatrixXd correction(T.rows(), 2);
+  double previous = -1.0;
+  double contraction = 0.0;
   for (int iteration = 0; iteration <= max_iterations; ++iteration) {
     product->multiply_jacobian(T, JT);
     if (space.frobenius_norm(JT) <= tolerance * jacobian_norm) {
@@ -463,6 +545,15 @@ bool tangent_basis_near_distributed(const ImplicitProblem& problem, const Ambien
     }
     near.solve_minimum_norm_columns(JT, correction);
     T -= correction;
+    if (angle_tolerance > 0) {
+      const double size = space.frobenius_norm(correction);
+      if (converged_by_steps(size, previous, contraction, angle_tolerance)) {
+        T.col(0) /= space.norm(T.col(0));
+        T.col(1) -= space.dot(T.col(0), T.col(1)) * T.col(0);
+        T.col(1) /= space.norm(T.col(1));
+        return space.all_finite(T);
+      }
+    }
     // Orthonormalise (modified Gram–Schmidt): ker J(y) is spanned either way.
     T.col(0) /= space.norm(T.col(0));
     T.col(1) -= space.dot(T.col(0), T.col(1)) * T.col(0);
@@ -478,10 +569,11 @@ bool tangent_basis_near_distributed(const ImplicitProblem& problem, const Ambien
 
 bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& near,
                         const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::MatrixXd& T,
-                        double tolerance, int max_iterations) {
+                        double tolerance, int max_iterations, double angle_tolerance) {
   TESSERA_ASSERT(near.is_factored());
   if (const std::shared_ptr<const AmbientSpace> space = problem.space(); space->is_distributed()) {
-    return tangent_basis_near_distributed(problem, *space, near, y, T, tolerance, max_iterations);
+    return tangent_basis_near_distributed(problem, *space, near, y, T, tolerance, max_iterations,
+                                          angle_tolerance);
   }
   const int n = problem.ambient_dimension();
   const int m = n - 2;
@@ -506,6 +598,8 @@ bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& nea
   };
   T = near.tangent_basis();
   Eigen::MatrixXd correction(n, 2);
+  double previous = -1.0;
+  double contraction = 0.0;
   for (int iteration = 0; iteration <= max_iterations; ++iteration) {
     const Eigen::MatrixXd JT = residual(T);
     if (JT.norm() <= tolerance * jacobian_norm) {
@@ -516,6 +610,13 @@ bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& nea
     }
     near.solve_minimum_norm_columns(JT, correction);
     T -= correction;
+    if (angle_tolerance > 0 &&
+        converged_by_steps(correction.norm(), previous, contraction, angle_tolerance)) {
+      T.col(0).normalize();
+      T.col(1) -= T.col(0).dot(T.col(1)) * T.col(0);
+      T.col(1).normalize();
+      return T.allFinite();
+    }
     // Orthonormalise (modified Gram–Schmidt): ker J(y) is spanned either way.
     T.col(0).normalize();
     T.col(1) -= T.col(0).dot(T.col(1)) * T.col(0);

@@ -39,6 +39,29 @@ class Linearization {
   bool factor(const ImplicitProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& x,
               const Eigen::MatrixXd* reference_tangent = nullptr);
 
+  /// A linearisation at y from another point's factorisation (issue 30): the solves of `near`'s
+  /// factorisation, shared, not copied, with the exact tangent basis `tangent` of M at y (from
+  /// tangent_basis_near). solve_minimum_norm then returns J_s⁺r plus the vector of ker J_s that
+  /// makes it orthogonal to `tangent`: the solution of the bordered system [J_s; tangentᵀ]
+  /// dx = [r; 0], a rank-two change of near's border (Sherman–Morrison–Woodbury with two inner
+  /// products). A chord iteration with it converges to y's own pointOnDisk point (F = 0,
+  /// tangentᵀ(x − x₀) = 0), only at a rate set by the distance to near's point instead of zero.
+  /// No factorisation is made.
+  /// \return false (nothing changed) if near is not factored or `tangent` is too oblique to
+  ///         near's solver basis (|det(tangentᵀ T_s)| < min_cosine).
+  bool borrow(const ImplicitProblem& problem, const Linearization& near,
+              const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::MatrixXd& tangent,
+              double min_cosine = 0.5);
+  /// Whether the solves come from another point's factorisation (borrow).
+  bool is_borrowed() const { return solver_tangent_.size() > 0; }
+  /// The factorisation the solves use, to tell shared ones apart (null if none): equal for a
+  /// factorisation and every linearisation that borrowed it.
+  const void* factorisation_identity() const { return backend_.get(); }
+  /// The point whose DF was factored (point() unless borrowed).
+  const Eigen::VectorXd& factored_point() const {
+    return is_borrowed() ? solver_point_ : point_;
+  }
+
   bool is_factored() const { return factored_; }
   /// The point x the factorisation belongs to (n-vector).
   const Eigen::VectorXd& point() const { return point_; }
@@ -55,7 +78,8 @@ class Linearization {
   void solve_minimum_norm_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs,
                                   Eigen::Ref<Eigen::MatrixXd> dx) const;
   /// Heap bytes this factorisation holds (factors, Jacobian, point, basis), approximately: what
-  /// a covering weighs when it decides how many factorisations to keep.
+  /// a covering weighs when it decides how many factorisations to keep. A borrowed one counts
+  /// the shared factors too (factorisation_identity tells where they are counted twice).
   std::size_t memory_bytes() const;
   /// Frees what only factoring needed (for sparse problems DF and the bordered matrix, about
   /// half of the bytes at large n); solves and the tangent basis are unchanged. A copy made
@@ -67,14 +91,26 @@ class Linearization {
   /// (set_border_guide(problem, guide): the backend `factor` would make, with that guide).
   Eigen::MatrixXd border_guide() const;
   void set_border_guide(const ImplicitProblem& problem, const Eigen::MatrixXd& guide);
+  /// nnz(L + U) / nnz(A) of the sparse factorisation (0 where unknown: dense, or a backend
+  /// that does not say). See LinearizationBackend::fill_ratio.
+  double fill_ratio() const;
   /// Estimate of the reciprocal condition number of J (smallest/largest |R_ii|), in (0, 1].
   double reciprocal_condition() const { return reciprocal_condition_; }
 
  private:
   void make_backend(const ImplicitProblem& problem);
-  std::unique_ptr<LinearizationBackend> backend_;
+  // Shared between a factorisation and the linearisations that borrowed it (never changed while
+  // shared: factor() makes a new one then); a copy of an unshared one clones it.
+  std::shared_ptr<LinearizationBackend> backend_;
   Eigen::VectorXd point_;
   Eigen::MatrixXd tangent_;
+  // Borrowed only (empty otherwise): the solver's basis and point, (tangentᵀ T_s)⁻¹, and the
+  // space its inner products reduce over.
+  Eigen::MatrixXd solver_tangent_;
+  Eigen::VectorXd solver_point_;
+  Eigen::Matrix2d oblique_ = Eigen::Matrix2d::Zero();
+  std::shared_ptr<const AmbientSpace> space_;
+  void make_orthogonal_to_tangent(Eigen::Ref<Eigen::MatrixXd> dx) const;
   double reciprocal_condition_ = 0.0;
   bool factored_ = false;
 };
@@ -85,11 +121,16 @@ class Linearization {
 /// evaluation of DF(y) and two solves per step; at large n a fraction of a factorisation.
 /// \param T  n×2, on success orthonormal with columns spanning ker DF(y) (to `tolerance`
 ///        relative to ‖DF(y)‖), oriented like near's basis.
+/// \param angle_tolerance  where > 0, the iteration also stops once its corrections bound the
+///        distance of T from its limit (in radians, from the contraction seen) by this: a test
+///        that does not depend on the scale of DF, which the residual's does (bvp at n = 10⁴:
+///        ‖DF‖ ≈ 10¹⁰, so a residual of 10⁻¹⁰‖DF‖ left T a thousandth of a radian off).
 /// \return false if DF(y) is not finite or the iteration does not reach the tolerance within
 ///         `max_iterations` steps (y too far from near's point); then factor at y instead.
 bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& near,
                         const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::MatrixXd& T,
-                        double tolerance = 1e-9, int max_iterations = 4);
+                        double tolerance = 1e-9, int max_iterations = 4,
+                        double angle_tolerance = 0.0);
 
 /// Minimum-norm solution of J·dx = rhs for a dense J (m×n, m ≤ n) by column-pivoted QR of Jᵀ.
 /// \return false (dx untouched) if J has rank < m.

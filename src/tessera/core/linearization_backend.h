@@ -47,6 +47,10 @@ class LinearizationBackend {
   /// keeps it, so that a new object borders as the old one would have.
   virtual Eigen::MatrixXd border_guide() const { return {}; }
   virtual void set_border_guide(const Eigen::MatrixXd& /*guide*/) {}
+  /// nnz(L + U) / nnz(A) of the last sparse factorisation, where the backend knows it (0
+  /// otherwise): how many solves' worth a factorisation costs grows with it, and it depends on
+  /// the pattern only, so decisions made from it are deterministic.
+  virtual double fill_ratio() const { return 0.0; }
   /// Heap bytes held (the factors, the Jacobian), approximately, on this rank.
   virtual std::size_t memory_bytes() const = 0;
   /// Drops what only factoring needed (the Jacobian, the assembled matrix): solves still work,

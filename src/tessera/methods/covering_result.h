@@ -131,6 +131,9 @@ struct CoveringSummary {
   int singular_crossings = 0;  ///< continuation steps that crossed a singular curve of M
   int sheet_rejections = 0;    ///< overlapping charts kept apart because they lie on other sheets
   int filled_holes = 0;        ///< places where the charts' polygons disagreed, closed afterwards
+  /// Charts that solved with their parent's factorisation instead of factoring their own
+  /// (AtlasOptions::share_factorisations).
+  int borrowed_factorisations = 0;
   /// The largest memory the atlas's open boundary held at once: the factorisations kept for
   /// queued charts and the tangent bases of charts not yet retired (bytes; the vertices' own
   /// coordinates are not counted). What issue 9's memory bound calls "what the active boundary

@@ -259,6 +259,7 @@ std::string to_json(const MeshReport& report) {
                            {"singular_crossings", r.singular_crossings},
                            {"sheet_rejections", r.sheet_rejections},
                            {"filled_holes", r.filled_holes},
+                           {"borrowed_factorisations", r.borrowed_factorisations},
                            {"boundary_peak_bytes", r.boundary_peak_bytes},
                            {"radius_caps",
                             {{"total", r.radius_caps.total()},

@@ -80,6 +80,14 @@ struct AtlasOptions : CoveringOptions {
   /// --tolerance` sets it to the tolerance of the atlas it continues, whose charts it keeps.
   /// \pre 0 or ≥ tolerance (charts sized finer than the tolerance asks are wasted).
   double chart_tolerance = 0.0;
+  /// A chart whose parent's factorisation reaches it solves with that factorisation instead of
+  /// factoring DF at its own centre (Linearization::borrow): its tangent plane is still the
+  /// exact ker DF there (tangent_basis_near), its projections still end on M with the exact F;
+  /// only their chord contracts a little slower. Where the tangent iteration from the parent's
+  /// factorisation does not converge within a few steps, the chart factors its own. Sparse
+  /// problems only (where a factorisation costs many solves), and not with checkpoints (whose
+  /// resumed builds re-make each kept factorisation at its chart). Issue 30.
+  bool share_factorisations = true;
   /// Checkpoints of the build and continuing from one (off by default).
   AtlasCheckpointing checkpoint;
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tessera/core/binary_stream.h"
+#include "tessera/core/bordered_jacobian.h"
 #include "tessera/core/corrector.h"
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
@@ -32,6 +33,18 @@ constexpr int kMaxChildrenPerChart = 64;
 // Below this dimension the orientation det([J; Tᵀ]) is cheap enough to watch for singular
 // crossings at every step (dense problems only; see docs/algorithms/atlas.md).
 constexpr int kMaxCrossingTestDimension = 200;
+// A chart borrows its parent's factorisation where the tangent iteration from it is within
+// kBorrowAngle (radians) of ker DF(x) within kBorrowIterations steps. (Judged by its steps, not
+// by ‖DF(x)·T‖ relative to ‖DF‖: on bvp at n = 10⁴, ‖DF‖ ≈ 10¹⁰, a residual of 10⁻¹⁰‖DF‖ left
+// T 10⁻³ off, which the radius probes read as curvature 2·10⁻³/r, and the radii collapsed.) An
+// angle δ moves a probe at radius r by δr; 10⁻⁹ is far below the probes' accuracy, 10⁻³ ε.
+constexpr double kBorrowAngle = 1e-9;
+constexpr int kBorrowIterations = 8;
+// Sharing only where the LU fills in (nnz(L + U) > 2·nnz(A): 2-D grids; bratu2d 2.3 at N = 10, 3.7
+// at 32, 5.8 at 100): a banded 1-D factorisation (fill 1.2) costs about a dozen solves, and there
+// sharing halved the factorisations but cost more time than it saved (bvp:points=10000: 1.58 →
+// 0.71 per vertex, 24.8 → 31.3 s: the tangent iterations and longer chords).
+constexpr double kShareAboveFill = 2.0;
 // A chart whose own disk boundary cannot be reached by pointOnDisk is shrunk by this factor.
 constexpr double kShrinkFactor = 0.7;
 // A child centre farther than this many radii from its parent's centre, in the parent's tangent
@@ -57,6 +70,8 @@ AtlasBuilder::AtlasBuilder(const ImplicitProblem& problem, const Domain& domain,
       watch_crossings_(!problem.has_sparse_jacobian() &&
                        problem.ambient_dimension() <= kMaxCrossingTestDimension),
       first_step_probes_(problem.has_sparse_jacobian()),
+      share_factorisations_(options.share_factorisations && problem.has_sparse_jacobian() &&
+                            !options.checkpoint.save && !options.checkpoint.resume_from),
       centers_(rows_),
       frame_view_(space_) {}
 
@@ -99,12 +114,31 @@ signed char AtlasBuilder::orientation_sign(const Eigen::Ref<const Eigen::MatrixX
   return det > 0 ? 1 : (det < 0 ? -1 : 0);
 }
 
-int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization) {
+int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization,
+                            const Linearization* near) {
   Eigen::MatrixXd& parent_tangent = parent_tangent_;
   if (parent >= 0) {
     parent_tangent = tangent(parent);
   }
-  if (!linearization.factor(problem_, x, parent >= 0 ? &parent_tangent : nullptr)) {
+  // The parent's factorisation (its own, or the one it borrowed) serves this chart too where
+  // the tangent iteration from it converges (kBorrowAngle within kBorrowIterations steps: a
+  // contraction of about 0.1 or less, so that the chord projections from it stay short);
+  // otherwise the chart factors its own.
+  bool borrowed = false;
+  if (share_factorisations_ && near != nullptr && near->is_factored()) {
+    Eigen::MatrixXd& T = borrowed_tangent_;
+    // The basis the chart's own factorisation would give (the coordinate border guided by the
+    // parent's basis), not the iteration's, which drifts from chart to chart: the polygons start
+    // as squares in these coordinates and the children go to their corners, so a drifting
+    // basis packed the charts less regularly (2–5 % more vertices on bratu2d:N=8 and 12).
+    borrowed = tangent_basis_near(problem_, *near, x, T, 0.0, kBorrowIterations, kBorrowAngle) &&
+               coordinate_tangent_basis(T, &parent_tangent);
+    if (borrowed) {
+      align_tangent_basis(T, parent_tangent, *space_);
+      borrowed = linearization.borrow(problem_, *near, x, T);
+    }
+  }
+  if (!borrowed && !linearization.factor(problem_, x, parent >= 0 ? &parent_tangent : nullptr)) {
     return -1;  // DF lost rank: a singular point; the caller moves the centre
   }
   if (parent >= 0 &&
@@ -144,8 +178,10 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
   }
   double radius = 0.0;
   RadiusCap cap = RadiusCap::None;
-  if (!choose_radius(linearization, trial, parent >= 0 ? charts_[parent].radius : 0.0, radius,
-                     cap)) {
+  const double expected = parent >= 0 ? charts_[parent].radius : 0.0;
+  // (A borrowed factorisation that cannot measure the disk gives way to the chart's own.)
+  if (!choose_radius(linearization, trial, expected, radius, cap) &&
+      !(factor_own(linearization) && choose_radius(linearization, trial, expected, radius, cap))) {
     return -2;
   }
   if (band_capped && cap == RadiusCap::Grading) {
@@ -182,6 +218,10 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
     return -2;
   }
   ++capped_[static_cast<int>(cap)];
+  borrowed_charts_ += linearization.is_borrowed() &&
+                              linearization.factored_point() != linearization.point()
+                          ? 1
+                          : 0;
   const int k = chart_count();
   Chart chart;
   chart.radius = radius;
@@ -431,15 +471,43 @@ void AtlasBuilder::retire_finished_charts(int c) {
 void AtlasBuilder::keep_factorisation(int c, Linearization&& linearization,
                                       const Eigen::MatrixXd& reference) {
   linearization.release_assembly();  // it waits for its solves: DF and the bordered matrix go
-  const std::size_t bytes = linearization.memory_bytes();
+  // A factorisation already kept for another chart costs this one its point and basis only.
+  // (Without sharing every entry holds its own, counted whole in the entry, as a checkpoint
+  // stores it.)
+  const void* identity = linearization.factorisation_identity();
+  const auto shared =
+      share_factorisations_ ? shared_factors_.find(identity) : shared_factors_.end();
+  const std::size_t own_bytes =
+      sizeof(double) * static_cast<std::size_t>(3 * rows_);  // point and basis
+  const std::size_t bytes =
+      shared != shared_factors_.end() ? own_bytes : linearization.memory_bytes();
   if (!factored_.empty() &&
       static_cast<double>(kept_bytes_ + bytes) > options_.max_factorisation_bytes) {
     ++refactored_charts_;
     return;  // refactored when the chart's turn comes
   }
   kept_bytes_ += bytes;
-  factored_.emplace(c, KeptFactorisation{std::move(linearization), bytes, reference});
+  if (!share_factorisations_) {
+    factored_.emplace(c, KeptFactorisation{std::move(linearization), bytes, reference});
+  } else if (shared != shared_factors_.end()) {
+    ++shared->second.holders;
+    factored_.emplace(c, KeptFactorisation{std::move(linearization), own_bytes, reference});
+  } else {
+    shared_factors_.emplace(identity, SharedFactors{1, bytes - own_bytes});
+    factored_.emplace(c, KeptFactorisation{std::move(linearization), own_bytes, reference});
+  }
   note_boundary_bytes();
+}
+
+// Drops a kept entry from the count: its own bytes, and the shared factors' with their last
+// holder.
+void AtlasBuilder::forget_kept(std::unordered_map<int, KeptFactorisation>::iterator found) {
+  kept_bytes_ -= found->second.bytes;
+  const auto shared = shared_factors_.find(found->second.linearization.factorisation_identity());
+  if (shared != shared_factors_.end() && --shared->second.holders == 0) {
+    kept_bytes_ -= shared->second.bytes;
+    shared_factors_.erase(shared);
+  }
 }
 
 void AtlasBuilder::enqueue(int c) {
@@ -453,9 +521,9 @@ void AtlasBuilder::enqueue(int c) {
 void AtlasBuilder::take_center_factorisation(int c, Linearization& at_center) {
   auto found = factored_.find(c);
   if (found != factored_.end()) {
+    forget_kept(found);
     at_center = std::move(found->second.linearization);
     center_reference_ = std::move(found->second.reference);
-    kept_bytes_ -= found->second.bytes;
     factored_.erase(found);
   } else {
     center_reference_ = tangent(c);
@@ -498,6 +566,10 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
                                   std::to_string(min_radius_)));
       return;
     }
+    // Sharing pays where a factorisation costs many solves: the fill of its LU says so, from the
+    // pattern alone (so the choice, and the mesh, are the same run to run).
+    share_factorisations_ =
+        share_factorisations_ && linearization.fill_ratio() > kShareAboveFill;
     enqueue(first);
     keep_factorisation(first, std::move(linearization), Eigen::MatrixXd());
   }
@@ -519,7 +591,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
         // its corners away. Nothing to place, so no factorisation (re-queued charts have none
         // kept: 15 % of the charts on bratu2d were factored again here only to find nothing).
         if (auto found = factored_.find(c); found != factored_.end()) {
-          kept_bytes_ -= found->second.bytes;
+          forget_kept(found);
           if (found->second.linearization.is_factored()) {
             give_back(std::move(found->second.linearization));
           }
@@ -673,7 +745,7 @@ void AtlasBuilder::place_children(int c, Linearization& at_center, CoveringSumma
       if (!target_repeated) {
         snap_to_domain_boundary(y, charts_[c].radius, at_center);
       }
-      child = add_chart(y, c, at_child);
+      child = add_chart(y, c, at_child, &at_center);
       if (child >= 0) {
         break;
       }

@@ -114,15 +114,20 @@ class AtlasBuilder {
 
  private:
   // `expected`: the radius the chart will likely get (its parent's), 0 if unknown.
-  bool choose_radius(const Linearization& at_center, double trial, double expected,
+  bool choose_radius(Linearization& at_center, double trial, double expected,
                      double& radius, RadiusCap& cap);
-  bool project(const Linearization& at_center, double distance, Eigen::VectorXd& y);
-  bool probe(const Linearization& at_center, double distance, Eigen::VectorXd& y,
+  bool project(Linearization& at_center, double distance, Eigen::VectorXd& y);
+  // A borrowed linearisation whose chord failed gets its own factorisation at its point (its
+  // tangent basis kept, so that the chart's frame does not move). \return false if it has one.
+  bool factor_own(Linearization& at_center);
+  bool probe(Linearization& at_center, double distance, Eigen::VectorXd& y,
              double known_contraction = -1.0, double offset = -1.0,
              double* contraction = nullptr);
   void evaluate_jacobian(const Eigen::VectorXd& x);
   double jacobian_scale() const;
-  int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization);
+  // `near`: the parent's linearisation, whose factorisation the chart may borrow (may be null).
+  int add_chart(const Eigen::VectorXd& x, int parent, Linearization& linearization,
+                const Linearization* near = nullptr);
   void connect_neighbours(int k);
   void rebuild_polygon(int k);
   void shrink_radius(int c, double radius);
@@ -181,6 +186,10 @@ class AtlasBuilder {
   const bool watch_crossings_;
   // Radius probes by the chord's first step only (sparse problems, where solves are the cost).
   const bool first_step_probes_;
+  // Charts borrow their parent's factorisation where it reaches (AtlasOptions::
+  // share_factorisations, sparse problems, no checkpoints); how many did.
+  bool share_factorisations_;
+  int borrowed_charts_ = 0;
   PointStorage centers_;  // n per chart
   // n×2 per chart while it may still be cut; empty once retired (memory that grows like n per
   // vertex, not 3n). Mutable: a retired chart's basis is restored on demand (a cache).
@@ -205,6 +214,14 @@ class AtlasBuilder {
   };
   std::unordered_map<int, KeptFactorisation> factored_;
   std::size_t kept_bytes_ = 0;
+  // Kept entries per shared factorisation (Linearization::factorisation_identity) and the bytes
+  // of its factors, counted once in kept_bytes_ however many charts borrowed it.
+  struct SharedFactors {
+    int holders = 0;
+    std::size_t bytes = 0;
+  };
+  std::unordered_map<const void*, SharedFactors> shared_factors_;
+  void forget_kept(std::unordered_map<int, KeptFactorisation>::iterator found);
   // Tangent bases held (charts not retired) and the boundary's largest bytes so far.
   mutable int held_tangents_ = 0;  // restore_tangent (const) brings one back
   double boundary_peak_bytes_ = 0.0;
@@ -219,7 +236,8 @@ class AtlasBuilder {
   // A few factorisations of processed charts, reused (fewer allocations at small n).
   std::vector<Linearization> spare_;
   void give_back(Linearization&& linearization) {
-    if (spare_.size() < kMaxSpares) {
+    // (Not a borrowed one: a spare would keep another chart's factors alive, uncounted.)
+    if (spare_.size() < kMaxSpares && !linearization.is_borrowed()) {
       spare_.push_back(std::move(linearization));
     }
   }
@@ -247,6 +265,7 @@ class AtlasBuilder {
   Eigen::MatrixXd probe_residuals_; // scratch: (n−2)×6, −F at the first-step probes
   Eigen::MatrixXd probe_steps_;     // scratch: n×6, their chord steps
   Eigen::MatrixXd parent_tangent_;  // scratch
+  Eigen::MatrixXd borrowed_tangent_;  // scratch
   Linearization scratch_;           // workspace of full Gauss–Newton
   bool stopped_ = false;
   int singular_crossings_ = 0;

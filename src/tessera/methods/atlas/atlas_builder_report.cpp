@@ -22,6 +22,7 @@ void AtlasBuilder::report(CoveringSummary& summary) {
   }
   summary.note_resident_memory(boundary_bytes());
   summary.boundary_peak_bytes = boundary_peak_bytes_;
+  summary.borrowed_factorisations = borrowed_charts_;
   summary.singular_crossings = singular_crossings_;
   summary.sheet_rejections = sheet_rejections_;
   CoveringSummary::RadiusCaps& caps = summary.radius_caps;

@@ -50,7 +50,7 @@ constexpr double kExpectedSlack = 1.4;
 // The radius is also capped where M is not a graph of slope ≤ 1 over the disk of radius r, or
 // the corrector does not converge that far (r is halved): the disk then reaches past a
 // turn of M or onto another part of it, so its tangent-plane projection is not one-to-one.
-bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, double expected,
+bool AtlasBuilder::choose_radius(Linearization& at_center, double trial, double expected,
                                  double& radius, RadiusCap& cap) {
   const Eigen::VectorXd& x = at_center.point();
   const Eigen::MatrixXd& T = at_center.tangent_basis();
@@ -227,7 +227,7 @@ bool AtlasBuilder::choose_radius(const Linearization& at_center, double trial, d
 // ratio of successive steps seen, at least `known_contraction` where that is ≥ 0 (then the first
 // step may suffice). `contraction` (may be null) receives the θ used, −1 where the chord was not
 // used. Where the chord does not contract, project() decides, as for any other point.
-bool AtlasBuilder::probe(const Linearization& at_center, double distance, Eigen::VectorXd& y,
+bool AtlasBuilder::probe(Linearization& at_center, double distance, Eigen::VectorXd& y,
                          double known_contraction, double offset, double* contraction) {
   double accuracy = kProbeAccuracy * options_.tolerance;
   if (offset >= 0.0) {
@@ -290,10 +290,18 @@ bool AtlasBuilder::probe(const Linearization& at_center, double distance, Eigen:
 // M) and Gauss–Newton found the nearest point of M instead, which is not pointOnDisk's point:
 // a radius measured there is meaningless and a chart centred there would not cut away the
 // corner it was placed for.
-bool AtlasBuilder::project(const Linearization& at_center, double distance, Eigen::VectorXd& y) {
+bool AtlasBuilder::project(Linearization& at_center, double distance, Eigen::VectorXd& y) {
   const Eigen::VectorXd predicted = y;
   if (project_chord(problem_, at_center, y, options_.corrector).is_success()) {
     return true;
+  }
+  // A chord from a borrowed factorisation contracts more slowly: before Gauss–Newton (a
+  // factorisation per step) the chart factors its own, once, and the chord is tried again.
+  if (factor_own(at_center)) {
+    y = predicted;
+    if (project_chord(problem_, at_center, y, options_.corrector).is_success()) {
+      return true;
+    }
   }
 
   y = predicted;
@@ -309,6 +317,15 @@ bool AtlasBuilder::project(const Linearization& at_center, double distance, Eige
   const Eigen::Vector2d drift =
       space_->tangent_coordinates(at_center.tangent_basis(), y - predicted);
   return drift.norm() <= kMaxTangentialDrift * distance;
+}
+
+bool AtlasBuilder::factor_own(Linearization& at_center) {
+  if (!at_center.is_borrowed() || at_center.factored_point() == at_center.point()) {
+    return false;
+  }
+  Linearization own;
+  return own.factor(problem_, at_center.point(), &at_center.tangent_basis()) &&
+         at_center.borrow(problem_, own, at_center.point(), at_center.tangent_basis());
 }
 
 }  // namespace tessera::detail

@@ -62,6 +62,7 @@ void add_work(CoveringSummary& total, const CoveringSummary& part, bool is_first
   total.singular_crossings += part.singular_crossings;
   total.sheet_rejections += part.sheet_rejections;
   total.filled_holes += part.filled_holes;
+  total.borrowed_factorisations += part.borrowed_factorisations;
   total.boundary_peak_bytes = std::max(total.boundary_peak_bytes, part.boundary_peak_bytes);
   total.resident_peak_bytes = std::max(total.resident_peak_bytes, part.resident_peak_bytes);
   total.resident_beyond_boundary_peak_bytes =
