@@ -441,6 +441,39 @@ bool Linearization::factor(const ImplicitProblem& problem,
   return true;
 }
 
+namespace {
+// borrow_factorisation: the tangent iteration's angle and steps, and the fill above which
+// factorisations are shared (worth_sharing).
+constexpr double kBorrowAngle = 1e-9;
+constexpr int kBorrowIterations = 8;
+constexpr double kShareAboveFill = 2.0;
+}  // namespace
+
+bool worth_sharing(const Linearization& factored) {
+  return factored.is_factored() && factored.fill_ratio() > kShareAboveFill;
+}
+
+bool borrow_factorisation(const ImplicitProblem& problem, const Linearization& near,
+                          const Eigen::Ref<const Eigen::VectorXd>& y, Linearization& out) {
+  // (Judged by its steps, not by ‖DF(y)·T‖ against ‖DF‖: on bvp at n = 10⁴, ‖DF‖ ≈ 10¹⁰, and a
+  // residual of 10⁻¹⁰‖DF‖ left T 10⁻³ off, which the atlas's radius probes read as a curvature
+  // of 2·10⁻³/r: the radii collapsed. An angle δ moves a point at distance r by δr.)
+  Eigen::MatrixXd T;
+  if (!near.is_factored() ||
+      !tangent_basis_near(problem, near, y, T, 0.0, kBorrowIterations, kBorrowAngle)) {
+    return false;
+  }
+  // The iteration's basis drifts from point to point; the atlas's polygons start as squares in
+  // tangent coordinates, and a drifting basis packed its charts less regularly (1–5 % more
+  // vertices on bratu2d:N=8 and 12).
+  const Eigen::MatrixXd& guide = near.tangent_basis();
+  if (!coordinate_tangent_basis(T, &guide)) {
+    return false;
+  }
+  align_tangent_basis(T, guide, *problem.space());
+  return out.borrow(problem, near, y, T);
+}
+
 bool Linearization::borrow(const ImplicitProblem& problem, const Linearization& near,
                            const Eigen::Ref<const Eigen::VectorXd>& y,
                            const Eigen::MatrixXd& tangent, double min_cosine) {

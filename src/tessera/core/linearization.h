@@ -132,6 +132,23 @@ bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& nea
                         double tolerance = 1e-9, int max_iterations = 4,
                         double angle_tolerance = 0.0);
 
+/// Whether points near `factored` should borrow its factorisation (Linearization::borrow)
+/// instead of factoring their own: where its LU fills in, nnz(L + U) > 2·nnz(A) (2-D grids),
+/// a factorisation costs many solves. A banded 1-D one (fill 1.2) costs about a dozen, and there
+/// borrowing halved the factorisations but cost time (bvp:points=10000: 24.8 → 31.3 s). Decided
+/// from the pattern alone, so the same run to run and on any machine. Issue 30.
+bool worth_sharing(const Linearization& factored);
+
+/// `out` becomes a linearisation at y that borrows near's factorisation, if the tangent iteration
+/// from near converges (tangent_basis_near, judged by its steps: within 10⁻⁹ rad in at most 8
+/// steps, a contraction of about 0.1 or less, so that chords from near stay short). Its basis is
+/// the one a factorisation at y guided by near's basis would give (coordinate_tangent_basis),
+/// oriented like near's: the same frame an own factorisation gives, not the iteration's, which
+/// drifts from point to point. No factorisation is made. \return false (out unchanged) if the
+/// iteration does not converge.
+bool borrow_factorisation(const ImplicitProblem& problem, const Linearization& near,
+                          const Eigen::Ref<const Eigen::VectorXd>& y, Linearization& out);
+
 /// Minimum-norm solution of J·dx = rhs for a dense J (m×n, m ≤ n) by column-pivoted QR of Jᵀ.
 /// \return false (dx untouched) if J has rank < m.
 bool solve_minimum_norm_dense(const Eigen::Ref<const Eigen::MatrixXd>& J,

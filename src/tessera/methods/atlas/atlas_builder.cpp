@@ -9,7 +9,6 @@
 #include <sstream>
 
 #include "tessera/core/binary_stream.h"
-#include "tessera/core/bordered_jacobian.h"
 #include "tessera/core/corrector.h"
 #include "tessera/core/describe.h"
 #include "tessera/core/error.h"
@@ -33,18 +32,6 @@ constexpr int kMaxChildrenPerChart = 64;
 // Below this dimension the orientation det([J; Tᵀ]) is cheap enough to watch for singular
 // crossings at every step (dense problems only; see docs/algorithms/atlas.md).
 constexpr int kMaxCrossingTestDimension = 200;
-// A chart borrows its parent's factorisation where the tangent iteration from it is within
-// kBorrowAngle (radians) of ker DF(x) within kBorrowIterations steps. (Judged by its steps, not
-// by ‖DF(x)·T‖ relative to ‖DF‖: on bvp at n = 10⁴, ‖DF‖ ≈ 10¹⁰, a residual of 10⁻¹⁰‖DF‖ left
-// T 10⁻³ off, which the radius probes read as curvature 2·10⁻³/r, and the radii collapsed.) An
-// angle δ moves a probe at radius r by δr; 10⁻⁹ is far below the probes' accuracy, 10⁻³ ε.
-constexpr double kBorrowAngle = 1e-9;
-constexpr int kBorrowIterations = 8;
-// Sharing only where the LU fills in (nnz(L + U) > 2·nnz(A): 2-D grids; bratu2d 2.3 at N = 10, 3.7
-// at 32, 5.8 at 100): a banded 1-D factorisation (fill 1.2) costs about a dozen solves, and there
-// sharing halved the factorisations but cost more time than it saved (bvp:points=10000: 1.58 →
-// 0.71 per vertex, 24.8 → 31.3 s: the tangent iterations and longer chords).
-constexpr double kShareAboveFill = 2.0;
 // A chart whose own disk boundary cannot be reached by pointOnDisk is shrunk by this factor.
 constexpr double kShrinkFactor = 0.7;
 // A child centre farther than this many radii from its parent's centre, in the parent's tangent
@@ -121,23 +108,10 @@ int AtlasBuilder::add_chart(const Eigen::VectorXd& x, int parent, Linearization&
     parent_tangent = tangent(parent);
   }
   // The parent's factorisation (its own, or the one it borrowed) serves this chart too where
-  // the tangent iteration from it converges (kBorrowAngle within kBorrowIterations steps: a
-  // contraction of about 0.1 or less, so that the chord projections from it stay short);
-  // otherwise the chart factors its own.
-  bool borrowed = false;
-  if (share_factorisations_ && near != nullptr && near->is_factored()) {
-    Eigen::MatrixXd& T = borrowed_tangent_;
-    // The basis the chart's own factorisation would give (the coordinate border guided by the
-    // parent's basis), not the iteration's, which drifts from chart to chart: the polygons start
-    // as squares in these coordinates and the children go to their corners, so a drifting
-    // basis packed the charts less regularly (2–5 % more vertices on bratu2d:N=8 and 12).
-    borrowed = tangent_basis_near(problem_, *near, x, T, 0.0, kBorrowIterations, kBorrowAngle) &&
-               coordinate_tangent_basis(T, &parent_tangent);
-    if (borrowed) {
-      align_tangent_basis(T, parent_tangent, *space_);
-      borrowed = linearization.borrow(problem_, *near, x, T);
-    }
-  }
+  // the tangent iteration from it converges (borrow_factorisation); otherwise the chart factors
+  // its own.
+  const bool borrowed = share_factorisations_ && near != nullptr &&
+                        borrow_factorisation(problem_, *near, x, linearization);
   if (!borrowed && !linearization.factor(problem_, x, parent >= 0 ? &parent_tangent : nullptr)) {
     return -1;  // DF lost rank: a singular point; the caller moves the centre
   }
@@ -568,8 +542,7 @@ void AtlasBuilder::run(const Eigen::VectorXd& start, CoveringSummary& summary) {
     }
     // Sharing pays where a factorisation costs many solves: the fill of its LU says so, from the
     // pattern alone (so the choice, and the mesh, are the same run to run).
-    share_factorisations_ =
-        share_factorisations_ && linearization.fill_ratio() > kShareAboveFill;
+    share_factorisations_ = share_factorisations_ && worth_sharing(linearization);
     enqueue(first);
     keep_factorisation(first, std::move(linearization), Eigen::MatrixXd());
   }

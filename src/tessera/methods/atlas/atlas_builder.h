@@ -265,7 +265,6 @@ class AtlasBuilder {
   Eigen::MatrixXd probe_residuals_; // scratch: (n−2)×6, −F at the first-step probes
   Eigen::MatrixXd probe_steps_;     // scratch: n×6, their chord steps
   Eigen::MatrixXd parent_tangent_;  // scratch
-  Eigen::MatrixXd borrowed_tangent_;  // scratch
   Linearization scratch_;           // workspace of full Gauss–Newton
   bool stopped_ = false;
   int singular_crossings_ = 0;
