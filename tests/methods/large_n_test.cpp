@@ -78,7 +78,7 @@ TEST(LargeN, AtlasWorkPerVertexIsBounded) {
 
 // The 2-D problem: a larger stencil and a surface that meets the box on more faces (more
 // clipping). Its LU fills in (nnz(L + U) about twice nnz(A)), so charts share factorisations
-// (issue 30): measured 1.04 factorisations and 3.98 Jacobians per vertex at N = 8, against 1.78
+// (issue 30): measured 0.86 factorisations and 3.91 Jacobians per vertex at N = 8, against 1.78
 // and 3.56 each chart factoring its own (a borrowed chart evaluates DF for its tangent
 // iteration, and one whose iteration does not converge evaluates it again to factor).
 TEST(LargeN, AtlasWorkPerVertexIsBoundedOnTheSquare) {
@@ -86,7 +86,7 @@ TEST(LargeN, AtlasWorkPerVertexIsBoundedOnTheSquare) {
   const auto result = cover(setup, "atlas");
   ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
   const PerVertex work = per_vertex(result.summary);
-  EXPECT_LE(work.factorisations, 1.15);
+  EXPECT_LE(work.factorisations, 1.0);
   EXPECT_LE(work.jacobians, 4.1);
   EXPECT_GT(result.summary.borrowed_factorisations, result.summary.charts / 2);
 }

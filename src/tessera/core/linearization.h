@@ -140,7 +140,7 @@ bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& nea
 bool worth_sharing(const Linearization& factored);
 
 /// `out` becomes a linearisation at y that borrows near's factorisation, if the tangent iteration
-/// from near converges (tangent_basis_near, judged by its steps: within 10⁻⁹ rad in at most 8
+/// from near converges (tangent_basis_near, judged by its steps: within 10⁻⁷ rad in at most 8
 /// steps, a contraction of about 0.1 or less, so that chords from near stay short). Its basis is
 /// the one a factorisation at y guided by near's basis would give (coordinate_tangent_basis),
 /// oriented like near's: the same frame an own factorisation gives, not the iteration's, which
