@@ -28,6 +28,13 @@ class FactorisationCache {
     return nullptr;
   }
 
+  /// The entry made last, factored; null if there is none or it is not factored.
+  const Linearization* newest() const {
+    return entries_.empty() || !entries_.back().linearization.is_factored()
+               ? nullptr
+               : &entries_.back().linearization;
+  }
+
   /// Factors DF at x as the entry for `key`, dropping the oldest entries over the bounds.
   /// \return the entry, or null where DF is rank deficient. Valid until the next factor().
   const Linearization* factor(int key, const ImplicitProblem& problem,
