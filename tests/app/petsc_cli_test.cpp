@@ -182,8 +182,11 @@ void expect_same_report(const nlohmann::json& serial, const nlohmann::json& pets
 TEST(PetscCli, BothBackendsReportTheSameMeshTheSameWay) {
   const std::string folder = testing::temporary_directory("petsc_cli_report");
   const std::string run = small_bratu2d_run() + " -q";
-  const auto serial =
-      run_cli(run + " -o " + folder + "/serial.ply --summary " + folder + "/serial.json");
+  // The PETSc backend does not share factorisations yet (issue 30); the serial run is told not
+  // to either, so that both make the same mesh.
+  const auto serial = run_shell("env TESSERA_SHARE_FACTORISATIONS=off " + std::string(TESSERA_CLI) +
+                                " " + run + " -o " + folder + "/serial.ply --summary " + folder +
+                                "/serial.json");
   ASSERT_EQ(serial.exit_code, 0) << serial.output;
   const nlohmann::json serial_summary = read_summary(folder + "/serial.json");
   EXPECT_EQ(serial_summary["ambient_dimension"], 66);

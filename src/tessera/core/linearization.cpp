@@ -8,8 +8,10 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <optional>
+#include <string_view>
 
 #include "tessera/core/ambient_space.h"
 #include "tessera/core/bordered_jacobian.h"
@@ -450,7 +452,13 @@ constexpr double kShareAboveFill = 2.0;
 }  // namespace
 
 bool worth_sharing(const Linearization& factored) {
-  return factored.is_factored() && factored.fill_ratio() > kShareAboveFill;
+  // TESSERA_SHARE_FACTORISATIONS=off: never (the mesh a PETSc run gives, whose backend does not
+  // share yet; comparisons).
+  static const bool is_off = [] {
+    const char* value = std::getenv("TESSERA_SHARE_FACTORISATIONS");
+    return value != nullptr && (std::string_view(value) == "off" || std::string_view(value) == "0");
+  }();
+  return !is_off && factored.is_factored() && factored.fill_ratio() > kShareAboveFill;
 }
 
 bool borrow_factorisation(const ImplicitProblem& problem, const Linearization& near,

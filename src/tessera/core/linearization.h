@@ -136,7 +136,9 @@ bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& nea
 /// instead of factoring their own: where its LU fills in, nnz(L + U) > 2·nnz(A) (2-D grids),
 /// a factorisation costs many solves. A banded 1-D one (fill 1.2) costs about a dozen, and there
 /// borrowing halved the factorisations but cost time (bvp:points=10000: 24.8 → 31.3 s). Decided
-/// from the pattern alone, so the same run to run and on any machine. Issue 30.
+/// from the pattern alone, so the same run to run and on any machine. Issue 30. The environment
+/// variable TESSERA_SHARE_FACTORISATIONS=off turns sharing off: the PETSc backend does not share
+/// yet (it reports no fill), so that is how a serial run gives a PETSc run's mesh.
 bool worth_sharing(const Linearization& factored);
 
 /// `out` becomes a linearisation at y that borrows near's factorisation, if the tangent iteration
