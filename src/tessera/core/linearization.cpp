@@ -449,6 +449,9 @@ namespace {
 constexpr double kBorrowAngle = 1e-7;
 constexpr int kBorrowIterations = 8;
 constexpr double kShareAboveFill = 2.0;
+// borrow_nearby: how many edge lengths away a factorisation is worth trying (the tolerance
+// check's anchors serve two rings; corners of ∂S come as neighbours).
+constexpr double kBorrowReachEdges = 4.0;
 }  // namespace
 
 bool worth_sharing(const Linearization& factored) {
@@ -482,6 +485,14 @@ bool borrow_factorisation(const ImplicitProblem& problem, const Linearization& n
   }
   align_tangent_basis(T, guide, *problem.space());
   return out.borrow(problem, near, y, T);
+}
+
+bool borrow_nearby(const ImplicitProblem& problem, const Linearization& near,
+                   const Eigen::Ref<const Eigen::VectorXd>& y, double edge_length,
+                   Linearization& out) {
+  return worth_sharing(near) &&
+         problem.space()->distance(near.factored_point(), y) <= kBorrowReachEdges * edge_length &&
+         borrow_factorisation(problem, near, y, out);
 }
 
 bool Linearization::borrow(const ImplicitProblem& problem, const Linearization& near,
@@ -588,21 +599,18 @@ bool tangent_basis_near_distributed(const ImplicitProblem& problem, const Ambien
     }
     near.solve_minimum_norm_columns(JT, correction);
     T -= correction;
-    if (angle_tolerance > 0) {
-      const double size = space.frobenius_norm(correction);
-      if (converged_by_steps(size, previous, contraction, angle_tolerance)) {
-        T.col(0) /= space.norm(T.col(0));
-        T.col(1) -= space.dot(T.col(0), T.col(1)) * T.col(0);
-        T.col(1) /= space.norm(T.col(1));
-        return space.all_finite(T);
-      }
-    }
+    const bool converged =
+        angle_tolerance > 0 && converged_by_steps(space.frobenius_norm(correction), previous,
+                                                  contraction, angle_tolerance);
     // Orthonormalise (modified Gram–Schmidt): ker J(y) is spanned either way.
     T.col(0) /= space.norm(T.col(0));
     T.col(1) -= space.dot(T.col(0), T.col(1)) * T.col(0);
     T.col(1) /= space.norm(T.col(1));
     if (!space.all_finite(T)) {
       return false;
+    }
+    if (converged) {
+      return true;
     }
   }
   return false;
@@ -653,19 +661,18 @@ bool tangent_basis_near(const ImplicitProblem& problem, const Linearization& nea
     }
     near.solve_minimum_norm_columns(JT, correction);
     T -= correction;
-    if (angle_tolerance > 0 &&
-        converged_by_steps(correction.norm(), previous, contraction, angle_tolerance)) {
-      T.col(0).normalize();
-      T.col(1) -= T.col(0).dot(T.col(1)) * T.col(0);
-      T.col(1).normalize();
-      return T.allFinite();
-    }
+    const bool converged =
+        angle_tolerance > 0 &&
+        converged_by_steps(correction.norm(), previous, contraction, angle_tolerance);
     // Orthonormalise (modified Gram–Schmidt): ker J(y) is spanned either way.
     T.col(0).normalize();
     T.col(1) -= T.col(0).dot(T.col(1)) * T.col(0);
     T.col(1).normalize();
     if (!T.allFinite()) {
       return false;
+    }
+    if (converged) {
+      return true;
     }
   }
   return false;

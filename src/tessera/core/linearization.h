@@ -52,8 +52,10 @@ class Linearization {
   bool borrow(const ImplicitProblem& problem, const Linearization& near,
               const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::MatrixXd& tangent,
               double min_cosine = 0.5);
-  /// Whether the solves come from another point's factorisation (borrow).
+  /// Whether the solves come from a factorisation borrowed (borrow), of this point or another.
   bool is_borrowed() const { return solver_tangent_.size() > 0; }
+  /// Whether they come from another point's: borrowed, and factored elsewhere.
+  bool solves_from_elsewhere() const { return is_borrowed() && solver_point_ != point_; }
   /// The factorisation the solves use, to tell shared ones apart (null if none): equal for a
   /// factorisation and every linearisation that borrowed it.
   const void* factorisation_identity() const { return backend_.get(); }
@@ -150,6 +152,15 @@ bool worth_sharing(const Linearization& factored);
 /// iteration does not converge.
 bool borrow_factorisation(const ImplicitProblem& problem, const Linearization& near,
                           const Eigen::Ref<const Eigen::VectorXd>& y, Linearization& out);
+
+/// borrow_factorisation for points visited in turn (the tolerance check's anchors, the corners
+/// of ∂S), where the last factorisation may be far: tried only where it is worth sharing and y
+/// lies within four `edge_length`s (the local edge length of the mesh) of near's factored
+/// point, so that a borrow that would not converge costs nothing. \return false (out unchanged)
+/// otherwise.
+bool borrow_nearby(const ImplicitProblem& problem, const Linearization& near,
+                   const Eigen::Ref<const Eigen::VectorXd>& y, double edge_length,
+                   Linearization& out);
 
 /// Minimum-norm solution of J·dx = rhs for a dense J (m×n, m ≤ n) by column-pivoted QR of Jᵀ.
 /// \return false (dx untouched) if J has rank < m.

@@ -200,11 +200,9 @@ void check_holes_covered_over(const ImplicitProblem& problem, const Domain& doma
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.nearest < b.nearest; });
   FactorisationCache factorisations(2, std::size_t{64} << 20);
-  // Where factorisations are worth sharing (issue 30), a corner borrows the last corner's
-  // factorisation instead when it lies within kBorrowReach of its triangle's longest edge of it
-  // and the tangent iteration from it converges (the corners come sorted, mostly neighbours
-  // along ∂S): bratu2d:N=316's atlas at step 0.5 spent 349 factorisations here, 0.99 per vertex.
-  constexpr double kBorrowReach = 4.0;
+  // A corner borrows the last corner's factorisation where that is near enough
+  // (borrow_nearby; the corners come sorted, mostly neighbours along ∂S): bratu2d:N=316's atlas
+  // at step 0.5 spent 349 factorisations here, 0.99 per vertex.
   Linearization borrowed;
   int borrowed_at = -1;
   std::size_t looked = 0;
@@ -228,9 +226,7 @@ void check_holes_covered_over(const ImplicitProblem& problem, const Domain& doma
     if (frozen == nullptr) {
       const Linearization* last = borrowed_at >= 0 ? &borrowed : factorisations.newest();
       Linearization next;
-      if (last != nullptr && worth_sharing(*last) &&
-          space.distance(last->factored_point(), mesh.point(nearest)) <= kBorrowReach * longest &&
-          borrow_factorisation(problem, *last, mesh.point(nearest), next)) {
+      if (last != nullptr && borrow_nearby(problem, *last, mesh.point(nearest), longest, next)) {
         borrowed = std::move(next);
         borrowed_at = nearest;
         frozen = &borrowed;

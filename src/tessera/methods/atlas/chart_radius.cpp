@@ -320,7 +320,7 @@ bool AtlasBuilder::project(Linearization& at_center, double distance, Eigen::Vec
 }
 
 bool AtlasBuilder::factor_own(Linearization& at_center) {
-  if (!at_center.is_borrowed() || at_center.factored_point() == at_center.point()) {
+  if (!at_center.solves_from_elsewhere()) {
     return false;
   }
   Linearization own;

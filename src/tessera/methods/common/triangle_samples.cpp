@@ -10,11 +10,6 @@
 #include "tessera/core/parallel_for.h"
 
 namespace tessera::detail {
-namespace {
-// A borrowed anchor factorisation (issue 30) is tried only for an anchor within this many of
-// its triangle's longest edge of the point factored: anchors serve two rings around them.
-constexpr double kBorrowReach = 4.0;
-}  // namespace
 
 std::uint64_t unordered_edge_key(int a, int b) {
   if (a > b) {
@@ -55,16 +50,14 @@ std::vector<int> corner_faces(const Eigen::Ref<const Eigen::VectorXd>& distance_
 }
 
 void SampleState::freeze_at(const ImplicitProblem& problem, const TriangleMesh& mesh, int v,
-                            double reach) {
+                            double edge_length) {
   if (v == frozen_at) {
     return;
   }
-  // (The anchors come in vertex order, neighbours mostly but not always: the reach keeps a
-  // borrow from being tried, a DF and up to eight solves, where it would not converge.)
+  // (The anchors come in vertex order, neighbours mostly but not always.)
   Linearization next;
-  if (frozen_ok && reach > 0 && worth_sharing(frozen) &&
-      mesh.space().distance(frozen.factored_point(), mesh.point(v)) <= reach &&
-      borrow_factorisation(problem, frozen, mesh.point(v), next)) {
+  if (frozen_ok && edge_length > 0 &&
+      borrow_nearby(problem, frozen, mesh.point(v), edge_length, next)) {
     frozen = std::move(next);
   } else {
     frozen_ok = frozen.factor(problem, mesh.point(v));
@@ -178,10 +171,9 @@ void TriangleSampler::measure(int anchor, int t, Claims claims, const std::vecto
   const Eigen::VectorXd a = mesh_.point(tri[0]);
   const Eigen::VectorXd b = mesh_.point(tri[1]);
   const Eigen::VectorXd c = mesh_.point(tri[2]);
-  // The triangle's longest edge sets the reach of a borrowed factorisation: its anchor lies
-  // within two rings, and charts borrowed across two or three radii (issue 30).
+  // The triangle's longest edge is the local edge length for a borrowed factorisation.
   const Gram& g = gram[static_cast<std::size_t>(t)];
-  state.freeze_at(problem_, mesh_, anchor, kBorrowReach * std::sqrt(std::max({g[0], g[1], g[3]})));
+  state.freeze_at(problem_, mesh_, anchor, std::sqrt(std::max({g[0], g[1], g[3]})));
   Eigen::MatrixXd samples(a.size(), 5);
   Eigen::Index count = 0;
   samples.col(count++) = (a + b + c) / 3.0;

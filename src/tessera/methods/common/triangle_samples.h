@@ -64,12 +64,11 @@ struct SampleState {
   bool frozen_ok = false;
   FactorisationCache corners{6, std::size_t{256} << 20};
   Linearization workspace;
-  /// Factors `frozen` at vertex v unless it is factored there already. Where factorisations
-  /// are worth sharing (worth_sharing), `frozen` borrows the last one instead if v lies within
-  /// `reach` of the point it was factored at and the tangent iteration from it converges
-  /// (borrow_factorisation); reach 0: never.
+  /// Factors `frozen` at vertex v unless it is factored there already, or borrows the last
+  /// factorisation where that is near enough (borrow_nearby, with the mesh's local
+  /// `edge_length`; 0: never).
   void freeze_at(const ImplicitProblem& problem, const TriangleMesh& mesh, int v,
-                 double reach = 0.0);
+                 double edge_length = 0.0);
 };
 
 /// Gauss–Newton from x, and where it contracts too slowly for the method's corrector (θ above its
