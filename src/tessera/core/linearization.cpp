@@ -370,9 +370,9 @@ void Linearization::make_backend(const ImplicitProblem& problem) {
   }
   if (!backend_) {
     if (problem.has_sparse_jacobian()) {
-      backend_ = std::make_unique<SparseBackend>();
+      backend_ = std::make_shared<SparseBackend>();
     } else {
-      backend_ = std::make_unique<DenseBackend>();
+      backend_ = std::make_shared<DenseBackend>();
     }
   }
 }
