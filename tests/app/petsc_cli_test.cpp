@@ -258,8 +258,13 @@ TEST(PetscCli, StabilityOnTwoRanksHasTheSerialCounts) {
   const std::string run = "mesh bratu2d:N=8 --box lambda=" + std::to_string(lambda - 0.2) + ":" +
                           std::to_string(lambda + 0.2) +
                           ",epsilon=0.18:0.22 --tolerance 0.04 --report-samples 30 --stability";
-  const auto serial =
-      run_cli(run + " -o " + folder + "/serial.vtu --summary " + folder + "/serial.json -q");
+  // The PETSc backend does not share factorisations yet (docs/cluster.md): the serial run
+  // without sharing gives its mesh, vertex for vertex (with sharing, the same mesh to the
+  // corrector's tolerance only: the chords from a borrowed factorisation stop farther from
+  // their limit, and the Ritz values differed by 10⁻⁶ near the fold).
+  const auto serial = run_shell("env TESSERA_SHARE_FACTORISATIONS=off " +
+                                std::string(TESSERA_CLI) + " " + run + " -o " + folder +
+                                "/serial.vtu --summary " + folder + "/serial.json -q");
   ASSERT_EQ(serial.exit_code, 0) << serial.output;
   const auto petsc = run_shell(mpiexec(2) + TESSERA_CLI + " " + run + " --backend petsc -o " +
                                folder + "/petsc.vtu --summary " + folder + "/petsc.json");

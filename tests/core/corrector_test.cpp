@@ -14,6 +14,7 @@
 #include "tessera/core/domain.h"
 #include "tessera/core/error.h"
 #include "tessera/core/face_projection.h"
+#include "tessera/core/factorisation_cache.h"
 #include "tessera/core/linearization.h"
 #include "tessera/problems/catalogue.h"
 #include "tessera/problems/examples.h"
@@ -631,4 +632,49 @@ TEST(Linearization, BorrowedFactorisationSolvesTheBorderedSystemOfItsOwnTangent)
   tessera::Linearization refused;
   EXPECT_FALSE(refused.borrow(problem, at_x0, y, oblique));
   EXPECT_FALSE(refused.is_factored());
+}
+
+// Points visited in turn borrow from the nearest kept factorisation: one near a lender borrows
+// its factors (no factorisation), one far from every lender does not, and the lenders kept are
+// bounded in number.
+TEST(FactorisationLenders, NearPointsBorrowTheNearestKeptFactorisation) {
+  const tessera::ProblemSetup bratu = tessera::make_catalogue_problem("bratu2d:N=8");
+  const tessera::CountedProblem problem(*bratu.problem);
+  const double h = 0.25 * bratu.suggested_step;
+  tessera::FactorisationLenders lenders(2, std::size_t{1} << 30);
+  tessera::Linearization first;
+  ASSERT_TRUE(first.factor(problem, bratu.start));
+  ASSERT_TRUE(tessera::worth_sharing(first));  // the 2-D grid's LU fills in
+  const Eigen::MatrixXd T0 = first.tangent_basis();
+  tessera::Linearization at_start;
+  lenders.keep(problem, std::move(first), at_start);
+  EXPECT_TRUE(at_start.is_borrowed());  // the lender's own solves, at its own point
+  EXPECT_FALSE(at_start.solves_from_elsewhere());
+  EXPECT_EQ(at_start.point(), bratu.start);
+  // Points along M at one and at twenty local edge lengths from the start.
+  const auto along = [&](double distance) {
+    Eigen::VectorXd y = bratu.start + distance * T0.col(0);
+    EXPECT_TRUE(tessera::project_chord(problem, at_start, y, {}).is_success());
+    return y;
+  };
+  const Eigen::VectorXd near = along(h);
+  const long factorisations = problem.counts().factorisations;
+  tessera::Linearization borrowed;
+  ASSERT_TRUE(lenders.borrow(problem, near, h, borrowed));
+  EXPECT_EQ(problem.counts().factorisations, factorisations);
+  EXPECT_TRUE(borrowed.solves_from_elsewhere());
+  EXPECT_EQ(borrowed.factored_point(), bratu.start);
+  EXPECT_EQ(borrowed.factorisation_identity(), at_start.factorisation_identity());
+  EXPECT_FALSE(lenders.borrow(problem, along(20 * h), h, borrowed));
+  // Three more lenders: the first is dropped (at most two kept), and a point next to it no
+  // longer borrows, while one next to the newest does.
+  for (int k = 1; k <= 3; ++k) {
+    tessera::Linearization own;
+    ASSERT_TRUE(own.factor(problem, along(10 * k * h)));
+    tessera::Linearization unused;
+    lenders.keep(problem, std::move(own), unused);
+  }
+  EXPECT_FALSE(lenders.borrow(problem, near, h, borrowed));
+  tessera::Linearization next_to_newest;
+  EXPECT_TRUE(lenders.borrow(problem, along(30 * h + 0.5 * h), h, next_to_newest));
 }

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <deque>
+#include <memory>
 
 #include "tessera/core/ambient_space.h"
 #include "tessera/core/linearization.h"
@@ -39,24 +40,38 @@ class FactorisationCache {
   /// \return the entry, or null where DF is rank deficient. Valid until the next factor().
   const Linearization* factor(int key, const ImplicitProblem& problem,
                               const Eigen::Ref<const Eigen::VectorXd>& x) {
+    Linearization linearization;
+    const bool is_factored = linearization.factor(problem, x);
+    const Linearization* kept = keep(key, problem, std::move(linearization));
+    return is_factored ? kept : nullptr;
+  }
+
+  /// Keeps `linearization` (factored, borrowed or rank deficient) as the entry for `key`, as
+  /// factor() does. A borrowed one weighs its own vectors only: its factors are counted where
+  /// they were made. \return the entry. Valid until the next factor() or keep().
+  const Linearization* keep(int key, const ImplicitProblem& problem, Linearization&& linearization) {
     while (!entries_.empty() && (entries_.size() >= max_count_ ||
                                  (entries_.size() >= 2 && bytes_ > max_bytes_))) {
       bytes_ -= entries_.front().bytes;
       entries_.pop_front();
     }
-    entries_.push_back({key, Linearization(), 0});
-    Linearization& linearization = entries_.back().linearization;
-    const bool is_factored = linearization.factor(problem, x);
-    linearization.release_assembly();  // kept for its solves only
+    const bool is_borrowed = linearization.is_borrowed();
+    if (!is_borrowed) {
+      linearization.release_assembly();  // kept for its solves only
+    }
+    entries_.push_back({key, std::move(linearization), 0});
+    const Linearization& kept = entries_.back().linearization;
     // The bytes decide which entries are dropped, so for a distributed problem (each rank holds
     // its part of a factorisation) every rank must count the same: the largest part.
-    std::size_t bytes = linearization.memory_bytes();
+    std::size_t bytes = is_borrowed ? 5 * sizeof(double) * static_cast<std::size_t>(
+                                              kept.point().size())  // point, two bases
+                                    : kept.memory_bytes();
     if (const auto space = problem.space(); space->is_distributed()) {
       bytes = static_cast<std::size_t>(space->maximum(static_cast<double>(bytes)));
     }
     entries_.back().bytes = bytes;
     bytes_ += bytes;
-    return is_factored ? &linearization : nullptr;
+    return &kept;
   }
 
  private:
@@ -69,6 +84,39 @@ class FactorisationCache {
     std::size_t bytes;  // as counted when it was made
   };
   std::deque<Entry> entries_;  // oldest first
+};
+
+/// Own factorisations of DF kept for nearby points to borrow (Linearization::borrow, issue 30):
+/// points visited along M (spatially_ordered) each borrow from the nearest kept one within
+/// reach instead of factoring, and only the last factorisation is not always the nearest (a
+/// Hilbert curve folds back past points it visited a while ago). The newest `max_count`, and
+/// beyond the newest two at most `max_bytes` of them.
+class FactorisationLenders {
+ public:
+  FactorisationLenders(std::size_t max_count, std::size_t max_bytes)
+      : max_count_(max_count), max_bytes_(max_bytes) {}
+
+  /// `out` becomes a linearisation at y that borrows the factorisation of the kept lender
+  /// nearest y (borrow_nearby: worth sharing, within four `edge_length`s, tangent iteration
+  /// converges). One try, at the nearest only: a failed try costs an evaluation of DF and up to
+  /// eight steps of two solves. \return false (out unchanged) if none is near enough.
+  bool borrow(const ImplicitProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& y,
+              double edge_length, Linearization& out) const;
+
+  /// Keeps `factored` (own, factored at its point) as a lender where it is worth sharing
+  /// (worth_sharing), dropping the oldest over the bounds, and makes `out` borrow it at its own
+  /// point (the same solves, no copy of the factors). Otherwise `out` is `factored` itself.
+  void keep(const ImplicitProblem& problem, Linearization&& factored, Linearization& out);
+
+ private:
+  std::size_t max_count_;
+  std::size_t max_bytes_;
+  std::size_t bytes_ = 0;
+  struct Lender {
+    std::shared_ptr<const Linearization> linearization;
+    std::size_t bytes;
+  };
+  std::deque<Lender> lenders_;  // oldest first
 };
 
 }  // namespace tessera

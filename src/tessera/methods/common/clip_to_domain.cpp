@@ -90,7 +90,7 @@ bool clip_to_face(const ImplicitProblem& problem, const Domain& domain, int k, d
   };
   const int n = problem.ambient_dimension();
   const int m = problem.equation_count();
-  OrientationGuard guard(problem, vertex_neighbours(mesh));
+  OrientationGuard guard(problem, mesh, vertex_neighbours(mesh));
   const int vertex_count = mesh.vertex_count();
   // Every vertex's distance to the face and, after them, the squared norms of the vertices not
   // on it, for the on-face tolerance (one reduction on a split mesh).
@@ -497,7 +497,7 @@ int collapse_short_boundary_edges(const ImplicitProblem& problem, TriangleMesh& 
                                   const FaceSets& on_faces, double min_length) {
   const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
   const AmbientSpace& space = *shared_space;
-  OrientationGuard guard(problem, vertex_neighbours(mesh));
+  OrientationGuard guard(problem, mesh, vertex_neighbours(mesh));
   int collapsed = 0;
   bool changed = true;
   std::set<std::pair<int, int>> rejected;  // each edge is judged once: O(N) per collapse

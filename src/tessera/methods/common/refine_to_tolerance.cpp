@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <unordered_map>
 #include <unordered_set>
@@ -13,6 +14,7 @@
 #include "tessera/core/face_projection.h"
 #include "tessera/core/linearization.h"
 #include "tessera/geometry/mesh_quality.h"
+#include "tessera/geometry/spatial_order.h"
 #include "tessera/methods/common/clip_to_domain.h"
 #include "tessera/methods/common/triangle_samples.h"
 
@@ -89,9 +91,15 @@ void measure_gram(const TriangleMesh& mesh, const std::vector<int>& which,
 // (of an unanchored triangle's vertices, the one with the most unanchored triangles around it),
 // and an anchor serves the triangles that touch it or one of its neighbours (`rings` = 2), or
 // only those that touch it (`rings` = 1): about one vertex in ten, or in three, is an anchor
-// instead of one factorisation per triangle.
+// instead of one factorisation per triangle. `along_M(first anchor)`: whether the anchors come
+// along a Hilbert curve through M (spatially_ordered) instead of by index: for a sparse
+// problem's samples, which run in this order with one state, where factorisations are worth
+// sharing (an anchor borrows the nearest kept one, SampleState::freeze_at): in index order most
+// anchors lay more than four edges from the last (bratu2d:N=32: 446 of 629), and nearly every
+// anchor factored.
 std::vector<std::pair<int, int>> anchored(const TriangleMesh& mesh,
-                                          const std::vector<int>& candidates, int rings) {
+                                          const std::vector<int>& candidates, int rings,
+                                          const std::function<bool(int)>& along_M) {
   const int V = mesh.vertex_count();
   std::vector<int> start(V + 1, 0);  // candidates around each vertex, compressed rows
   for (int t : candidates) {
@@ -157,6 +165,24 @@ std::vector<std::pair<int, int>> anchored(const TriangleMesh& mesh,
     pairs.emplace_back(anchor[k], candidates[k]);
   }
   std::sort(pairs.begin(), pairs.end());
+  if (!pairs.empty() && along_M(pairs.front().first)) {
+    std::vector<int> anchors;
+    for (const auto& [a, t] : pairs) {
+      if (anchors.empty() || anchors.back() != a) {
+        anchors.push_back(a);
+      }
+    }
+    std::vector<int> rank(static_cast<std::size_t>(V), 0);
+    const std::vector<int> ordered = spatially_ordered(mesh, std::move(anchors));
+    for (std::size_t k = 0; k < ordered.size(); ++k) {
+      rank[static_cast<std::size_t>(ordered[k])] = static_cast<int>(k);
+    }
+    std::sort(pairs.begin(), pairs.end(), [&rank](const auto& p, const auto& q) {
+      const int rp = rank[static_cast<std::size_t>(p.first)];
+      const int rq = rank[static_cast<std::size_t>(q.first)];
+      return rp != rq ? rp < rq : p.second < q.second;
+    });
+  }
   return pairs;
 }
 
@@ -216,6 +242,14 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     return space.is_distributed() ? space.maximum(stop ? 1.0 : 0.0) > 0.0 : stop;
   };
   detail::TriangleSampler sampler(problem, domain, mesh, settings, shared, is_stop_requested);
+  // Whether the anchors go along M: known from the first factorisation (made at the first
+  // anchor, which the samples would factor first anyway).
+  const auto along_M = [&](int first_anchor) {
+    if (is_sparse && shared.sharing < 0) {
+      shared.freeze_own_at(problem, mesh, first_anchor);
+    }
+    return is_sparse && shared.sharing == 1;
+  };
   std::vector<Gram> gram;
   // Boundary edges (for the gaps beyond ∂S, detail::TriangleSampler): each edge's triangles,
   // rebuilt each round; none for an unbounded domain.
@@ -244,7 +278,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     std::vector<std::uint8_t> is_far(mesh.triangle_count(), 0);
     count_edges();
     measure_gram(mesh, candidates, gram);
-    const std::vector<std::pair<int, int>> pairs = anchored(mesh, candidates, rings);
+    const std::vector<std::pair<int, int>> pairs = anchored(mesh, candidates, rings, along_M);
     // A stop request is polled only here, where nothing of the round has changed the mesh
     // yet: at large n the samples are minutes of chord steps, and a stopped run wants its mesh
     // now.
@@ -333,12 +367,21 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
         // the endpoint's normal space, which where two sheets nearly touch (the trough) can
         // land the new vertex on the other sheet.
         const Eigen::VectorXd start = x;
+        const auto chord_from_frozen = [&] {
+          return shared.frozen_ok &&
+                 project_chord(problem, shared.frozen, x, options.corrector).is_success() &&
+                 space.distance(x, start) <= length;
+        };
         if (is_sparse) {
-          shared.freeze_at(problem, mesh, u);
+          shared.freeze_at(problem, mesh, u, length);
+          projected = chord_from_frozen();
+          if (!projected && shared.frozen_ok && shared.frozen.solves_from_elsewhere()) {
+            // Borrowed from farther away: u's own factorisation before Gauss–Newton.
+            x = start;
+            shared.freeze_own_at(problem, mesh, u);
+            projected = chord_from_frozen();
+          }
         }
-        projected = is_sparse && shared.frozen_ok &&
-                    project_chord(problem, shared.frozen, x, options.corrector).is_success() &&
-                    space.distance(x, start) <= length;
         if (!projected) {
           x = start;
           projected = detail::project_patiently(problem, x, settings, shared.workspace) &&
@@ -471,7 +514,7 @@ ToleranceRefinement refine_to_tolerance(const ImplicitProblem& problem, const Do
     double worst_remaining = -1.0;
     count_edges();
     measure_gram(mesh, candidates, gram);
-    const std::vector<std::pair<int, int>> pairs = anchored(mesh, candidates, rings);
+    const std::vector<std::pair<int, int>> pairs = anchored(mesh, candidates, rings, along_M);
     const detail::PassSamples pass = sampler.sample(pairs, gram, triangles_at_edge, false);
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const double worst = pass.worst[k];

@@ -54,15 +54,33 @@ void SampleState::freeze_at(const ImplicitProblem& problem, const TriangleMesh& 
   if (v == frozen_at) {
     return;
   }
-  // (The anchors come in vertex order, neighbours mostly but not always.)
   Linearization next;
-  if (frozen_ok && edge_length > 0 &&
-      borrow_nearby(problem, frozen, mesh.point(v), edge_length, next)) {
+  if (lenders.borrow(problem, mesh.point(v), edge_length, next)) {
     frozen = std::move(next);
-  } else {
-    frozen_ok = frozen.factor(problem, mesh.point(v));
+    frozen_ok = true;
+    frozen_at = v;
+    return;
   }
+  freeze_own_at(problem, mesh, v);
+}
+
+void SampleState::freeze_own_at(const ImplicitProblem& problem, const TriangleMesh& mesh, int v) {
   frozen_at = v;
+  if (!problem.has_sparse_jacobian() || sharing != 1) {  // not (yet) shared: in place
+    frozen_ok = frozen.factor(problem, mesh.point(v));
+    if (frozen_ok && sharing < 0 && problem.has_sparse_jacobian()) {
+      sharing = worth_sharing(frozen) ? 1 : 0;
+      if (sharing == 1) {
+        lenders.keep(problem, std::move(frozen), frozen);
+      }
+    }
+    return;
+  }
+  Linearization own;
+  frozen_ok = own.factor(problem, mesh.point(v));
+  if (frozen_ok) {
+    lenders.keep(problem, std::move(own), frozen);
+  }
 }
 
 bool project_patiently(const ImplicitProblem& problem, Eigen::VectorXd& x,
@@ -190,11 +208,22 @@ void TriangleSampler::measure(int anchor, int t, Claims claims, const std::vecto
     samples.col(count++) = a + beta * ab + gamma * ac;
   }
   const auto points = samples.leftCols(count);
-  const std::vector<double> distance =
-      state.frozen_ok ? chord_distance_bounds(problem_, state.frozen, points, settings_.accuracy,
-                                              settings_.chord, settings_.clear_below)
-                      : std::vector<double>(static_cast<std::size_t>(count),
-                                            std::numeric_limits<double>::infinity());
+  const auto from_anchor = [&] {
+    return state.frozen_ok ? chord_distance_bounds(problem_, state.frozen, points,
+                                                   settings_.accuracy, settings_.chord,
+                                                   settings_.clear_below)
+                           : std::vector<double>(static_cast<std::size_t>(count),
+                                                 std::numeric_limits<double>::infinity());
+  };
+  std::vector<double> distance = from_anchor();
+  // A borrowed factorisation is farther from the samples than the anchor's own: where its
+  // chord does not contract, the anchor factors its own (once, for the rest of its group), as
+  // it did before borrowing, and not every corner or Gauss–Newton step on its own.
+  if (state.frozen_ok && state.frozen.solves_from_elsewhere() &&
+      std::any_of(distance.begin(), distance.end(), [](double d) { return !std::isfinite(d); })) {
+    state.freeze_own_at(problem_, mesh_, anchor);
+    distance = from_anchor();
+  }
   out.count = static_cast<int>(count);
   for (Eigen::Index j = 0; j < count; ++j) {
     double d = distance[static_cast<std::size_t>(j)];

@@ -60,15 +60,23 @@ struct SampleSettings {
 /// (one factorisation, ~50 MB at n = 10⁵, serves the most points that way).
 struct SampleState {
   Linearization frozen;
-  int frozen_at = -1;  ///< the vertex `frozen` is factored at
+  int frozen_at = -1;  ///< the vertex `frozen` is linearised at
   bool frozen_ok = false;
   FactorisationCache corners{6, std::size_t{256} << 20};
+  /// The anchors' own factorisations, where worth sharing: later anchors borrow them.
+  FactorisationLenders lenders{4, std::size_t{256} << 20};
+  /// Whether the factorisations are worth sharing (worth_sharing): −1 until the first is made.
+  /// Where they are not, each is made in place, as before sharing (a sparse factorisation's
+  /// border follows the last one's basis), so that such runs keep their meshes and counts.
+  int sharing = -1;
   Linearization workspace;
-  /// Factors `frozen` at vertex v unless it is factored there already, or borrows the last
-  /// factorisation where that is near enough (borrow_nearby, with the mesh's local
-  /// `edge_length`; 0: never).
+  /// Makes `frozen` a linearisation at vertex v unless it is one there already: one that
+  /// borrows the nearest kept factorisation where that is near enough (FactorisationLenders,
+  /// with the mesh's local `edge_length`; 0: never), else v's own (freeze_own_at).
   void freeze_at(const ImplicitProblem& problem, const TriangleMesh& mesh, int v,
                  double edge_length = 0.0);
+  /// Factors `frozen` at vertex v, and keeps the factorisation as a lender.
+  void freeze_own_at(const ImplicitProblem& problem, const TriangleMesh& mesh, int v);
 };
 
 /// Gauss–Newton from x, and where it contracts too slowly for the method's corrector (θ above its
@@ -98,7 +106,8 @@ class TriangleSampler {
                   const SampleSettings& settings, SampleState& shared,
                   std::function<bool()> is_stop_requested);
 
-  /// Samples the triangles of `pairs` ((anchor, triangle), sorted by anchor). `gram`: the Gram
+  /// Samples the triangles of `pairs` ((anchor, triangle), grouped by anchor: each
+  /// anchor's pairs next to each other). `gram`: the Gram
   /// numbers of these triangles; `triangles_at_edge`: every edge's triangles (empty for an
   /// unbounded domain: no gaps). The same results whatever the thread count.
   /// `may_stop`: whether a stop request may end the pass (PassSamples::interrupted).

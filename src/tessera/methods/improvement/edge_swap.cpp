@@ -130,10 +130,28 @@ bool project_edge_midpoint(const TriangleMesh& mesh, const ImplicitProblem& prob
 
 namespace detail {
 
-const Linearization* CornerTangents::factorisation(const TriangleMesh& mesh, int v) {
+const Linearization* CornerTangents::factorisation(const TriangleMesh& mesh, int v,
+                                                   double edge_length) {
   if (factored_vertex_ != v) {
     factored_vertex_ = v;
-    is_factored_ = linearization_.factor(problem_, mesh.point(v));
+    Linearization next;
+    if (lenders_.borrow(problem_, mesh.point(v), edge_length, next)) {
+      linearization_ = std::move(next);
+      is_factored_ = true;
+    } else if (!problem_.has_sparse_jacobian() || sharing_ != 1) {
+      // Not (yet) shared: in place, as before sharing (a sparse factorisation's border follows
+      // the last one's basis), so that such runs keep their meshes and counts.
+      is_factored_ = linearization_.factor(problem_, mesh.point(v));
+      if (is_factored_ && sharing_ < 0 && problem_.has_sparse_jacobian()) {
+        sharing_ = worth_sharing(linearization_) ? 1 : 0;
+      }
+    } else {
+      Linearization own;
+      is_factored_ = own.factor(problem_, mesh.point(v));
+      if (is_factored_) {
+        lenders_.keep(problem_, std::move(own), linearization_);
+      }
+    }
     if (is_factored_) {
       remember(v, linearization_.tangent_basis());
     }
@@ -152,7 +170,9 @@ bool CornerTangents::tangent(const TriangleMesh& mesh, int v, const Eigen::Matri
     // factorisation (one DF, a few solves) gives v's tangent plane without a factorisation
     // of its own (at n = 10⁵, a third of a second each, three per swap checked).
     remember(v, T);
-  } else if (const Linearization* at_v = factorisation(mesh, v)) {
+  } else if (const Linearization* at_v = factorisation(
+                 mesh, v,
+                 is_factored_ ? space_->distance(mesh.point(v), linearization_.point()) : 0.0)) {
     T = at_v->tangent_basis();
   } else {
     return false;
@@ -178,7 +198,8 @@ SwapCheck check_quad_geometry(const TriangleMesh& mesh, const ImplicitProblem& p
                               Linearization& workspace, CornerTangents& corners_tangents) {
   const std::shared_ptr<const AmbientSpace> shared_space = problem.space();
   const AmbientSpace& space = *shared_space;
-  const Linearization* at_a = corners_tangents.factorisation(mesh, q.a);
+  const Linearization* at_a = corners_tangents.factorisation(
+      mesh, q.a, space.distance(mesh.point(q.a), mesh.point(q.b)));
   if (at_a == nullptr) {
     return SwapCheck::ProjectionFailed;
   }

@@ -39,9 +39,10 @@ std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& mesh) {
   return neighbours;
 }
 
-OrientationGuard::OrientationGuard(const ImplicitProblem& problem,
+OrientationGuard::OrientationGuard(const ImplicitProblem& problem, const TriangleMesh& mesh,
                                    std::vector<std::vector<int>> neighbours)
     : problem_(problem),
+      mesh_(mesh),
       space_(problem.space()),
       shares_factorisations_(problem.has_sparse_jacobian()),
       neighbours_(std::move(neighbours)),
@@ -66,6 +67,20 @@ const Linearization* OrientationGuard::at_vertex(int v, const Eigen::VectorXd& x
           return near;
         }
       }
+    }
+    // A kept factorisation farther away (the vertices come in index order, not along M):
+    // borrowed, where its tangent iteration converges.
+    double longest = 0.0;
+    for (int u : neighbours_[v]) {
+      if (u < mesh_.vertex_count()) {
+        longest = std::max(longest, space_->distance(mesh_.point(u), x));
+      }
+    }
+    Linearization borrowed;
+    if (lenders_.borrow(problem_, x, longest, borrowed)) {
+      const Linearization* kept = kept_.keep(v, problem_, std::move(borrowed));
+      remember_tangent(v, kept->tangent_basis());
+      return kept;
     }
   }
   return factor_at(v, x);
@@ -128,10 +143,22 @@ const Linearization* OrientationGuard::cached(int v) const {
 }
 
 const Linearization* OrientationGuard::factor_at(int v, const Eigen::VectorXd& x) {
-  const Linearization* linearization = kept_.factor(v, problem_, x);
-  if (linearization != nullptr) {
-    remember_tangent(v, linearization->tangent_basis());
+  if (!shares_factorisations_) {  // dense: as the cache factors, nothing to lend
+    const Linearization* linearization = kept_.factor(v, problem_, x);
+    if (linearization != nullptr) {
+      remember_tangent(v, linearization->tangent_basis());
+    }
+    return linearization;
   }
+  Linearization own;
+  if (!own.factor(problem_, x)) {
+    kept_.keep(v, problem_, std::move(own));  // rank deficient: not tried again
+    return nullptr;
+  }
+  Linearization at_v;
+  lenders_.keep(problem_, std::move(own), at_v);  // at_v: own where not worth sharing
+  const Linearization* linearization = kept_.keep(v, problem_, std::move(at_v));
+  remember_tangent(v, linearization->tangent_basis());
   return linearization;
 }
 

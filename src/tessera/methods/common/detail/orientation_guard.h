@@ -33,12 +33,16 @@ std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& mesh);
 /// last one also serves the chord projections onto the faces near that vertex.
 class OrientationGuard {
  public:
-  /// `neighbours[v]`: the vertices sharing a triangle with v when the clipping began.
-  OrientationGuard(const ImplicitProblem& problem, std::vector<std::vector<int>> neighbours);
+  /// `neighbours[v]`: the vertices sharing a triangle with v when the clipping began; `mesh`
+  /// (read as it changes) gives their edges' lengths.
+  OrientationGuard(const ImplicitProblem& problem, const TriangleMesh& mesh,
+                   std::vector<std::vector<int>> neighbours);
 
   /// A factorisation of DF at vertex v (at x, its point) or, for sparse problems, at one of its
   /// neighbours (the chord from there converges as well, and one factorisation serves the
-  /// vertices around it); null where DF is rank deficient. Valid until the next call.
+  /// vertices around it), or a linearisation at v that borrows a kept factorisation within four
+  /// of v's longest edges (FactorisationLenders, where factorisations are worth sharing); null
+  /// where DF is rank deficient. Valid until the next call.
   const Linearization* at_vertex(int v, const Eigen::VectorXd& x);
 
   /// True if `after` (a reshaped or cut part of `before`) has before's orientation in the
@@ -69,10 +73,12 @@ class OrientationGuard {
   const Linearization* factor_at(int v, const Eigen::VectorXd& x);
 
   const ImplicitProblem& problem_;
+  const TriangleMesh& mesh_;
   const std::shared_ptr<const AmbientSpace> space_;  // points are its local rows
   const bool shares_factorisations_;
   std::vector<std::vector<int>> neighbours_;
   FactorisationCache kept_;
+  FactorisationLenders lenders_{4, std::size_t{256} << 20};
   std::unordered_map<int, Eigen::MatrixXd> tangents_;
 };
 

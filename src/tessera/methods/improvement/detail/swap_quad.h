@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tessera/core/ambient_space.h"
+#include "tessera/core/factorisation_cache.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/linearization.h"
 #include "tessera/geometry/triangle_mesh.h"
@@ -63,8 +64,10 @@ class CornerTangents {
   explicit CornerTangents(const ImplicitProblem& problem)
       : problem_(problem), space_(problem.space()) {}
 
-  /// The factorisation at vertex v, made now unless v was the last one factored.
-  const Linearization* factorisation(const TriangleMesh& mesh, int v);
+  /// A linearisation at vertex v, made now unless v was the last one: one that borrows a kept
+  /// factorisation near v where that is worth it (FactorisationLenders, within four
+  /// `edge_length`s), else v's own, kept as a lender.
+  const Linearization* factorisation(const TriangleMesh& mesh, int v, double edge_length);
   /// T at vertex v (n×2, orthonormal), oriented like `reference`; false where DF is rank
   /// deficient.
   bool tangent(const TriangleMesh& mesh, int v, const Eigen::MatrixXd& reference,
@@ -79,6 +82,8 @@ class CornerTangents {
   const ImplicitProblem& problem_;
   const std::shared_ptr<const AmbientSpace> space_;
   Linearization linearization_;
+  FactorisationLenders lenders_{4, std::size_t{256} << 20};
+  int sharing_ = -1;  // worth_sharing of the first factorisation; −1 before it
   int factored_vertex_ = -1;
   bool is_factored_ = false;
   std::unordered_map<int, Eigen::MatrixXd> tangents_;
