@@ -464,7 +464,7 @@ TEST(CliAtlas, ByStepNamesItsUnitFirst) {
   const testing::CommandResult result =
       testing::run_cli("mesh sphere -o " + quoted(work_path("by_step.ply")));
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_TRUE(contains(result.output, "\n  by step (DF / factorisations per vertex): start "))
+  EXPECT_TRUE(contains(result.output, "\n  by step (DF / factorisations / solves per vertex): start "))
       << result.output;
   EXPECT_FALSE(contains(result.output, " DF/factorisations per vertex")) << result.output;
 }

@@ -14,21 +14,26 @@
 
 namespace tessera {
 
-/// Work done on a problem: evaluations of F and of DF, and numerical factorisations of DF (or of
-/// the bordered matrix [DF; border]). The currency of continuation at large n.
+/// Work done on a problem: evaluations of F and of DF, numerical factorisations of DF (or of
+/// the bordered matrix [DF; border]), and solves with them. The currency of continuation at
+/// large n: where factorisations are shared (issue 30) the solves are the rest of the cost.
 struct WorkCounts {
   long function_evaluations = 0;
   long jacobian_evaluations = 0;
   long factorisations = 0;
+  /// Right-hand sides solved with a factorisation (own or borrowed): a solve of k columns at
+  /// once counts k (one sweep over the factors serves them all, at less than k times the cost).
+  long solves = 0;
   WorkCounts operator-(const WorkCounts& other) const {
     return {function_evaluations - other.function_evaluations,
             jacobian_evaluations - other.jacobian_evaluations,
-            factorisations - other.factorisations};
+            factorisations - other.factorisations, solves - other.solves};
   }
   WorkCounts& operator+=(const WorkCounts& other) {
     function_evaluations += other.function_evaluations;
     jacobian_evaluations += other.jacobian_evaluations;
     factorisations += other.factorisations;
+    solves += other.solves;
     return *this;
   }
 };
@@ -110,14 +115,17 @@ class CountedProblem final : public ImplicitProblem {
     factorisations_.add(count);
     factorisation_nanoseconds_.add(std::lround(seconds * 1e9));
   }
+  /// Called by Linearization's solves with the right-hand sides (columns) they solved.
+  void record_solves(long columns) const { solves_.add(columns); }
   /// Summed over the threads that factored (CPU time, not wall time, when they overlap).
   double factorisation_seconds() const { return 1e-9 * factorisation_nanoseconds_.total(); }
 
   long function_evaluations() const { return function_evaluations_.total(); }
   long jacobian_evaluations() const { return jacobian_evaluations_.total(); }
   long factorisations() const { return factorisations_.total(); }
+  long solves() const { return solves_.total(); }
   WorkCounts counts() const {
-    return {function_evaluations(), jacobian_evaluations(), factorisations()};
+    return {function_evaluations(), jacobian_evaluations(), factorisations(), solves()};
   }
 
  private:
@@ -143,6 +151,7 @@ class CountedProblem final : public ImplicitProblem {
   mutable ConcurrentCount function_evaluations_;
   mutable ConcurrentCount jacobian_evaluations_;
   mutable ConcurrentCount factorisations_;
+  mutable ConcurrentCount solves_;
   mutable ConcurrentCount factorisation_nanoseconds_;
 };
 

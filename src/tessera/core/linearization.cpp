@@ -336,7 +336,8 @@ Linearization::Linearization(const Linearization& other)
       space_(other.space_),
       reciprocal_condition_(other.reciprocal_condition_),
       factored_(other.factored_ && other.backend_ &&
-                (other.is_borrowed() || other.backend_->clones_factorisation())) {}
+                (other.is_borrowed() || other.backend_->clones_factorisation())),
+      counted_(other.counted_) {}
 Linearization& Linearization::operator=(const Linearization& other) {
   if (this != &other) {
     Linearization copy(other);
@@ -412,6 +413,7 @@ bool Linearization::factor(const ImplicitProblem& problem,
   // torus's run) only every kTimingStride-th is timed, its time counted for all of them. Per
   // thread, not per object: the loops that factor make a Linearization per point.
   const auto* counted = dynamic_cast<const CountedProblem*>(&problem);
+  counted_ = counted;
   constexpr double kTimedBelow = 20e-6;
   constexpr int kTimingStride = 16;
   thread_local int untimed = 0;
@@ -509,6 +511,7 @@ bool Linearization::borrow(const ImplicitProblem& problem, const Linearization& 
     return false;
   }
   backend_ = near.backend_;
+  counted_ = dynamic_cast<const CountedProblem*>(&problem);
   solver_tangent_ = solver_tangent;
   solver_point_ = near.factored_point();
   oblique_ = cosines.inverse();
@@ -530,6 +533,7 @@ void Linearization::make_orthogonal_to_tangent(Eigen::Ref<Eigen::MatrixXd> dx) c
 void Linearization::solve_minimum_norm(const Eigen::Ref<const Eigen::VectorXd>& rhs,
                                        Eigen::Ref<Eigen::VectorXd> dx) const {
   TESSERA_ASSERT(factored_);
+  count_solves(1);
   if (is_borrowed()) {
     backend_->solve(rhs, solver_tangent_, dx);
     make_orthogonal_to_tangent(dx);
@@ -538,10 +542,17 @@ void Linearization::solve_minimum_norm(const Eigen::Ref<const Eigen::VectorXd>& 
   backend_->solve(rhs, tangent_, dx);
 }
 
+void Linearization::count_solves(long columns) const {
+  if (counted_ != nullptr) {
+    counted_->record_solves(columns);
+  }
+}
+
 void Linearization::solve_minimum_norm_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs,
                                                Eigen::Ref<Eigen::MatrixXd> dx) const {
   TESSERA_ASSERT(factored_);
   TESSERA_ASSERT(rhs.cols() == dx.cols());
+  count_solves(rhs.cols());
   if (is_borrowed()) {
     backend_->solve_columns(rhs, solver_tangent_, dx);
     make_orthogonal_to_tangent(dx);

@@ -14,6 +14,7 @@ namespace tessera {
 
 class LinearizationBackend;
 class AmbientSpace;
+class CountedProblem;
 
 /// The linearisation of F at a point x.
 ///
@@ -115,6 +116,10 @@ class Linearization {
   void make_orthogonal_to_tangent(Eigen::Ref<Eigen::MatrixXd> dx) const;
   double reciprocal_condition_ = 0.0;
   bool factored_ = false;
+  // The run's counter of solves, where the problem factored or borrowed with is one (its
+  // lifetime is the run's, which outlasts the linearisations it makes).
+  const CountedProblem* counted_ = nullptr;
+  void count_solves(long columns) const;
 };
 
 /// The tangent basis of M at a point y near `near`'s point, without factoring DF(y): the chord

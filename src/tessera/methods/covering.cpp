@@ -269,6 +269,7 @@ class StageRunner {
     summary.function_evaluations = problem.function_evaluations();
     summary.jacobian_evaluations = problem.jacobian_evaluations();
     summary.factorisations = problem.factorisations();
+    summary.solves = problem.solves();
     summary.factorisation_seconds = problem.factorisation_seconds();
     if (summary.resumed_from) {
       // The work of the runs before the checkpoint this one continued.

@@ -92,6 +92,10 @@ struct CoveringSummary {
   long function_evaluations = 0;
   long jacobian_evaluations = 0;
   long factorisations = 0;  ///< numerical factorisations of DF (or of [DF; border])
+  /// Right-hand sides solved with factorisations, own or borrowed (WorkCounts::solves). A run
+  /// resumed from a checkpoint counts them from the resumption (the checkpoint keeps F, DF and
+  /// factorisation counts only).
+  long solves = 0;
   /// Wall time spent in them (with the DF evaluations and analyses they needed): the run's
   /// own measure of one factorisation, factorisation_seconds / factorisations.
   double factorisation_seconds = 0.0;

@@ -241,6 +241,7 @@ std::string to_json(const MeshReport& report) {
                 {"function_evaluations", r.function_evaluations},
                 {"jacobian_evaluations", r.jacobian_evaluations},
                 {"factorisations", r.factorisations},
+                {"solves", r.solves},
                 {"factorisation_seconds", r.factorisation_seconds},
                 {"merges", r.merges},
                 {"front_connections", r.front_connections},
@@ -276,6 +277,7 @@ std::string to_json(const MeshReport& report) {
                         {"function_evaluations", p.counts.function_evaluations},
                         {"jacobian_evaluations", p.counts.jacobian_evaluations},
                         {"factorisations", p.counts.factorisations},
+                        {"solves", p.counts.solves},
                         {"wall_seconds", p.wall_seconds}});
     }
     j["run"]["work_by_phase"] = phases;
@@ -298,6 +300,7 @@ std::string to_json(const MeshReport& report) {
       j["run"]["per_vertex"] = {{"function_evaluations", r.function_evaluations / V},
                                 {"jacobian_evaluations", r.jacobian_evaluations / V},
                                 {"factorisations", r.factorisations / V},
+                                {"solves", r.solves / V},
                                 {"wall_seconds", r.wall_seconds / V}};
       if (r.factorisations > 0 && r.factorisation_seconds > 0) {
         // Time per vertex in units of the run's mean factorisation: the cost of a vertex in
@@ -456,11 +459,11 @@ std::string to_text(const MeshReport& report) {
     out << "work           " << r.wall_seconds << " s on " << r.threads
         << (r.threads == 1 ? " thread, " : " threads, ") << r.function_evaluations
         << " evaluations of F, " << r.jacobian_evaluations << " of DF, " << r.factorisations
-        << " factorisations";
+        << " factorisations, " << r.solves << " solves";
     if (r.vertex_count > 0) {
       const double V = r.vertex_count;
-      out << " (" << r.function_evaluations / V << ", " << r.jacobian_evaluations / V << " and "
-          << r.factorisations / V << " per vertex)";
+      out << " (" << r.function_evaluations / V << ", " << r.jacobian_evaluations / V << ", "
+          << r.factorisations / V << " and " << r.solves / V << " per vertex)";
     }
     out << "\n";
     // In factorisations' worth where factorisations are the cost (large n); at small n one
@@ -483,11 +486,11 @@ std::string to_text(const MeshReport& report) {
       // Where the work went, per vertex of the result: DF evaluations/factorisations per step.
       const double V = r.vertex_count;
       // The unit first, so that the numbers after it read as what they are.
-      out << "  by step (DF / factorisations per vertex): ";
+      out << "  by step (DF / factorisations / solves per vertex): ";
       for (std::size_t i = 0; i < r.work_by_phase.size(); ++i) {
         const PhaseWork& p = r.work_by_phase[i];
         out << (i ? ", " : "") << p.phase << " " << p.counts.jacobian_evaluations / V << "/"
-            << p.counts.factorisations / V;
+            << p.counts.factorisations / V << "/" << p.counts.solves / V;
       }
       out << "\n";
     }

@@ -36,6 +36,7 @@ void add_work(CoveringSummary& total, const CoveringSummary& part, bool is_first
   total.function_evaluations += part.function_evaluations;
   total.jacobian_evaluations += part.jacobian_evaluations;
   total.factorisations += part.factorisations;
+  total.solves += part.solves;
   total.factorisation_seconds += part.factorisation_seconds;
   total.threads = part.threads;  // the same problem: the same for every part
   for (const PhaseWork& phase : part.work_by_phase) {
