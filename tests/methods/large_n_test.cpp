@@ -81,8 +81,9 @@ TEST(LargeN, AtlasWorkPerVertexIsBounded) {
 
 // The 2-D problem: a larger stencil and a surface that meets the box on more faces (more
 // clipping). Its LU fills in (nnz(L + U) about twice nnz(A)), so charts share factorisations
-// (issue 30): measured 0.69 factorisations per vertex at N = 8 (0.86 before the steps after the
-// build shared too) and 4.02 Jacobians, against 1.78 and 3.56 each chart factoring its own (a
+// (issue 30): measured 0.64 factorisations per vertex at N = 8 (0.86 before the steps after the
+// build and the atlas's lenders shared too) and 4.11 Jacobians, against 1.78 and 3.56 each chart
+// factoring its own (a
 // borrowed chart evaluates DF for its tangent iteration, and one whose iteration does not
 // converge evaluates it again to factor).
 TEST(LargeN, AtlasWorkPerVertexIsBoundedOnTheSquare) {
@@ -90,13 +91,13 @@ TEST(LargeN, AtlasWorkPerVertexIsBoundedOnTheSquare) {
   const auto result = cover(setup, "atlas");
   ASSERT_TRUE(result.summary.is_complete()) << result.summary.message;
   const PerVertex work = per_vertex(result.summary);
-  EXPECT_LE(work.factorisations, 0.75);
-  EXPECT_LE(work.jacobians, 4.3);  // 4.05: a borrow that does not converge costs a DF
+  EXPECT_LE(work.factorisations, 0.7);
+  EXPECT_LE(work.jacobians, 4.3);  // 4.11: a borrow that does not converge costs a DF
   EXPECT_GT(result.summary.borrowed_factorisations, result.summary.charts / 2);
   // The steps after the build visit points along M and borrow from the nearest kept
   // factorisation (issue 30, second step): clipping with its swaps, the tolerance check and
   // validation factored 0.505 per vertex when each point factored or borrowed from the last one
-  // only, 0.334 now.
+  // only, 0.344 now.
   long after_build = 0;
   for (const auto& phase : result.summary.work_by_phase) {
     if (phase.phase == "clip" || phase.phase == "refine" || phase.phase == "validate") {
@@ -104,8 +105,8 @@ TEST(LargeN, AtlasWorkPerVertexIsBoundedOnTheSquare) {
     }
   }
   EXPECT_LE(after_build, 0.4 * result.summary.vertex_count);
-  // Where factorisations are shared, solves are the rest of the cost: 71 per vertex measured
-  // (36 in the build: tangent iterations, chords from borrowed factorisations, radius probes).
+  // Where factorisations are shared, solves are the rest of the cost: 73 per vertex measured
+  // (37 in the build: tangent iterations, chords from borrowed factorisations, radius probes).
   EXPECT_LE(result.summary.solves, 80 * result.summary.vertex_count);
 }
 

@@ -31,11 +31,6 @@ void FactorisationLenders::keep(const ImplicitProblem& problem, Linearization&& 
     out = std::move(factored);
     return;
   }
-  while (!lenders_.empty() && (lenders_.size() >= max_count_ ||
-                               (lenders_.size() >= 2 && bytes_ > max_bytes_))) {
-    bytes_ -= lenders_.front().bytes;
-    lenders_.pop_front();
-  }
   auto lender = std::make_shared<Linearization>(std::move(factored));
   Linearization at_point;
   // Its own point and basis: the oblique correction is the identity, the solves the lender's.
@@ -44,13 +39,33 @@ void FactorisationLenders::keep(const ImplicitProblem& problem, Linearization&& 
     return;
   }
   lender->release_assembly();  // kept for its solves only
-  std::size_t bytes = lender->memory_bytes();
+  const std::size_t bytes = lender->memory_bytes();
+  push(problem, std::move(lender), bytes);
+  out = std::move(at_point);
+}
+
+void FactorisationLenders::lend(const ImplicitProblem& problem, const Linearization& factored) {
+  if (!worth_sharing(factored) || factored.solves_from_elsewhere()) {
+    return;
+  }
+  auto view = std::make_shared<Linearization>();
+  if (view->borrow(problem, factored, factored.point(), factored.tangent_basis())) {
+    push(problem, std::move(view), factored.memory_bytes());
+  }
+}
+
+void FactorisationLenders::push(const ImplicitProblem& problem,
+                                std::shared_ptr<const Linearization> lender, std::size_t bytes) {
+  while (!lenders_.empty() && (lenders_.size() >= max_count_ ||
+                               (lenders_.size() >= 2 && bytes_ > max_bytes_))) {
+    bytes_ -= lenders_.front().bytes;
+    lenders_.pop_front();
+  }
   if (problem.space()->is_distributed()) {
     bytes = static_cast<std::size_t>(problem.space()->maximum(static_cast<double>(bytes)));
   }
   bytes_ += bytes;
   lenders_.push_back({std::move(lender), bytes});
-  out = std::move(at_point);
 }
 
 }  // namespace tessera

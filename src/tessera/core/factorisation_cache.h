@@ -108,10 +108,16 @@ class FactorisationLenders {
   /// point (the same solves, no copy of the factors). Otherwise `out` is `factored` itself.
   void keep(const ImplicitProblem& problem, Linearization&& factored, Linearization& out);
 
+  /// Keeps a view of `factored` (own, factored at its point) as a lender where it is worth
+  /// sharing: its factors shared, not copied, and held while the view is kept.
+  void lend(const ImplicitProblem& problem, const Linearization& factored);
+
  private:
   std::size_t max_count_;
   std::size_t max_bytes_;
   std::size_t bytes_ = 0;
+  void push(const ImplicitProblem& problem, std::shared_ptr<const Linearization> lender,
+            std::size_t bytes);
   struct Lender {
     std::shared_ptr<const Linearization> linearization;
     std::size_t bytes;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tessera/core/domain.h"
+#include "tessera/core/factorisation_cache.h"
 #include "tessera/core/implicit_problem.h"
 #include "tessera/core/linearization.h"
 #include "tessera/core/point_storage.h"
@@ -190,6 +191,11 @@ class AtlasBuilder {
   // share_factorisations, sparse problems, no checkpoints); how many did.
   bool share_factorisations_;
   int borrowed_charts_ = 0;
+  // The last charts' own factorisations (views that share their factors): a chart whose
+  // parent's does not reach it tries the nearest of these before factoring. They may outlive
+  // the charts' own copies: at most four, and beyond the newest two 256 MB, on top of
+  // max_factorisation_bytes.
+  FactorisationLenders lenders_{4, std::size_t{256} << 20};
   PointStorage centers_;  // n per chart
   // n×2 per chart while it may still be cut; empty once retired (memory that grows like n per
   // vertex, not 3n). Mutable: a retired chart's basis is restored on demand (a cache).

@@ -324,8 +324,11 @@ bool AtlasBuilder::factor_own(Linearization& at_center) {
     return false;
   }
   Linearization own;
-  return own.factor(problem_, at_center.point(), &at_center.tangent_basis()) &&
-         at_center.borrow(problem_, own, at_center.point(), at_center.tangent_basis());
+  if (!own.factor(problem_, at_center.point(), &at_center.tangent_basis())) {
+    return false;
+  }
+  lenders_.lend(problem_, own);
+  return at_center.borrow(problem_, own, at_center.point(), at_center.tangent_basis());
 }
 
 }  // namespace tessera::detail
