@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -91,4 +93,27 @@ TEST(SpatialOrder, SpatiallyOrderedVerticesOfAMeshInRn) {
   std::vector<int> some_ordered = tessera::spatially_ordered(mesh, some);
   std::sort(some_ordered.begin(), some_ordered.end());
   EXPECT_EQ(some_ordered, (std::vector<int>{3, 5, 17, 99, 400}));
+}
+
+// A vertex with a coordinate that is not finite has no place on the curve: it comes last, and
+// the others are still ordered (no comparison with NaN reaches the sort).
+TEST(SpatialOrder, VerticesThatAreNotFiniteComeLast) {
+  const Eigen::MatrixXd grid = shuffled_grid(8, 0.1);
+  tessera::TriangleMesh mesh(3);
+  for (int k = 0; k < grid.cols(); ++k) {
+    mesh.add_vertex(grid.col(k));
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const int bad = mesh.add_vertex(Eigen::Vector3d(nan, 0.0, 1.0));
+  const int infinite =
+      mesh.add_vertex(Eigen::Vector3d(0.0, std::numeric_limits<double>::infinity(), 1.0));
+  std::vector<int> vertices(static_cast<std::size_t>(mesh.vertex_count()));
+  std::iota(vertices.begin(), vertices.end(), 0);
+  std::swap(vertices[0], vertices[static_cast<std::size_t>(bad)]);  // first in the given order
+  const std::vector<int> ordered = tessera::spatially_ordered(mesh, vertices);
+  ASSERT_EQ(ordered.size(), vertices.size());
+  EXPECT_EQ(ordered[ordered.size() - 2], bad);
+  EXPECT_EQ(ordered.back(), infinite);
+  std::vector<int> finite(ordered.begin(), ordered.end() - 2);
+  EXPECT_LT(path_length(grid, finite), 1.5 * (grid.cols() - 1) * 0.1 * std::sqrt(2.0));
 }

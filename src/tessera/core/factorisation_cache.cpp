@@ -56,8 +56,8 @@ void FactorisationLenders::lend(const ImplicitProblem& problem, const Linearizat
 
 void FactorisationLenders::push(const ImplicitProblem& problem,
                                 std::shared_ptr<const Linearization> lender, std::size_t bytes) {
-  while (!lenders_.empty() && (lenders_.size() >= max_count_ ||
-                               (lenders_.size() >= 2 && bytes_ > max_bytes_))) {
+  while (!lenders_.empty() &&
+         (lenders_.size() >= max_count_ || (lenders_.size() >= 2 && bytes_ > max_bytes_))) {
     bytes_ -= lenders_.front().bytes;
     lenders_.pop_front();
   }

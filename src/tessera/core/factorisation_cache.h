@@ -49,9 +49,10 @@ class FactorisationCache {
   /// Keeps `linearization` (factored, borrowed or rank deficient) as the entry for `key`, as
   /// factor() does. A borrowed one weighs its own vectors only: its factors are counted where
   /// they were made. \return the entry. Valid until the next factor() or keep().
-  const Linearization* keep(int key, const ImplicitProblem& problem, Linearization&& linearization) {
-    while (!entries_.empty() && (entries_.size() >= max_count_ ||
-                                 (entries_.size() >= 2 && bytes_ > max_bytes_))) {
+  const Linearization* keep(int key, const ImplicitProblem& problem,
+                            Linearization&& linearization) {
+    while (!entries_.empty() &&
+           (entries_.size() >= max_count_ || (entries_.size() >= 2 && bytes_ > max_bytes_))) {
       bytes_ -= entries_.front().bytes;
       entries_.pop_front();
     }
@@ -63,9 +64,10 @@ class FactorisationCache {
     const Linearization& kept = entries_.back().linearization;
     // The bytes decide which entries are dropped, so for a distributed problem (each rank holds
     // its part of a factorisation) every rank must count the same: the largest part.
-    std::size_t bytes = is_borrowed ? 5 * sizeof(double) * static_cast<std::size_t>(
-                                              kept.point().size())  // point, two bases
-                                    : kept.memory_bytes();
+    std::size_t bytes = is_borrowed
+                            ? 5 * sizeof(double) *
+                                  static_cast<std::size_t>(kept.point().size())  // point, two bases
+                            : kept.memory_bytes();
     if (const auto space = problem.space(); space->is_distributed()) {
       bytes = static_cast<std::size_t>(space->maximum(static_cast<double>(bytes)));
     }

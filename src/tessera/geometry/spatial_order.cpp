@@ -34,18 +34,30 @@ std::vector<int> spatially_ordered(const TriangleMesh& mesh, std::vector<int> ve
   if (vertices.size() < 3 || mesh.space().is_distributed()) {
     return vertices;
   }
+  // Points with a coordinate that is not finite have no place on the curve (and would make the
+  // sort's comparisons inconsistent): they come last, in the given order.
+  std::vector<int> finite;
+  std::vector<int> last;
+  finite.reserve(vertices.size());
+  for (const int v : vertices) {
+    (mesh.point(v).allFinite() ? finite : last).push_back(v);
+  }
   PrincipalView view(mesh.ambient_dimension());
-  view.fit_sample(static_cast<int>(vertices.size()),
-                  [&](int i) { return mesh.point(vertices[static_cast<std::size_t>(i)]); });
-  Eigen::Matrix3Xd images(3, static_cast<Eigen::Index>(vertices.size()));
-  for (std::size_t k = 0; k < vertices.size(); ++k) {
-    images.col(static_cast<Eigen::Index>(k)) = view(mesh.point(vertices[k]));
+  view.fit_sample(static_cast<int>(finite.size()),
+                  [&](int i) { return mesh.point(finite[static_cast<std::size_t>(i)]); });
+  Eigen::Matrix3Xd images(3, static_cast<Eigen::Index>(finite.size()));
+  for (std::size_t k = 0; k < finite.size(); ++k) {
+    images.col(static_cast<Eigen::Index>(k)) = view(mesh.point(finite[k]));
+  }
+  if (!images.allFinite()) {  // a view that overflowed: no order to be had
+    return vertices;
   }
   std::vector<int> ordered;
   ordered.reserve(vertices.size());
   for (const int k : hilbert_order(images)) {
-    ordered.push_back(vertices[static_cast<std::size_t>(k)]);
+    ordered.push_back(finite[static_cast<std::size_t>(k)]);
   }
+  ordered.insert(ordered.end(), last.begin(), last.end());
   return ordered;
 }
 

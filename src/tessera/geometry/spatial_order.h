@@ -21,6 +21,7 @@ std::vector<int> hilbert_order(const Eigen::Ref<const Eigen::Matrix3Xd>& points)
 /// principal view (PrincipalView fitted to a sample of the mesh's points; the coordinates
 /// themselves for n ≤ 3). A split mesh (each rank its rows) keeps the given order: the view
 /// would need reductions per point, and the PETSc backend does not share factorisations.
+/// Vertices with a coordinate that is not finite come last, in the given order.
 std::vector<int> spatially_ordered(const TriangleMesh& mesh, std::vector<int> vertices);
 
 }  // namespace tessera
